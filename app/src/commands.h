@@ -1,0 +1,19 @@
+// Subcommands of `actuator`. Each takes the arguments after its name and returns the exit code;
+// bad input is thrown as UsageError and reported by main().
+#pragma once
+
+#include <string>
+
+namespace app {
+
+struct Command {
+    const char* name;
+    const char* summary;
+    int (*run)(int argc, char** argv, int first);  // argv[first] is the first argument after the name
+    std::string (*help)();
+};
+
+int RunSimulate(int argc, char** argv, int first);
+std::string SimulateHelp();
+
+}  // namespace app

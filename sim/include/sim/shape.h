@@ -1,0 +1,68 @@
+// Shapes: radius profiles and offsets that turn the bare helix into an actuator (MODEL.md, "Shapes").
+// Each is a small value type; `Shape` is their variant. BuildInitialPositions() makes the mesh.
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "sim/mesh.h"
+
+namespace sim {
+
+// The plain tube, rho = 1.
+struct CylinderShape {};
+
+// rho_i = amplitude * sin(phaseStart + t_i*(phaseEnd - phaseStart)), t_i = i/(N-1).
+// rho may go negative: the mesh then passes through the axis, as in the thesis.
+struct SineShape {
+    double amplitude = 4.1;                 // radius scale, mesh units (the base radius is 1)
+    double phaseStart = 0.5;                // radians at the bottom vertex
+    double phaseEnd = 3.14159265358979 - 0.5;  // radians at the top vertex (thesis 4.1: pi - 0.5)
+};
+
+// rho_i = amplitude * |sin(...)| (thesis 4.3): the tube never passes through its axis.
+struct AbsSineShape {
+    double amplitude = 4.0;
+    double phaseStart = 0.0;
+    double phaseEnd = 4.0 * 3.14159265358979323846;
+};
+
+enum class SplineRegion {
+    Entire,  // the spline spans every vertex
+    Middle,  // the two clamped turns at each end keep rho = 1; the spline spans the rest
+};
+
+// Uniform cubic B-spline radius profiles (thesis eq. 2.2), one per angular sector.
+// With S splines, vertex i belongs to sector ((i mod R) * S) / R.
+struct BSplineShape {
+    SplineRegion region = SplineRegion::Middle;
+    std::vector<std::vector<double>> splines;  // control points of each sector's spline, >= 4 each
+};
+
+// The bare helix plus a free (dx, dy) offset per vertex (thesis 5.5). Both arrays have N entries.
+struct FreeXYShape {
+    std::vector<double> dx, dy;
+};
+
+// Arbitrary initial positions in helix order (for example an OBJ file written by --save-mesh).
+struct MeshShape {
+    Positions positions;
+};
+
+using Shape = std::variant<CylinderShape, SineShape, AbsSineShape, BSplineShape, FreeXYShape, MeshShape>;
+
+// The name used on the command line and in results: cylinder, sine, abs-sine, bspline, free-xy, mesh.
+const char* ShapeName(const Shape& shape);
+
+// Empty when the shape can be built on this mesh; otherwise what is wrong, for a user to read.
+// Checks finiteness, control-point counts, sector counts and array sizes.
+std::string ShapeError(const Shape& shape, const MeshDef& def);
+
+// Uniform cubic B-spline through control points at parameter t in [0, 1] (MODEL.md formula).
+double EvaluateBSpline(const std::vector<double>& controlPoints, double t);
+
+// The initial (rest) mesh of a shape. Precondition: ShapeError(shape, def) is empty.
+Positions BuildInitialPositions(const Shape& shape, const MeshDef& def);
+
+}  // namespace sim

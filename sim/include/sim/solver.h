@@ -1,0 +1,81 @@
+// Evaluation of one shape: build the mesh, relax it under a load for a number of iterations
+// (MODEL.md, "One iteration"), and measure the contraction (MODEL.md, "Fitness").
+//
+// Evaluate() and Simulate() are pure functions of their arguments: safe to call from many threads.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "sim/mesh.h"
+#include "sim/shape.h"
+
+namespace sim {
+
+enum class Load {
+    Inflate,  // cross-product pressure on every free vertex (the thesis's inflation)
+    Stretch,  // pull the bottom turn down and the top turn up; no inflation (thesis chapter 6)
+    None,     // springs and clamps only: a rest mesh must stay exactly where it is
+};
+
+enum class Precision {
+    Float,   // the fast path; its fitness stays within 0.005 of Double (tests/sim)
+    Double,  // reference
+};
+
+enum class Status {
+    Ok,        // all positions finite and bounded after the last iteration
+    NaN,       // a position became NaN or infinite
+    Diverged,  // a position left the divergence bound: the mesh ran away
+};
+
+// Parameters of the `thesis` model. Defaults are the thesis's Table 3.2 values.
+struct SimParams {
+    int iterations = 10000;          // relaxation steps; the fitness is read after the last
+    Load load = Load::Inflate;
+    double springConstant = 0.01;    // k: force per unit of stretch
+    double pressureScale = 0.005;    // c_p: scales the cross-product inflation force
+    double pullForce = 0.005;        // c_pull: force on each end-turn vertex under Load::Stretch
+    double stepScale = 0.07;         // c_step: displacement per unit of force (overdamped update)
+    double divergenceLimit = 1.0e4;  // |coordinate| beyond this (mesh units) ends the run as Diverged;
+                                     // checked after every iteration
+    Precision precision = Precision::Float;
+};
+SimParams DefaultSimParams();
+
+const char* StatusName(Status status);  // ok, nan, diverged
+const char* LoadName(Load load);        // inflate, stretch, none
+const char* PrecisionName(Precision precision);
+
+struct SimResult {
+    Status status = Status::Ok;
+    double fitness = 0.0;             // mesh units; NaN unless status is Ok
+    double contractionPercent = 0.0;  // 100 * fitness / turns; NaN unless status is Ok
+    int iterationsRun = 0;            // where the run stopped (== params.iterations when Ok)
+    double elapsedMs = 0.0;           // wall time of the relaxation alone
+    Positions initial;                // the shaped rest mesh
+    Positions final;                  // positions after the last iteration run
+};
+
+// Called every `interval` iterations (and with iteration 0 before the first) with the current
+// positions; used for time-lapse frames. Return false to stop the run early.
+struct SimObserver {
+    int interval = 0;  // 0: never called
+    std::function<bool(int iteration, const Positions& positions)> onSnapshot;
+};
+
+// Relaxes an initial mesh. Precondition: initial has VertexCount(def) finite entries.
+SimResult Simulate(const Positions& initial, const MeshDef& def, const SimParams& params,
+                   const SimObserver* observer = nullptr);
+
+// Builds the shape's mesh and relaxes it. Precondition: ShapeError(shape, def) is empty.
+SimResult Evaluate(const Shape& shape, const MeshDef& def, const SimParams& params);
+
+// The thesis's contraction measure: mean rise of the bottom turn plus mean fall of the top turn.
+double Fitness(const Positions& initial, const Positions& final, const MeshDef& def);
+
+// FNV-1a over the bit patterns of all coordinates: equal hashes mean bit-identical meshes.
+std::uint64_t PositionsHash(const Positions& positions);
+
+}  // namespace sim

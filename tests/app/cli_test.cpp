@@ -1,0 +1,185 @@
+// The `actuator` binary as a user runs it: JSON on stdout, OBJ round trips, and every kind of bad
+// input refused with one line on stderr, exit code 2 and no file written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("actuator_cli_" + std::to_string(getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+    static std::string Slurp(const fs::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+
+    RunResult Run(const std::string& args) const {
+        const std::string command = std::string(ACTUATOR_BIN) + " " + args + " > " + Path("stdout") + " 2> " + Path("stderr");
+        const int status = std::system(command.c_str());
+        RunResult r;
+        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = Slurp(dir_ / "stdout");
+        r.err = Slurp(dir_ / "stderr");
+        return r;
+    }
+
+    void ExpectRefused(const std::string& args, const std::string& mentions) const {
+        const RunResult r = Run(args);
+        EXPECT_EQ(r.exitCode, 2) << "actuator " << args << "\nstderr: " << r.err;
+        EXPECT_EQ(r.out, "") << "actuator " << args;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "want one line, got: " << r.err;
+        EXPECT_NE(r.err.find(mentions), std::string::npos) << "message should mention '" << mentions << "': " << r.err;
+    }
+
+    void Write(const std::string& name, const std::string& contents) const { std::ofstream(Path(name), std::ios::binary) << contents; }
+
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Cli, SimulatePrintsOneJsonObjectWithTheResult) {
+    const RunResult r = Run("simulate --shape abs-sine --amplitude 4 --phase 0,12.566370614359172");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["status"], "ok");
+    EXPECT_NEAR(json["fitness"].get<double>(), 0.964, 0.005);
+    EXPECT_NEAR(json["contraction_percent"].get<double>(), 100 * json["fitness"].get<double>() / 30, 1e-9);
+    EXPECT_EQ(json["iterations"], 10000);
+    EXPECT_GT(json["elapsed_ms"].get<double>(), 0);
+    EXPECT_EQ(json["shape"]["name"], "abs-sine");
+    EXPECT_EQ(json["springs"], 3509);
+}
+
+TEST_F(Cli, PhaseAcceptsMultiplesOfPi) {
+    const auto a = nlohmann::json::parse(Run("simulate --shape abs-sine --phase 0,4pi --iterations 100").out);
+    const auto b = nlohmann::json::parse(Run("simulate --shape abs-sine --phase 0,12.566370614359172 --iterations 100").out);
+    EXPECT_EQ(a["final_positions_hash"], b["final_positions_hash"]);
+}
+
+TEST_F(Cli, EveryShapeFromTheIssueRuns) {
+    for (const std::string args : {"--shape cylinder", "--shape sine --amplitude 4.1 --phase 0.5,2.6415926535",
+                                   "--shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"",
+                                   "--shape bspline --region middle --control-points \"4,6,2,5;2,3,7,4,6;5,5,1,2;3,3,3,3\"",
+                                   "--shape sine --amplitude 4.1 --phase 0.5,2.6415926535 --load stretch"}) {
+        const RunResult r = Run("simulate " + args + " --iterations 300");
+        ASSERT_EQ(r.exitCode, 0) << args << ": " << r.err;
+        EXPECT_EQ(nlohmann::json::parse(r.out)["status"], "ok") << args;
+    }
+    std::string offsets;
+    for (int i = 0; i < 900; ++i) offsets += "0.1 -0.05\n";
+    Write("offsets.txt", offsets);
+    const RunResult r = Run("simulate --shape free-xy --offsets " + Path("offsets.txt") + " --iterations 300");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["shape"]["name"], "free-xy");
+}
+
+TEST_F(Cli, SavedMeshesRoundTripExactly) {
+    const RunResult first = Run("simulate --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") +
+                                " --save-mesh " + Path("final.obj"));
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    const auto a = nlohmann::json::parse(first.out);
+
+    // The initial mesh read back evolves to the very same bits.
+    const auto b = nlohmann::json::parse(Run("simulate --mesh " + Path("initial.obj") + " --iterations 800").out);
+    EXPECT_EQ(b["final_positions_hash"], a["final_positions_hash"]);
+    EXPECT_EQ(b["fitness"], a["fitness"]);
+
+    // The final mesh read back is the same positions (zero iterations leave it as read).
+    const auto c = nlohmann::json::parse(Run("simulate --mesh " + Path("final.obj") + " --iterations 0").out);
+    EXPECT_EQ(c["final_positions_hash"], a["final_positions_hash"]);
+
+    // And it is a real OBJ: 900 vertices and the model's triangles.
+    const std::string obj = Slurp(Path("final.obj"));
+    int vertexLines = 0, faceLines = 0;
+    std::istringstream lines(obj);
+    for (std::string line; std::getline(lines, line);) {
+        vertexLines += line.rfind("v ", 0) == 0;
+        faceLines += line.rfind("f ", 0) == 0;
+    }
+    EXPECT_EQ(vertexLines, 900);
+    EXPECT_EQ(faceLines, 2 * (900 - 31));
+    EXPECT_NE(obj.find("\nf 1 2 32\n"), std::string::npos);
+}
+
+TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
+    ExpectRefused("simulate --shape banana", "banana");
+    ExpectRefused("simulate --shape bspline --control-points 1,2,3", "at least 4");
+    ExpectRefused("simulate --shape bspline --control-points \"1,2,3,4;1,2\"", "spline 2");
+    ExpectRefused("simulate --shape sine --amplitude abc", "--amplitude");
+    ExpectRefused("simulate --shape sine --amplitude nan", "--amplitude");
+    ExpectRefused("simulate --shape sine --amplitude inf", "--amplitude");
+    ExpectRefused("simulate --shape sine --phase 1", "--phase");
+    ExpectRefused("simulate --iterations -5", "--iterations");
+    ExpectRefused("simulate --iterations 1e3", "--iterations");
+    ExpectRefused("simulate --mesh " + Path("missing.obj"), "missing.obj");
+    ExpectRefused("simulate --shape cylinder --amplitude 3", "does not apply");
+    ExpectRefused("simulate --bogus 1", "--bogus");
+    ExpectRefused("simulate --amplitude", "needs a value");
+    ExpectRefused("simulate --turns 4", "--turns");
+    ExpectRefused("simulate --load squeeze", "squeeze");
+    ExpectRefused("frobnicate", "frobnicate");
+
+    Write("short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    ExpectRefused("simulate --mesh " + Path("short.obj"), "3 vertices, expected 900");
+    Write("garbage.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0garbage", 18));
+    ExpectRefused("simulate --mesh " + Path("garbage.obj"), "garbage.obj");
+    Write("text.obj", "hello world\n");
+    ExpectRefused("simulate --mesh " + Path("text.obj"), "text.obj:1");
+    Write("nan.obj", "v 0 nan 0\n");
+    ExpectRefused("simulate --mesh " + Path("nan.obj"), "nan.obj:1");
+    Write("offsets.txt", "0.1 0.2\n");
+    ExpectRefused("simulate --shape free-xy --offsets " + Path("offsets.txt"), "expected 1800");
+}
+
+TEST_F(Cli, RefusedRunsWriteNoFile) {
+    ExpectRefused("simulate --shape sine --amplitude x --save-mesh " + Path("out.obj"), "--amplitude");
+    ExpectRefused("simulate --save-mesh " + Path("no/such/folder/out.obj"), "does not exist");
+    EXPECT_FALSE(fs::exists(Path("out.obj")));
+    for (const auto& entry : fs::directory_iterator(dir_))
+        EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << "left behind " << entry.path();
+}
+
+TEST_F(Cli, HelpExplainsEveryOptionWithItsDefault) {
+    const RunResult main = Run("--help");
+    EXPECT_EQ(main.exitCode, 0);
+    EXPECT_NE(main.out.find("simulate"), std::string::npos);
+    const RunResult help = Run("simulate --help");
+    EXPECT_EQ(help.exitCode, 0);
+    for (const char* option : {"--shape", "--amplitude", "--phase", "--region", "--control-points", "--offsets", "--mesh",
+                               "--resolution", "--turns", "--load", "--iterations", "--precision", "--save-mesh"})
+        EXPECT_NE(help.out.find(option), std::string::npos) << option;
+    EXPECT_NE(help.out.find("(default: 10000)"), std::string::npos);
+    EXPECT_NE(help.out.find("(default: inflate)"), std::string::npos);
+}
+
+TEST_F(Cli, NumericalFailureIsAStatusNotAnError) {
+    const RunResult r = Run("simulate --shape sine --amplitude 4.1 --iterations 40000");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_NE(json["status"], "ok");
+    EXPECT_TRUE(json["fitness"].is_null());
+}
