@@ -71,25 +71,90 @@ std::string FormatOptions(const std::vector<OptionSpec>& specs) {
     return out.str();
 }
 
-double ParseNumber(const std::string& rawText, const std::string& what) {
-    std::string text = rawText;
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.erase(text.begin());
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-    double scale = 1.0;
-    if (text.size() >= 2 && text.compare(text.size() - 2, 2, "pi") == 0) {
-        scale = std::numbers::pi;
-        text.erase(text.size() - 2);
-        if (text.empty() || text == "+" || text == "-") text += "1";
-        if (!text.empty() && text.back() == '*') text.pop_back();
+namespace {
+
+// Arithmetic on numbers and pi, so that phases can be written as the thesis writes them:
+// "pi-0.5", "4pi", "0.5*pi", "(8/3)pi". Grammar: sum := product (('+'|'-') product)*;
+// product := factor (('*'|'/') factor)*; factor := ('+'|'-') factor | NUMBER ['pi'] | 'pi' | '(' sum ')'.
+class NumberExpression {
+public:
+    explicit NumberExpression(const std::string& text) : text_(text) {}
+
+    bool Parse(double& value) {
+        if (!Sum(value)) return false;
+        SkipSpaces();
+        return pos_ == text_.size();
     }
-    if (text.empty()) throw UsageError(what + ": expected a number, got '" + rawText + "'");
-    errno = 0;
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (end != text.c_str() + text.size()) throw UsageError(what + ": '" + rawText + "' is not a number");
-    if (errno == ERANGE || !std::isfinite(value))
-        throw UsageError(what + ": '" + rawText + "' is not a finite number");
-    return value * scale;
+
+private:
+    void SkipSpaces() {
+        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    }
+    bool Accept(char c) {
+        SkipSpaces();
+        if (pos_ < text_.size() && text_[pos_] == c) { ++pos_; return true; }
+        return false;
+    }
+    bool AcceptPi() {
+        SkipSpaces();
+        if (text_.compare(pos_, 2, "pi") == 0) { pos_ += 2; return true; }
+        return false;
+    }
+    bool Sum(double& value) {
+        if (!Product(value)) return false;
+        for (;;) {
+            double rhs;
+            if (Accept('+')) { if (!Product(rhs)) return false; value += rhs; }
+            else if (Accept('-')) { if (!Product(rhs)) return false; value -= rhs; }
+            else return true;
+        }
+    }
+    bool Product(double& value) {
+        if (!Factor(value)) return false;
+        for (;;) {
+            double rhs;
+            if (Accept('*')) { if (!Factor(rhs)) return false; value *= rhs; }
+            else if (Accept('/')) { if (!Factor(rhs)) return false; value /= rhs; }
+            else return true;
+        }
+    }
+    bool Factor(double& value) {
+        if (Accept('-')) { if (!Factor(value)) return false; value = -value; return true; }
+        if (Accept('+')) return Factor(value);
+        if (Accept('(')) {
+            if (!Sum(value) || !Accept(')')) return false;
+            if (AcceptPi()) value *= std::numbers::pi;
+            return true;
+        }
+        if (AcceptPi()) { value = std::numbers::pi; return true; }
+        // A plain decimal number (no "inf", "nan" or hex, which strtod alone would take).
+        SkipSpaces();
+        const size_t start = pos_;
+        auto digits = [&] { size_t n = 0; while (pos_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[pos_]))) { ++pos_; ++n; } return n; };
+        size_t count = digits();
+        if (pos_ < text_.size() && text_[pos_] == '.') { ++pos_; count += digits(); }
+        if (count == 0) return false;
+        if (pos_ < text_.size() && (text_[pos_] == 'e' || text_[pos_] == 'E')) {
+            ++pos_;
+            if (pos_ < text_.size() && (text_[pos_] == '+' || text_[pos_] == '-')) ++pos_;
+            if (digits() == 0) return false;
+        }
+        value = std::strtod(text_.substr(start, pos_ - start).c_str(), nullptr);
+        if (text_.compare(pos_, 2, "pi") == 0) { pos_ += 2; value *= std::numbers::pi; }  // "4pi"
+        return true;
+    }
+
+    const std::string& text_;
+    size_t pos_ = 0;
+};
+
+}  // namespace
+
+double ParseNumber(const std::string& text, const std::string& what) {
+    double value = 0;
+    if (!NumberExpression(text).Parse(value)) throw UsageError(what + ": '" + text + "' is not a number");
+    if (!std::isfinite(value)) throw UsageError(what + ": '" + text + "' is not a finite number");
+    return value;
 }
 
 int ParseInt(const std::string& text, const std::string& what, int min, int max) {

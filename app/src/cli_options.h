@@ -37,7 +37,7 @@ ParsedArgs ParseArgs(int argc, char** argv, int first, const std::vector<OptionS
 std::string FormatOptions(const std::vector<OptionSpec>& specs);
 
 // Strict value parsers: the whole text must be consumed and the number finite. `what` names the
-// option in the message. Numbers may be written with a "pi" suffix: "pi", "4pi", "0.5pi".
+// option in the message. Numbers may use pi and + - * / ( ): "pi-0.5", "4pi", "0.5*pi", "-pi/2".
 double ParseNumber(const std::string& text, const std::string& what);
 int ParseInt(const std::string& text, const std::string& what, int min, int max);
 std::vector<double> ParseNumberList(const std::string& text, const std::string& what, char separator = ',');

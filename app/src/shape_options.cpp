@@ -41,7 +41,7 @@ std::vector<OptionSpec> ShapeOptionSpecs() {
         {"shape", "NAME", "cylinder", "cylinder, sine, abs-sine, bspline, free-xy or mesh"},
         {"amplitude", "A", "4.1 for sine, 4 for abs-sine", "sine amplitude: rho = A*sin(phase) (mesh units; base radius 1)"},
         {"phase", "START,END", "0.5,pi-0.5 for sine; 0,4pi for abs-sine",
-         "phase range in radians from bottom to top vertex; numbers may end in 'pi', e.g. 0,4pi"},
+         "phase range in radians from bottom to top vertex; numbers may use pi and + - * /, e.g. 0,4pi or 0.5,pi-0.5"},
         {"region", "entire|middle", "middle", "bspline: span all vertices, or leave the two clamped turns at each end at radius 1"},
         {"control-points", "LIST", "",
          "bspline control points (radius multipliers), ',' between points and ';' between the 1, 2 or 4 sector "

@@ -11,10 +11,15 @@ TEST(ParseNumber, AcceptsPlainNumbersAndMultiplesOfPi) {
     EXPECT_DOUBLE_EQ(app::ParseNumber("4pi", "x"), 4 * std::numbers::pi);
     EXPECT_DOUBLE_EQ(app::ParseNumber("0.5*pi", "x"), 0.5 * std::numbers::pi);
     EXPECT_DOUBLE_EQ(app::ParseNumber("-pi", "x"), -std::numbers::pi);
+    EXPECT_DOUBLE_EQ(app::ParseNumber("pi-0.5", "x"), std::numbers::pi - 0.5);
+    EXPECT_DOUBLE_EQ(app::ParseNumber("-pi/2 + 1", "x"), -std::numbers::pi / 2 + 1);
+    EXPECT_DOUBLE_EQ(app::ParseNumber("(8/3)pi", "x"), 8.0 / 3 * std::numbers::pi);
+    EXPECT_DOUBLE_EQ(app::ParseNumber("1e-2", "x"), 0.01);
+    EXPECT_DOUBLE_EQ(app::ParseNumber(" 7 ", "x"), 7);
 }
 
 TEST(ParseNumber, RefusesJunkAndNonFiniteValues) {
-    for (const char* bad : {"", "abc", "4.1x", "nan", "inf", "-inf", "1e999", "pipi", "4 pi"})
+    for (const char* bad : {"", "abc", "4.1x", "nan", "inf", "-inf", "1e999", "pipi", "1/0", "0x10", "(1", "2*", "1e", "."})
         EXPECT_THROW(app::ParseNumber(bad, "--amplitude"), app::UsageError) << bad;
 }
 

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the workbench builds with, only those that are missing.
+# Run as root (or with sudo). Everything comes from Debian: no downloads at build time.
+set -euo pipefail
+
+packages=(
+  g++ cmake make pkg-config
+  libeigen3-dev          # linear algebra (sim)
+  libosmesa6-dev         # offscreen OpenGL (render)
+  libpng-dev             # PNG files (render)
+  libimgui-dev           # Dear ImGui overlays (render)
+  capnproto libcapnp-dev # archives and RPC (app)
+  libgtest-dev libgmock-dev  # tests
+  libbenchmark-dev       # benchmarks
+  nlohmann-json3-dev     # JSON parsing (experiment files, tests)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
