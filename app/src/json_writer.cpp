@@ -1,5 +1,6 @@
 #include "json_writer.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -53,9 +54,10 @@ JsonWriter& JsonWriter::Key(const std::string& key) {
 JsonWriter& JsonWriter::Number(double value) {
     if (!std::isfinite(value)) return Null();
     BeforeValue();
+    // Shortest text that reads back as the same double: 4.1, not 4.0999999999999996.
     char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.17g", value);
-    text_ += buffer;
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+    text_.append(buffer, end);
     return *this;
 }
 

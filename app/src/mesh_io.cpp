@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -34,9 +35,16 @@ std::string FormatObj(const sim::Positions& p, const sim::MeshDef& def) {
     std::snprintf(line, sizeof line, "# actuator workbench mesh: %d vertices per turn x %d turns, vertices in helix order\n",
                   def.resolution, def.turns);
     out += line;
+    // Shortest round-trip text for each coordinate: reading the file back gives the same doubles.
     for (int i = 0; i < p.Size(); ++i) {
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x[i], p.y[i], p.z[i]);
-        out += line;
+        char* end = line;
+        *end++ = 'v';
+        for (double c : {p.x[i], p.y[i], p.z[i]}) {
+            *end++ = ' ';
+            end = std::to_chars(end, line + sizeof line, c).ptr;
+        }
+        *end++ = '\n';
+        out.append(line, end);
     }
     for (const auto& t : sim::Triangles(def)) {
         std::snprintf(line, sizeof line, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);

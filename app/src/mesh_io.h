@@ -8,8 +8,8 @@
 
 namespace app {
 
-// Text of an OBJ file: a comment naming the mesh size, one "v" line per vertex (%.17g, so reading it
-// back gives the same doubles), then the triangles of the model's quads as 1-based "f" lines.
+// Text of an OBJ file: a comment naming the mesh size, one "v" line per vertex (shortest round-trip
+// digits, so reading it back gives the same doubles), then the model's triangles as 1-based "f" lines.
 std::string FormatObj(const sim::Positions& positions, const sim::MeshDef& def);
 
 // Reads the "v" lines of an OBJ file in order. Ignores faces, normals, texture coordinates, groups
