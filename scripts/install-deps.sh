@@ -9,6 +9,7 @@ packages=(
   libosmesa6-dev         # offscreen OpenGL (render)
   libpng-dev             # PNG files (render)
   libimgui-dev           # Dear ImGui overlays (render)
+  fonts-dejavu-core      # the overlay font (render)
   capnproto libcapnp-dev # archives and RPC (app)
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # benchmarks

@@ -33,8 +33,10 @@ ParsedArgs ParseArgs(int argc, char** argv, int first, const std::vector<OptionS
         if (spec->valueName.empty()) {
             if (inlineValue) throw UsageError("option '--" + name + "' takes no value");
         } else if (!inlineValue) {
-            if (i + 1 >= argc) throw UsageError("option '--" + name + "' needs a value (" + spec->valueName + ")");
-            value = argv[++i];
+            const bool nextIsValue = i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0;
+            if (!spec->implicitValue.empty() && !nextIsValue) value = spec->implicitValue;
+            else if (!nextIsValue && i + 1 >= argc) throw UsageError("option '--" + name + "' needs a value (" + spec->valueName + ")");
+            else value = argv[++i];
         }
         parsed.values[name] = value;
     }

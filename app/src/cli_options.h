@@ -19,6 +19,7 @@ struct OptionSpec {
     std::string valueName;     // empty for a flag
     std::string defaultText;   // shown in help; empty when there is no default
     std::string help;
+    std::string implicitValue = "";  // when set, the value may be left out: "--turntable" means "--turntable 60"
 };
 
 struct ParsedArgs {

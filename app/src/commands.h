@@ -15,5 +15,9 @@ struct Command {
 
 int RunSimulate(int argc, char** argv, int first);
 std::string SimulateHelp();
+int RunRender(int argc, char** argv, int first);
+std::string RenderHelp();
+int RunImgDiff(int argc, char** argv, int first);
+std::string ImgDiffHelp();
 
 }  // namespace app

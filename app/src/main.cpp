@@ -11,6 +11,8 @@ namespace {
 
 const app::Command kCommands[] = {
     {"simulate", "evaluate one shape and print its fitness as JSON", app::RunSimulate, app::SimulateHelp},
+    {"render", "pictures of one shape: before/after, stretch, turntable, time-lapse", app::RunRender, app::RenderHelp},
+    {"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", app::RunImgDiff, app::ImgDiffHelp},
 };
 
 std::string MainHelp() {
