@@ -1,0 +1,144 @@
+// `actuator render` and `actuator imgdiff` as a user runs them.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "render/image.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class RenderCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("actuator_render_" + std::to_string(getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+    static std::string Slurp(const fs::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    struct Result {
+        int exitCode;
+        std::string out, err;
+    };
+    Result Run(const std::string& args, const std::string& environment = "") const {
+        const std::string command = environment + " " + ACTUATOR_BIN + " " + args + " > " + Path("stdout") + " 2> " + Path("stderr");
+        const int status = std::system(command.c_str());
+        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
+    }
+    static render::Image Load(const fs::path& path) {
+        const std::string bytes = Slurp(path);
+        render::Image image;
+        std::string error;
+        EXPECT_TRUE(render::DecodePng(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), &image, &error)) << path << ": " << error;
+        return image;
+    }
+    static int CountFiles(const fs::path& folder) {
+        int count = 0;
+        for (const auto& entry : fs::directory_iterator(folder)) count += entry.path().extension() == ".png";
+        return count;
+    }
+    void ExpectRefused(const std::string& args, const std::string& mentions) const {
+        const Result r = Run(args);
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
+    }
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(RenderCli, WritesInflationAndStretchFigures) {
+    const Result r = Run("render --shape sine --amplitude 4.1 --size 320x240 --out " + Path("fig"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["inflation"]["status"], "ok");
+    EXPECT_NEAR(json["stretch"]["fitness"].get<double>(), -1.718, 0.005);
+    for (const char* name : {"inflation.png", "stretch.png"}) {
+        const render::Image image = Load(dir_ / "fig" / name);
+        EXPECT_EQ(image.width, 320);
+        EXPECT_EQ(image.height, 240);
+        EXPECT_FALSE(render::IsUniform(image)) << name;
+    }
+}
+
+TEST_F(RenderCli, SameInputGivesTheSameBytes) {
+    ASSERT_EQ(Run("render --shape abs-sine --size 200x150 --iterations 500 --out " + Path("a")).exitCode, 0);
+    ASSERT_EQ(Run("render --shape abs-sine --size 200x150 --iterations 500 --out " + Path("b")).exitCode, 0);
+    EXPECT_EQ(Slurp(dir_ / "a" / "inflation.png"), Slurp(dir_ / "b" / "inflation.png"));
+}
+
+TEST_F(RenderCli, TurntableAndTimelapseWriteTheirFrames) {
+    const Result r = Run("render --shape sine --size 160x120 --iterations 400 --turntable --timelapse 4 --out " + Path("seq"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(CountFiles(dir_ / "seq" / "turntable"), 60);  // --turntable alone means 60 frames
+    EXPECT_EQ(CountFiles(dir_ / "seq" / "timelapse"), 5);   // iterations 0, 100, 200, 300, 400
+    // The turntable moves: frame 15 (a quarter turn) differs from frame 0.
+    const auto comparison = render::CompareImages(Load(dir_ / "seq" / "turntable" / "frame_0000.png"),
+                                                  Load(dir_ / "seq" / "turntable" / "frame_0015.png"), render::ImageTolerance{});
+    EXPECT_FALSE(comparison.matches);
+}
+
+TEST_F(RenderCli, VideoNeedsFfmpegAndSaysSoWhenMissing) {
+    const Result r = Run("render --shape cylinder --size 160x120 --iterations 100 --turntable 3 --video --out " + Path("v"),
+                         "PATH=" + Path("empty-path"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("ffmpeg is not installed"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "v" / "turntable.mp4"));
+    if (std::system("command -v ffmpeg > /dev/null 2>&1") == 0) {
+        const Result withFfmpeg = Run("render --shape cylinder --size 160x120 --iterations 100 --turntable 3 --video --out " + Path("v"));
+        ASSERT_EQ(withFfmpeg.exitCode, 0) << withFfmpeg.err;
+        EXPECT_GT(fs::file_size(dir_ / "v" / "turntable.mp4"), 100u);
+    }
+}
+
+TEST_F(RenderCli, BadOptionsAreRefused) {
+    ExpectRefused("render --shape sine", "--out");
+    ExpectRefused("render --size 10x10 --out " + Path("x"), "--size");
+    ExpectRefused("render --size huge --out " + Path("x"), "--size");
+    ExpectRefused("render --turntable 0 --out " + Path("x"), "--turntable");
+    ExpectRefused("render --color-by purple --out " + Path("x"), "purple");
+    ExpectRefused("render --load stretch --out " + Path("x"), "--load");
+    ExpectRefused("render --iterations 100 --timelapse 500 --out " + Path("x"), "--timelapse");
+    ExpectRefused("render --png-level 12 --out " + Path("x"), "--png-level");
+    std::ofstream(Path("file")) << "not a folder";
+    ExpectRefused("render --out " + Path("file"), "--out");
+}
+
+TEST_F(RenderCli, ImgDiffExitCodes) {
+    ASSERT_EQ(Run("render --shape sine --size 200x150 --iterations 300 --out " + Path("a")).exitCode, 0);
+    ASSERT_EQ(Run("render --shape sine --size 200x150 --iterations 300 --elevation 45 --out " + Path("b")).exitCode, 0);
+    const std::string a = Path("a/inflation.png"), b = Path("b/inflation.png");
+
+    Result same = Run("imgdiff " + a + " " + a);
+    EXPECT_EQ(same.exitCode, 0);
+    EXPECT_NE(same.out.find("match"), std::string::npos);
+
+    Result differ = Run("imgdiff " + a + " " + b + " --diff " + Path("diff.png"));
+    EXPECT_EQ(differ.exitCode, 1);
+    EXPECT_NE(differ.out.find("% of pixels differ"), std::string::npos) << differ.out;
+    EXPECT_FALSE(render::IsUniform(Load(Path("diff.png"))));
+
+    // A looser tolerance accepts the same pair.
+    EXPECT_EQ(Run("imgdiff " + a + " " + b + " --max-fraction 1").exitCode, 0);
+
+    std::ofstream(Path("fake.png")) << "GIF89a";
+    ExpectRefused("imgdiff " + a + " " + Path("fake.png"), "fake.png");
+    ExpectRefused("imgdiff " + a + " " + Path("missing.png"), "missing.png");
+    ExpectRefused("imgdiff " + a, "two PNG files");
+    ExpectRefused("imgdiff " + a + " " + b + " --threshold 300", "--threshold");
+}
