@@ -347,13 +347,26 @@ std::vector<Vec3> OutwardNormals(const sim::MeshDef& mesh, const std::vector<Vec
 // ---------------------------------------------------------------------------------------------
 namespace {
 
+// Spring strain has outliers: at a pinch where the tube meets its axis, rest lengths are nearly zero
+// and a few springs reach hundreds of percent. Scaling to the 98th percentile keeps the rest readable.
+double RobustColorMax(const std::vector<std::vector<double>>& values) {
+    std::vector<double> all;
+    for (const auto& panel : values) all.insert(all.end(), panel.begin(), panel.end());
+    if (all.empty()) return 0;
+    const size_t k = std::min(all.size() - 1, static_cast<size_t>(0.98 * (all.size() - 1)));
+    std::nth_element(all.begin(), all.begin() + k, all.end());
+    return all[k];
+}
+
 std::string FormatTick(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", value);
     return text;
 }
 
-void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& strip, double maxValue, const char* label) {
+// Values above the top of the scale take its colour; the top label then reads "> max".
+void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& strip, double maxValue, bool clipped,
+                   const char* label) {
     const float barWidth = strip.Width() * 0.22f;
     const float x0 = strip.x0 + strip.Width() * 0.12f, x1 = x0 + barWidth;
     const float y0 = strip.y0 + fontSize * 3.2f, y1 = strip.y1 - fontSize * 1.2f;
@@ -370,7 +383,7 @@ void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& s
     for (int k = 0; k <= 4; ++k) {
         const float y = y1 - (y1 - y0) * k / 4;
         draw->AddLine(ImVec2(x1, y), ImVec2(x1 + barWidth * 0.25f, y), ink, fontSize * 0.06f);
-        const std::string tick = FormatTick(maxValue * k / 4);
+        const std::string tick = (k == 4 && clipped ? "> " : "") + FormatTick(maxValue * k / 4);
         draw->AddText(font, fontSize * 0.85f, ImVec2(x1 + barWidth * 0.35f, y - fontSize * 0.45f), ink, tick.c_str());
     }
     draw->AddText(font, fontSize * 0.85f, ImVec2(strip.x0 + strip.Width() * 0.02f, strip.y0 + fontSize * 0.8f), ink, label);
@@ -413,8 +426,11 @@ Image MeshRenderer::Render(const Scene& scene) {
             points[i] = rotation * Vec3(float(panel.positions.x[i]), float(panel.positions.y[i]), float(panel.positions.z[i]));
         rotated.push_back(std::move(points));
     }
+    const double largestValue = maxValue;
     if (scene.colorMax) maxValue = *scene.colorMax;
+    else if (def.colorBy == ColorBy::Strain) maxValue = RobustColorMax(values);
     if (!(maxValue > 0)) maxValue = 1;
+    const bool clipped = largestValue > maxValue * (1 + 1e-9);
     std::vector<const sim::Positions*> all;
     for (const Panel& panel : scene.panels) all.push_back(&panel.positions);
     const Framing framing = scene.framing ? *scene.framing : FrameMeshes(all);
@@ -511,7 +527,7 @@ Image MeshRenderer::Render(const Scene& scene) {
         }
         if (coloured) {
             const char* label = def.colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : "spring strain\n(percent)";
-            DrawColourBar(draw, s.textFont, fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, maxValue, label);
+            DrawColourBar(draw, s.textFont, fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, maxValue, clipped, label);
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

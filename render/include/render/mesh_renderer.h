@@ -57,6 +57,7 @@ struct Scene {
     std::vector<std::string> lines;      // overlay text under the title
     std::optional<Framing> framing;      // default: frame every panel
     std::optional<double> colorMax;      // top of the colour scale; default: the largest value shown
+                                         // (for strain, the 98th percentile: see RobustColorMax)
 };
 
 // Per-vertex values of a colour mode (exposed for tests and for fixed scales across sequences).
