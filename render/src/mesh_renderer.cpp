@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <numbers>
 
-#include "imgui_impl_opengl3.h"
+#include "overlay_context.h"
 #include "render/gl_context.h"
 
 namespace render {
@@ -194,18 +194,7 @@ struct MeshRenderer::State {
     GLuint vao = 0, vertexBuffer = 0, triangleBuffer = 0, springBuffer = 0;
     sim::MeshDef indexedMesh{0, 0};  // mesh size the index buffers were built for
     GLsizei triangleIndexCount = 0, springIndexCount = 0;
-    ImGuiContext* imgui = nullptr;
-    ImFont* textFont = nullptr;
-    ImFont* titleFont = nullptr;
-    float textScale = 1;  // pixels of the supersampled buffer per output pixel of a 768-high image
-
-    ~State() {
-        if (imgui) {
-            ImGui::SetCurrentContext(imgui);
-            ImGui_ImplOpenGL3_Shutdown();
-            ImGui::DestroyContext(imgui);
-        }
-    }
+    OverlayContext overlay;
 
     void EnsureIndexBuffers(const sim::MeshDef& mesh) {
         if (mesh.resolution == indexedMesh.resolution && mesh.turns == indexedMesh.turns) return;
@@ -248,32 +237,8 @@ std::unique_ptr<MeshRenderer> MeshRenderer::Create(const RenderDef& def, std::st
     glGenBuffers(1, &state->triangleBuffer);
     glGenBuffers(1, &state->springBuffer);
 
-    // Text: DejaVu Sans from Debian's fonts-dejavu-core, sized with the image; ImGui's built-in
-    // bitmap font if it is missing (still legible, smaller).
-    IMGUI_CHECKVERSION();
-    state->imgui = ImGui::CreateContext();
-    ImGui::SetCurrentContext(state->imgui);
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.LogFilename = nullptr;
     // Text follows the image size, but never below ~16 px body text: small images stay legible.
-    state->textScale = def.supersample * std::max(0.85f, def.height / 768.0f);
-    const char* fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
-    const char* boldPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf";
-    std::error_code ec;
-    if (std::filesystem::exists(fontPath, ec) && std::filesystem::exists(boldPath, ec)) {
-        state->textFont = io.Fonts->AddFontFromFileTTF(fontPath, 19.0f * state->textScale);
-        state->titleFont = io.Fonts->AddFontFromFileTTF(boldPath, 26.0f * state->textScale);
-    }
-    if (!state->textFont || !state->titleFont) {
-        ImFontConfig config;
-        config.SizePixels = 13.0f * state->textScale;
-        state->textFont = state->titleFont = io.Fonts->AddFontDefault(&config);
-    }
-    if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
-        *error = "Dear ImGui's OpenGL 3 backend failed to start";
-        return nullptr;
-    }
+    if (!state->overlay.Create(def.supersample * std::max(0.85f, def.height / 768.0f), error)) return nullptr;
     return std::unique_ptr<MeshRenderer>(new MeshRenderer(std::move(state)));
 }
 
@@ -400,12 +365,11 @@ Image MeshRenderer::Render(const Scene& scene) {
     const RenderDef& def = s.def;
     const int width = def.width * def.supersample, height = def.height * def.supersample;
     s.context->MakeCurrent(width, height);
-    ImGui::SetCurrentContext(s.imgui);
     s.EnsureIndexBuffers(scene.mesh);
 
     // Layout: text band on top, captions below, colour bar strip on the right.
     const bool coloured = def.colorBy != ColorBy::Shading;
-    const float fontSize = 19.0f * s.textScale;
+    const float fontSize = s.overlay.FontSize();
     const float top = def.overlay ? fontSize * (2.2f + 1.25f * scene.lines.size()) : 0.0f;
     const float bottom = def.overlay ? fontSize * 1.8f : 0.0f;
     const float barStrip = def.overlay && coloured ? std::max(width * 0.11f, fontSize * 6.0f) : 0.0f;
@@ -505,32 +469,26 @@ Image MeshRenderer::Render(const Scene& scene) {
     glViewport(0, 0, width, height);
 
     if (def.overlay) {
-        ImGuiIO& io = ImGui::GetIO();
-        io.DisplaySize = ImVec2(float(width), float(height));
-        io.DeltaTime = 1.0f / 30;
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui::NewFrame();
-        ImDrawList* draw = ImGui::GetForegroundDrawList();
+        ImDrawList* draw = s.overlay.Begin(width, height);
         const ImU32 ink = IM_COL32(25, 25, 25, 255), grey = IM_COL32(70, 70, 70, 255);
         const float margin = fontSize * 0.7f;
-        draw->AddText(s.titleFont, fontSize * 1.37f, ImVec2(margin, margin * 0.8f), ink, scene.title.c_str());
+        draw->AddText(s.overlay.TitleFont(), fontSize * 1.37f, ImVec2(margin, margin * 0.8f), ink, scene.title.c_str());
         float y = margin * 0.8f + fontSize * 1.7f;
         for (const std::string& line : scene.lines) {
-            draw->AddText(s.textFont, fontSize, ImVec2(margin, y), grey, line.c_str());
+            draw->AddText(s.overlay.TextFont(), fontSize, ImVec2(margin, y), grey, line.c_str());
             y += fontSize * 1.25f;
         }
         for (int k = 0; k < int(scene.panels.size()); ++k) {
             const std::string& caption = scene.panels[k].caption;
-            const ImVec2 size = s.textFont->CalcTextSizeA(fontSize, FLT_MAX, 0, caption.c_str());
+            const ImVec2 size = s.overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, caption.c_str());
             const float cx = panelArea.x0 + (k + 0.5f) * panelWidth;
-            draw->AddText(s.textFont, fontSize, ImVec2(cx - size.x / 2, panelArea.y1 + fontSize * 0.3f), ink, caption.c_str());
+            draw->AddText(s.overlay.TextFont(), fontSize, ImVec2(cx - size.x / 2, panelArea.y1 + fontSize * 0.3f), ink, caption.c_str());
         }
         if (coloured) {
             const char* label = def.colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : "spring strain\n(percent)";
-            DrawColourBar(draw, s.textFont, fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, maxValue, clipped, label);
+            DrawColourBar(draw, s.overlay.TextFont(), fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, maxValue, clipped, label);
         }
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        s.overlay.End();
     }
 
     return BoxDownsample(s.context->FinishAndGetPixels().data(), width, height, def.supersample, /*bottomUp=*/true);

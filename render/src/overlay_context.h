@@ -1,0 +1,35 @@
+// Dear ImGui set up for drawing into offscreen frames: its own context, DejaVu Sans fonts sized to
+// the image, and the OpenGL 3 backend. Text and 2-D shapes go through foreground draw lists, which
+// have no window and so no hidden first frame. Private to render/.
+#pragma once
+
+#include <imgui.h>
+
+#include <string>
+
+namespace render {
+
+class OverlayContext {
+public:
+    // textScale: pixels of the frame buffer per pixel of body text at 19 px (supersampling included).
+    // Needs a current GL context. False with *error set on failure.
+    bool Create(float textScale, std::string* error);
+    ~OverlayContext();
+
+    // Draw between Begin and End; End renders the draw lists into the current framebuffer.
+    ImDrawList* Begin(int width, int height);
+    void End();
+
+    ImFont* TextFont() const { return textFont_; }
+    ImFont* TitleFont() const { return titleFont_; }
+    float FontSize() const { return fontSize_; }  // body text size in frame-buffer pixels
+
+private:
+    ImGuiContext* context_ = nullptr;
+    bool backendStarted_ = false;
+    ImFont* textFont_ = nullptr;
+    ImFont* titleFont_ = nullptr;
+    float fontSize_ = 19;
+};
+
+}  // namespace render

@@ -1,0 +1,122 @@
+// Searches over shapes: exhaustive sweeps over sine parameters (thesis chapter 4) and the thesis's
+// genetic algorithm (chapter 5, DEAP's eaSimple semantics plus elitism). Plain data and pure steps:
+// evaluation is a callback, so the caller chooses threads, caching and archives, while every random
+// draw happens here, in a fixed order, from one checkpointable generator.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sim/random.h"
+#include "sim/shape.h"
+#include "sim/solver.h"
+
+namespace sim {
+
+// [SECTION] Sweeps -------------------------------------------------------------------------------
+
+enum class SweepParameter {
+    Amplitude,  // A
+    Cycles,     // n: phase runs from phaseStart to phaseStart + n*pi (thesis 4.2, 4.3)
+    PhaseEnd,   // b: phase runs from phaseStart to b
+};
+const char* SweepParameterName(SweepParameter parameter);  // amplitude, cycles, phase_end
+
+struct SweepAxis {
+    SweepParameter parameter = SweepParameter::Amplitude;
+    std::vector<double> values;
+};
+
+// Evenly spaced values from `from` to `to` inclusive (numpy.linspace).
+std::vector<double> Linspace(double from, double to, int points);
+
+struct SweepDef {
+    Shape base = SineShape{};     // sine or abs-sine; the axes overwrite their parameters
+    std::vector<SweepAxis> axes;  // one or two
+};
+
+// The grid's shapes, row-major: the last axis varies fastest.
+std::vector<Shape> SweepShapes(const SweepDef& def);
+
+// [SECTION] Genetic algorithm --------------------------------------------------------------------
+
+enum class GenomeKind {
+    BSpline,  // integer control points, one list per sector spline, each of variable length
+    FreeXY,   // a (dx, dy) offset per vertex, 2N floats
+};
+
+struct GenomeDef {
+    GenomeKind kind = GenomeKind::BSpline;
+    SplineRegion region = SplineRegion::Middle;
+    int splines = 1;        // B-spline sectors: 1, 2 or 4
+    int controlMin = 0;     // control points are integers in [controlMin, controlMax] (thesis: 0-8)
+    int controlMax = 8;
+    int lengthMin = 5;      // control points per spline, inclusive bounds (thesis: 5-16)
+    int lengthMax = 16;
+    double initRange = 0.5; // free-xy: initial offsets uniform in [-initRange, initRange] (thesis 5.5)
+    double sigma = 0.2;     // free-xy: standard deviation of the Gaussian mutation, mesh units
+    double bound = 1.0;     // free-xy: offsets are clamped to [-bound, bound] (thesis 5.5)
+};
+
+struct GaDef {
+    int population = 30;    // individuals per generation
+    int generations = 40;   // generations after the initial population
+    int tournament = 3;     // tournament size k
+    int elite = 1;          // best individuals copied unchanged into the next generation
+    double mutpb = 0.4;     // probability that an individual is mutated (MUTPB)
+    double indpb = 0.2;     // probability that a gene is reset, and that a spline grows or shrinks (INDPB)
+    double cxpb = 0.0;      // probability that a pair gets two-point crossover (thesis: only for free-xy)
+    GenomeDef genome;
+};
+
+// B-spline: one list of control points per sector. Free-xy: one list dx0, dy0, dx1, dy1, ...
+using Genome = std::vector<std::vector<double>>;
+
+struct Individual {
+    Genome genome;
+    bool evaluated = false;
+    double fitness = 0;          // meaningful only when evaluated and status is Ok
+    Status status = Status::Ok;  // a failed individual is never selected and never counts as 0
+
+    bool Valid() const { return evaluated && status == Status::Ok; }
+};
+
+struct LogbookRow {
+    int generation = 0;
+    int evaluations = 0;  // individuals evaluated this generation (DEAP's nevals)
+    double best = 0, worst = 0, mean = 0, stddev = 0;  // over valid individuals; stddev with ddof 0
+    int invalid = 0;      // individuals whose evaluation failed (nan or diverged)
+};
+
+struct GaState {
+    int generation = 0;  // generations completed; 0 once the initial population is evaluated
+    Random rng;
+    std::vector<Individual> population;
+    std::vector<LogbookRow> logbook;
+    std::vector<Individual> bestPerGeneration;  // one per logbook row
+    std::vector<Individual> hallOfFame;         // best distinct genomes of the run, best first
+};
+
+constexpr int kHallOfFameSize = 10;
+
+// Evaluates genomes; returns (fitness, status) for each, in order. May run them in parallel.
+using GenomeEvaluator = std::function<std::vector<std::pair<double, Status>>(const std::vector<const Genome*>&)>;
+
+// Empty when the definition is usable; otherwise what is wrong.
+std::string GaDefError(const GaDef& def, const MeshDef& mesh);
+
+Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& mesh);
+
+// Creates and evaluates the initial population (generation 0).
+GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed, const GenomeEvaluator& evaluate);
+
+// One generation: keep the elite, select by tournament among valid individuals, cross, mutate,
+// evaluate the changed individuals. False (state unchanged) when no individual is valid to select.
+bool EvolveOneGeneration(const GaDef& def, const MeshDef& mesh, GaState& state, const GenomeEvaluator& evaluate);
+
+// A genome as text: splines separated by ';', genes by ',' (shortest round-trip digits).
+std::string GenomeText(const Genome& genome);
+
+}  // namespace sim

@@ -1,0 +1,271 @@
+#include "sim/search.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+namespace sim {
+
+// ---------------------------------------------------------------------------------------------
+// Sweeps
+// ---------------------------------------------------------------------------------------------
+
+const char* SweepParameterName(SweepParameter parameter) {
+    switch (parameter) {
+        case SweepParameter::Amplitude: return "amplitude";
+        case SweepParameter::Cycles: return "cycles";
+        case SweepParameter::PhaseEnd: return "phase_end";
+    }
+    return "?";
+}
+
+std::vector<double> Linspace(double from, double to, int points) {
+    std::vector<double> values;
+    for (int k = 0; k < points; ++k) values.push_back(points == 1 ? from : from + (to - from) * k / (points - 1));
+    return values;
+}
+
+std::vector<Shape> SweepShapes(const SweepDef& def) {
+    std::vector<Shape> shapes{def.base};
+    for (const SweepAxis& axis : def.axes) {
+        std::vector<Shape> next;
+        for (const Shape& shape : shapes) {
+            for (double value : axis.values) {
+                Shape s = shape;
+                auto apply = [&](auto& sine) {
+                    switch (axis.parameter) {
+                        case SweepParameter::Amplitude: sine.amplitude = value; break;
+                        case SweepParameter::Cycles: sine.phaseEnd = sine.phaseStart + value * std::numbers::pi; break;
+                        case SweepParameter::PhaseEnd: sine.phaseEnd = value; break;
+                    }
+                };
+                if (auto* sine = std::get_if<SineShape>(&s)) apply(*sine);
+                else if (auto* absSine = std::get_if<AbsSineShape>(&s)) apply(*absSine);
+                next.push_back(s);
+            }
+        }
+        shapes = std::move(next);
+    }
+    return shapes;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Genetic algorithm
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+Genome RandomGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
+    Genome genome;
+    if (def.kind == GenomeKind::FreeXY) {
+        std::vector<double> offsets(2 * static_cast<size_t>(VertexCount(mesh)));
+        for (double& v : offsets) v = -def.initRange + 2 * def.initRange * rng.Uniform();
+        genome.push_back(std::move(offsets));
+        return genome;
+    }
+    for (int s = 0; s < def.splines; ++s) {
+        std::vector<double> spline(static_cast<size_t>(rng.Integer(def.lengthMin, def.lengthMax)));
+        for (double& c : spline) c = static_cast<double>(rng.Integer(def.controlMin, def.controlMax));
+        genome.push_back(std::move(spline));
+    }
+    return genome;
+}
+
+// The thesis's mutation (section 3.2.5). B-splines: each gene is reset to a random integer with
+// probability INDPB; then, with probability INDPB each, a spline grows by one random gene (if below
+// its maximum length) and shrinks by its last gene (if above its minimum). Free-xy: each gene moves
+// by Gaussian noise with probability INDPB, clamped to the bounds.
+void Mutate(Genome& genome, const GaDef& def, Random& rng) {
+    const GenomeDef& g = def.genome;
+    for (auto& genes : genome) {
+        if (g.kind == GenomeKind::FreeXY) {
+            for (double& v : genes)
+                if (rng.Chance(def.indpb)) v = std::clamp(v + g.sigma * rng.Normal(), -g.bound, g.bound);
+            continue;
+        }
+        for (double& c : genes)
+            if (rng.Chance(def.indpb)) c = static_cast<double>(rng.Integer(g.controlMin, g.controlMax));
+        if (rng.Chance(def.indpb) && static_cast<int>(genes.size()) < g.lengthMax)
+            genes.push_back(static_cast<double>(rng.Integer(g.controlMin, g.controlMax)));
+        if (rng.Chance(def.indpb) && static_cast<int>(genes.size()) > g.lengthMin) genes.pop_back();
+    }
+}
+
+// DEAP's cxTwoPoint on each pair of gene lists (over the shorter length).
+void CrossTwoPoint(Genome& a, Genome& b, Random& rng) {
+    for (size_t k = 0; k < a.size() && k < b.size(); ++k) {
+        const long long size = static_cast<long long>(std::min(a[k].size(), b[k].size()));
+        if (size < 2) continue;
+        long long first = rng.Integer(1, size);
+        long long second = rng.Integer(1, size - 1);
+        if (second >= first) ++second;
+        else std::swap(first, second);
+        std::swap_ranges(a[k].begin() + first, a[k].begin() + second, b[k].begin() + first);
+    }
+}
+
+// Tournament of k aspirants drawn with replacement from the valid individuals; the first best wins
+// (DEAP's selTournament). Failed individuals never enter.
+const Individual& Tournament(const std::vector<const Individual*>& valid, int k, Random& rng) {
+    const Individual* best = nullptr;
+    for (int draw = 0; draw < k; ++draw) {
+        const Individual* aspirant = valid[static_cast<size_t>(rng.Integer(0, static_cast<long long>(valid.size()) - 1))];
+        if (!best || aspirant->fitness > best->fitness) best = aspirant;
+    }
+    return *best;
+}
+
+void Evaluate(std::vector<Individual>& population, const GenomeEvaluator& evaluate, int* evaluations) {
+    std::vector<Individual*> pending;
+    std::vector<const Genome*> genomes;
+    for (auto& individual : population)
+        if (!individual.evaluated) {
+            pending.push_back(&individual);
+            genomes.push_back(&individual.genome);
+        }
+    *evaluations = static_cast<int>(pending.size());
+    if (pending.empty()) return;
+    const auto results = evaluate(genomes);
+    for (size_t j = 0; j < pending.size(); ++j) {
+        pending[j]->evaluated = true;
+        pending[j]->fitness = results[j].first;
+        pending[j]->status = results[j].second;
+    }
+}
+
+// Valid individuals, best first; ties keep population order.
+std::vector<const Individual*> RankValid(const std::vector<Individual>& population) {
+    std::vector<const Individual*> valid;
+    for (const auto& individual : population)
+        if (individual.Valid()) valid.push_back(&individual);
+    std::stable_sort(valid.begin(), valid.end(), [](const Individual* a, const Individual* b) { return a->fitness > b->fitness; });
+    return valid;
+}
+
+void Record(GaState& state, int evaluations) {
+    LogbookRow row;
+    row.generation = state.generation;
+    row.evaluations = evaluations;
+    const auto ranked = RankValid(state.population);
+    row.invalid = static_cast<int>(state.population.size() - ranked.size());
+    if (!ranked.empty()) {
+        row.best = ranked.front()->fitness;
+        row.worst = ranked.back()->fitness;
+        double sum = 0;
+        for (const auto* individual : ranked) sum += individual->fitness;
+        row.mean = sum / ranked.size();
+        double squares = 0;
+        for (const auto* individual : ranked) squares += (individual->fitness - row.mean) * (individual->fitness - row.mean);
+        row.stddev = std::sqrt(squares / ranked.size());
+        state.bestPerGeneration.push_back(*ranked.front());
+    } else {
+        row.best = row.worst = row.mean = row.stddev = std::nan("");
+        state.bestPerGeneration.push_back(state.population.front());
+    }
+    state.logbook.push_back(row);
+    for (const auto* individual : ranked) {
+        const bool known = std::any_of(state.hallOfFame.begin(), state.hallOfFame.end(),
+                                       [&](const Individual& h) { return h.genome == individual->genome; });
+        if (known) continue;
+        state.hallOfFame.push_back(*individual);
+    }
+    std::stable_sort(state.hallOfFame.begin(), state.hallOfFame.end(),
+                     [](const Individual& a, const Individual& b) { return a.fitness > b.fitness; });
+    if (state.hallOfFame.size() > kHallOfFameSize) state.hallOfFame.resize(kHallOfFameSize);
+}
+
+}  // namespace
+
+std::string GaDefError(const GaDef& d, const MeshDef& mesh) {
+    if (d.population < 2) return "population must be at least 2";
+    if (d.generations < 0) return "generations must not be negative";
+    if (d.tournament < 1) return "tournament size must be at least 1";
+    if (d.elite < 0 || d.elite >= d.population) return "elite must be at least 0 and smaller than the population";
+    for (double p : {d.mutpb, d.indpb, d.cxpb})
+        if (!(p >= 0 && p <= 1)) return "probabilities (mutpb, indpb, cxpb) must be between 0 and 1";
+    const GenomeDef& g = d.genome;
+    if (g.kind == GenomeKind::BSpline) {
+        if (g.splines != 1 && g.splines != 2 && g.splines != 4) return "splines must be 1, 2 or 4";
+        if (g.controlMin > g.controlMax) return "control point range is empty (min > max)";
+        if (g.lengthMin < 4) return "a spline needs at least 4 control points (length min >= 4)";
+        if (g.lengthMin > g.lengthMax) return "length range is empty (min > max)";
+        if (g.splines > mesh.resolution) return "more splines than vertices per turn";
+    } else {
+        if (!(g.initRange >= 0) || !(g.sigma >= 0) || !(g.bound > 0) || !std::isfinite(g.initRange + g.sigma + g.bound))
+            return "free-xy init_range and sigma must be >= 0 and bound > 0";
+    }
+    return "";
+}
+
+Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& mesh) {
+    if (def.kind == GenomeKind::FreeXY) {
+        FreeXYShape s;
+        const auto& offsets = genome.at(0);
+        const size_t n = static_cast<size_t>(VertexCount(mesh));
+        s.dx.resize(n);
+        s.dy.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            s.dx[i] = offsets[2 * i];
+            s.dy[i] = offsets[2 * i + 1];
+        }
+        return s;
+    }
+    return BSplineShape{def.region, genome};
+}
+
+GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed, const GenomeEvaluator& evaluate) {
+    GaState state;
+    state.rng = Random(seed);
+    for (int i = 0; i < def.population; ++i) state.population.push_back(Individual{RandomGenome(def.genome, mesh, state.rng)});
+    int evaluations = 0;
+    Evaluate(state.population, evaluate, &evaluations);
+    Record(state, evaluations);
+    return state;
+}
+
+bool EvolveOneGeneration(const GaDef& def, const MeshDef& /*mesh*/, GaState& state, const GenomeEvaluator& evaluate) {
+    const auto ranked = RankValid(state.population);
+    if (ranked.empty()) return false;
+
+    std::vector<Individual> next;
+    for (int e = 0; e < def.elite && e < static_cast<int>(ranked.size()); ++e) next.push_back(*ranked[e]);
+    std::vector<Individual> offspring;
+    while (static_cast<int>(next.size() + offspring.size()) < def.population)
+        offspring.push_back(Tournament(ranked, def.tournament, state.rng));
+
+    // DEAP's varAnd: crossover on consecutive pairs, then mutation; changed individuals lose their fitness.
+    for (size_t i = 1; i < offspring.size(); i += 2) {
+        if (state.rng.Chance(def.cxpb)) {
+            CrossTwoPoint(offspring[i - 1].genome, offspring[i].genome, state.rng);
+            offspring[i - 1].evaluated = offspring[i].evaluated = false;
+        }
+    }
+    for (auto& individual : offspring) {
+        if (state.rng.Chance(def.mutpb)) {
+            Mutate(individual.genome, def, state.rng);
+            individual.evaluated = false;
+        }
+    }
+    int evaluations = 0;
+    Evaluate(offspring, evaluate, &evaluations);
+    next.insert(next.end(), offspring.begin(), offspring.end());
+    state.population = std::move(next);
+    ++state.generation;
+    Record(state, evaluations);
+    return true;
+}
+
+std::string GenomeText(const Genome& genome) {
+    std::string text;
+    char buffer[32];
+    for (size_t k = 0; k < genome.size(); ++k) {
+        if (k) text += ';';
+        for (size_t j = 0; j < genome[k].size(); ++j) {
+            if (j) text += ',';
+            text.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, genome[k][j]).ptr);
+        }
+    }
+    return text;
+}
+
+}  // namespace sim
