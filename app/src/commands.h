@@ -18,6 +18,10 @@ std::string SimulateHelp();
 int RunRender(int argc, char** argv, int first);
 std::string RenderHelp();
 int RunImgDiff(int argc, char** argv, int first);
+int RunSweep(int argc, char** argv, int first);
+std::string SweepHelp();
+int RunEvolve(int argc, char** argv, int first);
+std::string EvolveHelp();
 std::string ImgDiffHelp();
 
 }  // namespace app

@@ -12,6 +12,8 @@ namespace {
 const app::Command kCommands[] = {
     {"simulate", "evaluate one shape and print its fitness as JSON", app::RunSimulate, app::SimulateHelp},
     {"render", "pictures of one shape: before/after, stretch, turntable, time-lapse", app::RunRender, app::RenderHelp},
+    {"sweep", "evaluate an experiment's grid of sine shapes; landscape figure", app::RunSweep, app::SweepHelp},
+    {"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", app::RunEvolve, app::EvolveHelp},
     {"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", app::RunImgDiff, app::ImgDiffHelp},
 };
 

@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "figures.h"
 #include "mesh_io.h"
 #include "render/mesh_renderer.h"
 #include "shape_options.h"
@@ -45,38 +46,6 @@ std::vector<OptionSpec> AllSpecs() {
         if (s.name != "load") specs.push_back(s);  // render shows both loads
     for (auto& s : RenderOnlySpecs()) specs.push_back(s);
     return specs;
-}
-
-std::string Format(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, pattern, value);
-    return text;
-}
-
-std::string ShapeTitle(const sim::Shape& shape) {
-    JsonWriter json;
-    WriteShapeJson(json, shape);
-    std::string title = sim::ShapeName(shape);
-    if (const auto* s = std::get_if<sim::SineShape>(&shape))
-        title += "  A = " + Format("%g", s->amplitude) + ", phase " + Format("%.4g", s->phaseStart) + " to " + Format("%.4g", s->phaseEnd);
-    else if (const auto* a = std::get_if<sim::AbsSineShape>(&shape))
-        title += "  A = " + Format("%g", a->amplitude) + ", phase " + Format("%.4g", a->phaseStart) + " to " + Format("%.4g", a->phaseEnd);
-    else if (const auto* b = std::get_if<sim::BSplineShape>(&shape)) {
-        title += std::string(b->region == sim::SplineRegion::Entire ? " (entire)" : " (middle)") + "  ";
-        for (size_t k = 0; k < b->splines.size(); ++k) {
-            if (k) title += " | ";
-            for (size_t j = 0; j < b->splines[k].size(); ++j) title += (j ? "," : "") + Format("%g", b->splines[k][j]);
-        }
-    }
-    return title;
-}
-
-std::string ResultLine(const sim::SimResult& r, const sim::MeshDef& mesh) {
-    std::string line = std::string("status ") + sim::StatusName(r.status) + ",  ";
-    if (r.status == sim::Status::Ok)
-        line += "fitness " + Format("%.4f", r.fitness) + ",  contraction " + Format("%.2f %%", r.contractionPercent) + ",  ";
-    return line + std::to_string(r.iterationsRun) + " iterations,  " + std::to_string(mesh.resolution) + " x " +
-           std::to_string(mesh.turns) + " mesh";
 }
 
 // Frames go to disk on another thread while the next one renders; at most one write in flight.
@@ -217,19 +186,13 @@ int RunRender(int argc, char** argv, int first) {
 
     const std::string title = ShapeTitle(request.shape);
     auto figure = [&](const sim::SimResult& r, const char* load) {
-        render::Scene scene;
-        scene.mesh = request.mesh;
-        scene.title = title + "  -  " + load;
-        scene.lines = {ResultLine(r, request.mesh)};
-        scene.panels = {{r.initial, {}, "before", 0},
-                        {r.final, r.initial, std::string("after ") + std::to_string(r.iterationsRun) + " iterations", 0}};
-        return renderer->Render(scene);
+        return renderer->Render(BeforeAfterScene(title + "  -  " + load, r, request.mesh));
     };
     std::vector<std::string> written;
     const auto renderStarted = std::chrono::steady_clock::now();
     for (const auto& [name, result, load] : {std::tuple{"inflation.png", &inflated, "inflation"}, std::tuple{"stretch.png", &stretched, "stretch"}}) {
         const fs::path path = out / name;
-        WriteFileAtomically(path.string(), FrameWriter::BytesOf(render::EncodePng(figure(*result, load), figureLevel)));
+        WritePng(path.string(), figure(*result, load), figureLevel);
         written.push_back(path.string());
     }
 
@@ -262,7 +225,7 @@ int RunRender(int argc, char** argv, int first) {
             scene.mesh = request.mesh;
             scene.title = title + "  -  inflated";
             scene.lines = {ResultLine(inflated, request.mesh)};
-            scene.panels = {{inflated.final, inflated.initial, "turned " + Format("%.0f", 360.0 * k / turntable) + " degrees", 360.0 * k / turntable}};
+            scene.panels = {{inflated.final, inflated.initial, "turned " + FormatNumber("%.0f", 360.0 * k / turntable) + " degrees", 360.0 * k / turntable}};
             scene.framing = framing;
             scene.colorMax = colorMax;
             return scene;
@@ -282,7 +245,7 @@ int RunRender(int argc, char** argv, int first) {
             const sim::Positions& p = snapshots[k].second;
             const double fitness = sim::Fitness(inflated.initial, p, request.mesh);
             scene.lines = {"iteration " + std::to_string(snapshots[k].first) + " of " + std::to_string(inflateParams.iterations) +
-                           ",  fitness " + Format("%.4f", fitness) + ",  contraction " + Format("%.2f %%", 100 * fitness / request.mesh.turns)};
+                           ",  fitness " + FormatNumber("%.4f", fitness) + ",  contraction " + FormatNumber("%.2f %%", 100 * fitness / request.mesh.turns)};
             scene.panels = {{p, inflated.initial, "iteration " + std::to_string(snapshots[k].first), 0}};
             scene.framing = framing;
             scene.colorMax = colorMax;

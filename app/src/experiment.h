@@ -1,0 +1,42 @@
+// Experiment files: one JSON file describes a thesis experiment (shape family, grid or genome,
+// load, iterations, optimizer settings, seed, what to render). Parsed strictly: an unknown key, a
+// wrong type or an out-of-range value is refused with the file, the key and the reason.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "sim/search.h"
+#include "sim/solver.h"
+
+namespace app {
+
+enum class TurntablePlan { None, Best, All };
+
+struct RenderPlan {
+    bool figures = true;                          // landscape / evolution figure and the best shape's images
+    TurntablePlan turntable = TurntablePlan::None;
+    int turntableFrames = 36;
+};
+
+struct Experiment {
+    std::string path;           // where it was read from
+    std::string text;           // the file as read (copied into the output folder)
+    std::string id;             // e.g. "4.1"
+    std::string title;          // e.g. "Variable amplitude search"
+    std::string thesis;         // where the thesis reports it, e.g. "Table 4.1, Figure 4.1"
+    sim::MeshDef mesh;
+    sim::SimParams params;
+    std::uint64_t seed = 1;
+    bool isSweep = false;       // else a genetic algorithm
+    sim::SweepDef sweep;
+    sim::GaDef ga;
+    int runs = 1;               // independent GA runs, seeds derived from `seed`
+    RenderPlan render;
+};
+
+// Reads and validates. Throws UsageError("FILE: KEY: reason").
+Experiment LoadExperiment(const std::string& path);
+Experiment ParseExperiment(const std::string& text, const std::string& path);
+
+}  // namespace app

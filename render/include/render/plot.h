@@ -1,0 +1,71 @@
+// Figures of numbers: line plots (fitness landscapes, evolution curves) and heatmaps (2-D
+// landscapes), drawn by our own renderer with axes, ticks, labels, legends and colour bars.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/image.h"
+
+namespace render {
+
+struct Rgb {
+    float r = 0, g = 0, b = 0;
+};
+
+struct LineSeries {
+    std::string label;           // in the legend; empty: not listed
+    std::vector<double> x, y;    // non-finite y values leave a gap
+    Rgb color;
+    bool markers = false;
+};
+
+struct Band {                    // a filled range, e.g. mean +/- std
+    std::string label;
+    std::vector<double> x, low, high;
+    Rgb color;                   // drawn translucent
+};
+
+struct LinePlot {
+    std::string title;           // above the plot area
+    std::string xLabel, yLabel;
+    std::vector<Band> bands;     // drawn first
+    std::vector<LineSeries> series;
+    std::optional<std::pair<double, double>> highlight;  // a ringed point, e.g. the best
+    std::string highlightLabel;
+    bool zeroLine = false;       // a thin line at y = 0
+};
+
+struct Heatmap {
+    std::string title;
+    std::string xLabel, yLabel, valueLabel;
+    std::vector<double> xValues, yValues;  // cell centres
+    std::vector<double> values;            // yValues.size() rows of xValues.size(); NaN: failed (grey)
+    std::optional<size_t> highlight;       // index into values, ringed
+    std::string highlightLabel;
+};
+
+class PlotRenderer {
+public:
+    static std::unique_ptr<PlotRenderer> Create(int width, int height, std::string* error);
+    ~PlotRenderer();
+
+    // Several line plots side by side (e.g. one per GA run) under one figure title, sharing the y range.
+    Image RenderLines(const std::string& title, const std::vector<LinePlot>& plots);
+    Image RenderHeatmap(const std::string& title, const Heatmap& heatmap);
+
+private:
+    struct State;
+    explicit PlotRenderer(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+// "Nice" tick positions (1, 2, 5 x 10^k steps) covering [low, high], about `count` of them.
+std::vector<double> NiceTicks(double low, double high, int count);
+
+// The viridis colour map, t in [0, 1].
+Rgb ViridisColor(double t);
+
+}  // namespace render

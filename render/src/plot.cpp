@@ -1,0 +1,314 @@
+// [SECTION] Ticks and colours
+// [SECTION] Axes
+// [SECTION] Line plots
+// [SECTION] Heatmaps
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+
+#include "render/plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "overlay_context.h"
+#include "render/gl_context.h"
+
+namespace render {
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Ticks and colours
+// ---------------------------------------------------------------------------------------------
+
+std::vector<double> NiceTicks(double low, double high, int count) {
+    if (!(high > low)) {
+        const double pad = std::max(std::fabs(low) * 0.1, 0.5);
+        low -= pad;
+        high += pad;
+    }
+    const double rough = (high - low) / std::max(1, count);
+    const double magnitude = std::pow(10.0, std::floor(std::log10(rough)));
+    double step = magnitude;
+    for (double m : {1.0, 2.0, 5.0, 10.0})
+        if (m * magnitude >= rough) {
+            step = m * magnitude;
+            break;
+        }
+    std::vector<double> ticks;
+    for (double t = std::ceil(low / step - 1e-9) * step; t <= high + step * 1e-9; t += step) ticks.push_back(std::fabs(t) < step * 1e-9 ? 0.0 : t);
+    return ticks;
+}
+
+Rgb ViridisColor(double t) {
+    static const float kStops[][3] = {{0.267f, 0.005f, 0.329f}, {0.283f, 0.141f, 0.458f}, {0.254f, 0.265f, 0.530f},
+                                      {0.207f, 0.372f, 0.553f}, {0.164f, 0.471f, 0.558f}, {0.128f, 0.567f, 0.551f},
+                                      {0.135f, 0.659f, 0.518f}, {0.267f, 0.749f, 0.441f}, {0.478f, 0.821f, 0.318f},
+                                      {0.741f, 0.873f, 0.150f}, {0.993f, 0.906f, 0.144f}};
+    constexpr int kCount = sizeof kStops / sizeof kStops[0];
+    const double x = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (kCount - 1);
+    const int i = std::min(static_cast<int>(x), kCount - 2);
+    const float u = static_cast<float>(x - i);
+    return {kStops[i][0] * (1 - u) + kStops[i + 1][0] * u, kStops[i][1] * (1 - u) + kStops[i + 1][1] * u,
+            kStops[i][2] * (1 - u) + kStops[i + 1][2] * u};
+}
+
+namespace {
+
+ImU32 Color(const Rgb& c, float alpha = 1) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, alpha)); }
+const ImU32 kInk = IM_COL32(30, 30, 30, 255);
+const ImU32 kGrid = IM_COL32(225, 225, 225, 255);
+
+std::string TickText(double value, double step) {
+    char text[32];
+    const int decimals = step >= 1 ? 0 : std::min(6, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
+    std::snprintf(text, sizeof text, "%.*f", decimals, value);
+    return text;
+}
+
+struct Box {
+    float x0, y0, x1, y1;
+};
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Axes
+// ---------------------------------------------------------------------------------------------
+
+// Maps data to pixels inside a plot box and draws its frame, grid, ticks and labels.
+struct Axes {
+    Box box;
+    double xMin, xMax, yMin, yMax;
+    float X(double x) const { return box.x0 + float((x - xMin) / (xMax - xMin)) * (box.x1 - box.x0); }
+    float Y(double y) const { return box.y1 - float((y - yMin) / (yMax - yMin)) * (box.y1 - box.y0); }
+
+    void Draw(ImDrawList* draw, const OverlayContext& overlay, const std::vector<double>& xTicks, const std::vector<double>& yTicks,
+              const std::string& xLabel, const std::string& yLabel, bool grid) const {
+        const float fs = overlay.FontSize(), line = fs * 0.07f;
+        const double xStep = xTicks.size() > 1 ? xTicks[1] - xTicks[0] : 1, yStep = yTicks.size() > 1 ? yTicks[1] - yTicks[0] : 1;
+        for (double t : yTicks) {
+            if (t < yMin - 1e-12 || t > yMax + 1e-12) continue;
+            if (grid) draw->AddLine(ImVec2(box.x0, Y(t)), ImVec2(box.x1, Y(t)), kGrid, line);
+            draw->AddLine(ImVec2(box.x0 - fs * 0.3f, Y(t)), ImVec2(box.x0, Y(t)), kInk, line);
+            const std::string text = TickText(t, yStep);
+            const ImVec2 size = overlay.TextFont()->CalcTextSizeA(fs * 0.85f, FLT_MAX, 0, text.c_str());
+            draw->AddText(overlay.TextFont(), fs * 0.85f, ImVec2(box.x0 - fs * 0.45f - size.x, Y(t) - size.y / 2), kInk, text.c_str());
+        }
+        for (double t : xTicks) {
+            if (t < xMin - 1e-12 || t > xMax + 1e-12) continue;
+            if (grid) draw->AddLine(ImVec2(X(t), box.y0), ImVec2(X(t), box.y1), kGrid, line);
+            draw->AddLine(ImVec2(X(t), box.y1), ImVec2(X(t), box.y1 + fs * 0.3f), kInk, line);
+            const std::string text = TickText(t, xStep);
+            const ImVec2 size = overlay.TextFont()->CalcTextSizeA(fs * 0.85f, FLT_MAX, 0, text.c_str());
+            draw->AddText(overlay.TextFont(), fs * 0.85f, ImVec2(X(t) - size.x / 2, box.y1 + fs * 0.4f), kInk, text.c_str());
+        }
+        draw->AddRect(ImVec2(box.x0, box.y0), ImVec2(box.x1, box.y1), kInk, 0, 0, line);
+        const ImVec2 xSize = overlay.TextFont()->CalcTextSizeA(fs, FLT_MAX, 0, xLabel.c_str());
+        draw->AddText(overlay.TextFont(), fs, ImVec2((box.x0 + box.x1 - xSize.x) / 2, box.y1 + fs * 1.6f), kInk, xLabel.c_str());
+        // The y label goes above the axis, left-aligned: ImGui draws no rotated text.
+        draw->AddText(overlay.TextFont(), fs, ImVec2(box.x0 - fs * 0.2f, box.y0 - fs * 1.45f), kInk, yLabel.c_str());
+    }
+};
+
+}  // namespace
+
+struct PlotRenderer::State {
+    int width = 0, height = 0;
+    static constexpr int kSupersample = 2;
+    std::unique_ptr<GlContext> context;
+    OverlayContext overlay;
+
+    ImDrawList* Begin() {
+        context->MakeCurrent(width * kSupersample, height * kSupersample);
+        glViewport(0, 0, width * kSupersample, height * kSupersample);
+        glClearColor(1, 1, 1, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        return overlay.Begin(width * kSupersample, height * kSupersample);
+    }
+    Image End() {
+        overlay.End();
+        return BoxDownsample(context->FinishAndGetPixels().data(), width * kSupersample, height * kSupersample, kSupersample, true);
+    }
+};
+
+PlotRenderer::PlotRenderer(std::unique_ptr<State> state) : state_(std::move(state)) {}
+PlotRenderer::~PlotRenderer() = default;
+
+std::unique_ptr<PlotRenderer> PlotRenderer::Create(int width, int height, std::string* error) {
+    auto state = std::make_unique<State>();
+    state->width = width;
+    state->height = height;
+    state->context = CreateOsMesaContext(error);
+    if (!state->context || !state->context->MakeCurrent(width * State::kSupersample, height * State::kSupersample)) {
+        if (error && error->empty()) *error = "OSMesa could not make the context current";
+        return nullptr;
+    }
+    if (!state->overlay.Create(State::kSupersample * std::max(0.85f, height / 768.0f), error)) return nullptr;
+    return std::unique_ptr<PlotRenderer>(new PlotRenderer(std::move(state)));
+}
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Line plots
+// ---------------------------------------------------------------------------------------------
+
+Image PlotRenderer::RenderLines(const std::string& title, const std::vector<LinePlot>& plots) {
+    State& s = *state_;
+    ImDrawList* draw = s.Begin();
+    const OverlayContext& o = s.overlay;
+    const float W = float(s.width * State::kSupersample), H = float(s.height * State::kSupersample), fs = o.FontSize();
+    draw->AddText(o.TitleFont(), fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), kInk, title.c_str());
+
+    // One y range for all plots, so runs side by side compare at a glance.
+    double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
+    auto extend = [&](const std::vector<double>& xs, const std::vector<double>& ys) {
+        for (size_t i = 0; i < xs.size() && i < ys.size(); ++i) {
+            if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
+            xMin = std::min(xMin, xs[i]); xMax = std::max(xMax, xs[i]);
+            yMin = std::min(yMin, ys[i]); yMax = std::max(yMax, ys[i]);
+        }
+    };
+    for (const auto& plot : plots) {
+        for (const auto& series : plot.series) extend(series.x, series.y);
+        for (const auto& band : plot.bands) { extend(band.x, band.low); extend(band.x, band.high); }
+        if (plot.zeroLine) { yMin = std::min(yMin, 0.0); yMax = std::max(yMax, 0.0); }
+    }
+    if (!(xMax >= xMin)) { xMin = 0; xMax = 1; }
+    if (!(yMax >= yMin)) { yMin = 0; yMax = 1; }
+    const auto xTicks = NiceTicks(xMin, xMax, 6), yTicks = NiceTicks(yMin, yMax, 6);
+    if (xMax == xMin) { xMin = xTicks.front(); xMax = xTicks.back(); }
+    // A little room around the data, so that lines, markers and rings at the extremes stay visible.
+    const double xPad = 0.02 * (xMax - xMin), yPad = 0.07 * (yMax - yMin);
+    xMin -= xPad; xMax += xPad; yMin -= yPad; yMax += yPad;
+
+    const int count = std::max<int>(1, plots.size());
+    bool titled = false;
+    for (const auto& plot : plots) titled = titled || !plot.title.empty();
+    const float left = fs * 4.2f, right = fs * 1.2f, top = fs * (titled ? 6.0f : 4.6f), bottom = fs * 7.0f, gap = fs * 4.0f;
+    const float plotWidth = (W - left - right - gap * (count - 1)) / count;
+    for (int p = 0; p < int(plots.size()); ++p) {
+        const LinePlot& plot = plots[p];
+        const float x0 = left + p * (plotWidth + gap);
+        Axes axes{{x0, top, x0 + plotWidth, H - bottom}, xMin, xMax, yMin, yMax};
+        if (!plot.title.empty()) {
+            const ImVec2 size = o.TextFont()->CalcTextSizeA(fs * 1.05f, FLT_MAX, 0, plot.title.c_str());
+            draw->AddText(o.TextFont(), fs * 1.05f, ImVec2(x0 + (plotWidth - size.x) / 2, top - fs * 3.1f), kInk, plot.title.c_str());
+        }
+        axes.Draw(draw, o, xTicks, yTicks, plot.xLabel, plot.yLabel, true);
+        draw->PushClipRect(ImVec2(axes.box.x0, axes.box.y0), ImVec2(axes.box.x1, axes.box.y1), true);
+        if (plot.zeroLine) draw->AddLine(ImVec2(axes.box.x0, axes.Y(0)), ImVec2(axes.box.x1, axes.Y(0)), IM_COL32(120, 120, 120, 255), fs * 0.06f);
+        // Bands are drawn as adjacent quads; anti-aliased edges would show as seams between them.
+        const ImDrawListFlags flags = draw->Flags;
+        draw->Flags &= ~ImDrawListFlags_AntiAliasedFill;
+        for (const Band& band : plot.bands)
+            for (size_t i = 1; i < band.x.size(); ++i) {
+                if (!std::isfinite(band.low[i - 1] + band.low[i] + band.high[i - 1] + band.high[i])) continue;
+                const ImVec2 quad[4] = {ImVec2(axes.X(band.x[i - 1]), axes.Y(band.low[i - 1])), ImVec2(axes.X(band.x[i]), axes.Y(band.low[i])),
+                                        ImVec2(axes.X(band.x[i]), axes.Y(band.high[i])), ImVec2(axes.X(band.x[i - 1]), axes.Y(band.high[i - 1]))};
+                draw->AddConvexPolyFilled(quad, 4, Color(band.color, 0.22f));
+            }
+        draw->Flags = flags;
+        for (const LineSeries& series : plot.series) {
+            for (size_t i = 1; i < series.x.size(); ++i)
+                if (std::isfinite(series.y[i - 1]) && std::isfinite(series.y[i]))
+                    draw->AddLine(ImVec2(axes.X(series.x[i - 1]), axes.Y(series.y[i - 1])), ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])),
+                                  Color(series.color), fs * 0.16f);
+            if (series.markers)
+                for (size_t i = 0; i < series.x.size(); ++i)
+                    if (std::isfinite(series.y[i])) draw->AddCircleFilled(ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])), fs * 0.22f, Color(series.color));
+        }
+        if (plot.highlight) {
+            const ImVec2 at(axes.X(plot.highlight->first), axes.Y(plot.highlight->second));
+            draw->AddCircle(at, fs * 0.55f, IM_COL32(200, 30, 30, 255), 24, fs * 0.14f);
+        }
+        draw->PopClipRect();
+        // The highlight's note sits in the plot's top-left corner on a white card: never clipped.
+        if (plot.highlight && !plot.highlightLabel.empty()) {
+            const ImVec2 size = o.TextFont()->CalcTextSizeA(fs * 0.9f, FLT_MAX, 0, plot.highlightLabel.c_str());
+            const ImVec2 corner(axes.box.x0 + fs * 0.5f, axes.box.y0 + fs * 0.4f);
+            draw->AddRectFilled(corner, ImVec2(corner.x + size.x + fs * 2.2f, corner.y + size.y + fs * 0.4f), IM_COL32(255, 255, 255, 230));
+            draw->AddCircle(ImVec2(corner.x + fs * 0.8f, corner.y + size.y / 2 + fs * 0.2f), fs * 0.4f, IM_COL32(200, 30, 30, 255), 24, fs * 0.12f);
+            draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(corner.x + fs * 1.6f, corner.y + fs * 0.2f), IM_COL32(170, 20, 20, 255), plot.highlightLabel.c_str());
+        }
+    }
+    // Legend under the plots, from the first plot's series and bands.
+    if (!plots.empty()) {
+        float x = left, y = H - fs * 2.2f;
+        auto entry = [&](const std::string& label, ImU32 color, bool filled) {
+            if (label.empty()) return;
+            if (filled) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), color);
+            else draw->AddLine(ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), color, fs * 0.18f);
+            draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(x + fs * 2.0f, y), kInk, label.c_str());
+            x += fs * 2.6f + o.TextFont()->CalcTextSizeA(fs * 0.9f, FLT_MAX, 0, label.c_str()).x + fs * 1.2f;
+        };
+        for (const auto& series : plots[0].series) entry(series.label, Color(series.color), false);
+        for (const auto& band : plots[0].bands) entry(band.label, Color(band.color, 0.35f), true);
+    }
+    return s.End();
+}
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Heatmaps
+// ---------------------------------------------------------------------------------------------
+
+Image PlotRenderer::RenderHeatmap(const std::string& title, const Heatmap& h) {
+    State& s = *state_;
+    ImDrawList* draw = s.Begin();
+    const OverlayContext& o = s.overlay;
+    const float W = float(s.width * State::kSupersample), H = float(s.height * State::kSupersample), fs = o.FontSize();
+    draw->AddText(o.TitleFont(), fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), kInk, title.c_str());
+
+    const size_t nx = h.xValues.size(), ny = h.yValues.size();
+    double vMin = INFINITY, vMax = -INFINITY;
+    for (double v : h.values)
+        if (std::isfinite(v)) { vMin = std::min(vMin, v); vMax = std::max(vMax, v); }
+    if (!(vMax > vMin)) { vMin = std::isfinite(vMin) ? vMin - 0.5 : 0; vMax = vMin + 1; }
+
+    // Cells are centred on the grid values; the axes span half a cell beyond the outer ones.
+    auto edges = [](const std::vector<double>& v) {
+        std::vector<double> e(v.size() + 1);
+        if (v.size() == 1) { e[0] = v[0] - 0.5; e[1] = v[0] + 0.5; return e; }
+        for (size_t i = 1; i < v.size(); ++i) e[i] = (v[i - 1] + v[i]) / 2;
+        e[0] = v[0] - (e[1] - v[0]);
+        e[v.size()] = v.back() + (v.back() - e[v.size() - 1]);
+        return e;
+    };
+    const auto xe = edges(h.xValues), ye = edges(h.yValues);
+    const float left = fs * 4.6f, right = fs * 9.0f, top = fs * 4.6f, bottom = fs * 4.2f;
+    Axes axes{{left, top, W - right, H - bottom}, xe.front(), xe.back(), ye.front(), ye.back()};
+    for (size_t j = 0; j < ny; ++j)
+        for (size_t i = 0; i < nx; ++i) {
+            const double v = h.values[j * nx + i];
+            const ImU32 c = std::isfinite(v) ? Color(ViridisColor((v - vMin) / (vMax - vMin))) : IM_COL32(170, 170, 170, 255);
+            draw->AddRectFilled(ImVec2(axes.X(xe[i]), axes.Y(ye[j + 1])), ImVec2(axes.X(xe[i + 1]) + 0.5f, axes.Y(ye[j]) + 0.5f), c);
+        }
+    // Integer-valued axes (cycles) get one tick per value; continuous ones get nice ticks.
+    auto ticksFor = [](const std::vector<double>& v) {
+        bool integers = v.size() <= 12;
+        for (double x : v) integers = integers && x == std::round(x);
+        return integers ? v : NiceTicks(v.front(), v.back(), 6);
+    };
+    axes.Draw(draw, o, ticksFor(h.xValues), ticksFor(h.yValues), h.xLabel, h.yLabel, false);
+    if (h.highlight && *h.highlight < h.values.size()) {
+        const size_t i = *h.highlight % nx, j = *h.highlight / nx;
+        draw->AddRect(ImVec2(axes.X(xe[i]), axes.Y(ye[j + 1])), ImVec2(axes.X(xe[i + 1]), axes.Y(ye[j])), IM_COL32(220, 30, 30, 255), 0, 0, fs * 0.18f);
+        draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(axes.box.x0, H - fs * 1.5f), IM_COL32(200, 30, 30, 255), h.highlightLabel.c_str());
+    }
+    // Colour bar.
+    const float bx0 = W - right + fs * 1.6f, bx1 = bx0 + fs * 1.3f;
+    const int steps = 64;
+    for (int k = 0; k < steps; ++k) {
+        const float ya = axes.box.y1 - (axes.box.y1 - axes.box.y0) * k / steps, yb = axes.box.y1 - (axes.box.y1 - axes.box.y0) * (k + 1) / steps;
+        draw->AddRectFilled(ImVec2(bx0, yb), ImVec2(bx1, ya + 0.5f), Color(ViridisColor((k + 0.5) / steps)));
+    }
+    draw->AddRect(ImVec2(bx0, axes.box.y0), ImVec2(bx1, axes.box.y1), kInk, 0, 0, fs * 0.07f);
+    const auto vTicks = NiceTicks(vMin, vMax, 5);
+    const double vStep = vTicks.size() > 1 ? vTicks[1] - vTicks[0] : 1;
+    for (double t : vTicks) {
+        if (t < vMin || t > vMax) continue;
+        const float y = axes.box.y1 - float((t - vMin) / (vMax - vMin)) * (axes.box.y1 - axes.box.y0);
+        draw->AddLine(ImVec2(bx1, y), ImVec2(bx1 + fs * 0.3f, y), kInk, fs * 0.07f);
+        draw->AddText(o.TextFont(), fs * 0.85f, ImVec2(bx1 + fs * 0.45f, y - fs * 0.5f), kInk, TickText(t, vStep / 10).c_str());
+    }
+    draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(bx0 - fs * 0.8f, axes.box.y0 - fs * 1.45f), kInk, h.valueLabel.c_str());
+    return s.End();
+}
+
+}  // namespace render
