@@ -147,6 +147,7 @@ Experiment ParseExperiment(const std::string& text, const std::string& path) {
     e.id = top.String("id", std::string(""));
     e.title = top.String("title", std::string(""));
     e.thesis = top.String("thesis", std::string(""));
+    e.note = top.String("note", std::string(""));
     e.seed = static_cast<std::uint64_t>(top.Integer("seed", 1, 0, (1ll << 53)));
     e.params.iterations = static_cast<int>(top.Integer("iterations", 10000, 1, 10'000'000));
     const std::string load = top.Choice("load", std::string("inflate"), {"inflate", "stretch"});
@@ -159,10 +160,45 @@ Experiment ParseExperiment(const std::string& text, const std::string& path) {
         mesh.Finish();
     }
 
-    const bool hasSweep = top.Has("sweep"), hasEvolve = top.Has("evolve");
-    if (hasSweep == hasEvolve) top.Fail("needs exactly one of 'sweep' or 'evolve'");
-    e.isSweep = hasSweep;
-    if (hasSweep) {
+    const int kinds = top.Has("sweep") + top.Has("evolve") + top.Has("evaluate");
+    if (kinds != 1) top.Fail("needs exactly one of 'sweep', 'evolve' or 'evaluate'");
+    e.kind = top.Has("sweep") ? ExperimentKind::Sweep : top.Has("evolve") ? ExperimentKind::Evolve : ExperimentKind::Evaluate;
+    if (e.kind == ExperimentKind::Evaluate) {
+        ObjectReader evaluate = top.Object("evaluate");
+        const json& shapes = evaluate.Get("shapes");
+        if (!shapes.is_array() || shapes.empty() || shapes.size() > 1000) evaluate.Fail("expected a list of 1 to 1000 shapes", "shapes");
+        for (size_t k = 0; k < shapes.size(); ++k) {
+            ObjectReader shape(shapes[k], evaluate.Child("shapes[" + std::to_string(k) + "]"), path);
+            LabelledShape labelled;
+            labelled.label = shape.String("label", "shape " + std::to_string(k + 1));
+            labelled.thesisFitness = shape.Number("thesis_fitness", NAN, -1e6, 1e6);
+            const std::string family = shape.Choice("family", std::nullopt, {"cylinder", "sine", "abs-sine", "bspline"});
+            if (family == "sine" || family == "abs-sine") {
+                const double amplitude = shape.Number("amplitude", std::nullopt, -1e3, 1e3);
+                const auto phase = shape.Range("phase", std::nullopt, -1e4, 1e4);
+                if (family == "sine") labelled.shape = sim::SineShape{amplitude, phase.first, phase.second};
+                else labelled.shape = sim::AbsSineShape{amplitude, phase.first, phase.second};
+            } else if (family == "bspline") {
+                sim::BSplineShape b;
+                b.region = shape.Choice("region", std::string("middle"), {"entire", "middle"}) == "entire" ? sim::SplineRegion::Entire : sim::SplineRegion::Middle;
+                const json& splines = shape.Get("control_points");
+                if (!splines.is_array() || splines.empty()) shape.Fail("expected a list of splines, each a list of numbers", "control_points");
+                for (const auto& spline : splines) {
+                    if (!spline.is_array()) shape.Fail("expected a list of splines, each a list of numbers", "control_points");
+                    std::vector<double> points;
+                    for (const auto& c : spline) points.push_back(shape.NumberValue(c, "control_points", -1e3, 1e3));
+                    b.splines.push_back(points);
+                }
+                labelled.shape = b;
+            } else {
+                labelled.shape = sim::CylinderShape{};
+            }
+            shape.Finish();
+            if (const std::string error = sim::ShapeError(labelled.shape, e.mesh); !error.empty()) shape.Fail(error);
+            e.shapes.push_back(labelled);
+        }
+        evaluate.Finish();
+    } else if (e.kind == ExperimentKind::Sweep) {
         ObjectReader shape = top.Object("shape");
         const std::string family = shape.Choice("family", std::nullopt, {"sine", "abs-sine"});
         const double amplitude = shape.Number("amplitude", 1.0, -1e3, 1e3);

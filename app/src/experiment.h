@@ -3,6 +3,7 @@
 // wrong type or an out-of-range value is refused with the file, the key and the reason.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -19,17 +20,31 @@ struct RenderPlan {
     int turntableFrames = 36;
 };
 
+enum class ExperimentKind {
+    Sweep,     // a 1-D or 2-D grid of sine parameters (thesis chapter 4)
+    Evolve,    // the genetic algorithm (chapter 5)
+    Evaluate,  // a list of given shapes, e.g. the stretch tests of chapter 6
+};
+
+struct LabelledShape {
+    std::string label;
+    sim::Shape shape;
+    double thesisFitness = NAN;  // the thesis's number for it, when it reports one
+};
+
 struct Experiment {
     std::string path;           // where it was read from
     std::string text;           // the file as read (copied into the output folder)
     std::string id;             // e.g. "4.1"
     std::string title;          // e.g. "Variable amplitude search"
     std::string thesis;         // where the thesis reports it, e.g. "Table 4.1, Figure 4.1"
+    std::string note;           // choices made where the thesis is silent, and why
     sim::MeshDef mesh;
     sim::SimParams params;
     std::uint64_t seed = 1;
-    bool isSweep = false;       // else a genetic algorithm
+    ExperimentKind kind = ExperimentKind::Sweep;
     sim::SweepDef sweep;
+    std::vector<LabelledShape> shapes;  // Evaluate
     sim::GaDef ga;
     int runs = 1;               // independent GA runs, seeds derived from `seed`
     RenderPlan render;

@@ -126,11 +126,49 @@ std::vector<OptionSpec> SweepSpecs() {
     };
 }
 
+// An experiment that lists its shapes: each is evaluated under the experiment's load and drawn.
+int RunEvaluateList(const Experiment& e, const ParsedArgs& args) {
+    const int threads = ParseThreads(args);
+    const fs::path out = PrepareOutput(args.Get("out"));
+    WriteFileAtomically((out / "experiment.json").string(), e.text);
+    std::vector<sim::EvalJob> jobs;
+    for (const auto& s : e.shapes) jobs.push_back({s.shape, e.mesh, e.params});
+    const auto started = Clock::now();
+    Progress progress("evaluate " + ExperimentTitle(e));
+    const auto results = sim::EvaluateBatch(jobs, threads, [&](int done, int total) { progress.Update(done, total, done, "shapes"); });
+    const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+
+    std::string csv = "index,label,fitness,contraction_percent,status,iterations,thesis_fitness\n";
+    for (size_t j = 0; j < results.size(); ++j)
+        csv += std::to_string(j) + ",\"" + e.shapes[j].label + "\"," + Csv(results[j].fitness) + "," + Csv(results[j].contractionPercent) + "," +
+               sim::StatusName(results[j].status) + "," + std::to_string(results[j].iterationsRun) + "," + Csv(e.shapes[j].thesisFitness) + "\n";
+    WriteFileAtomically((out / "results.csv").string(), csv);
+    if (e.render.figures) {
+        std::string error;
+        auto renderer = render::MeshRenderer::Create(render::DefaultRenderDef(), &error);
+        if (!renderer) throw UsageError("cannot render: " + error);
+        const char* load = e.params.load == sim::Load::Stretch ? "stretch" : "inflation";
+        for (size_t j = 0; j < results.size(); ++j)
+            WritePng((out / ("shape_" + std::to_string(j + 1) + ".png")).string(),
+                     renderer->Render(BeforeAfterScene(e.shapes[j].label + "  -  " + load, results[j], e.mesh)), 6);
+    }
+    JsonWriter json;
+    json.BeginObject().Key("experiment").String(e.path).Key("shapes").BeginArray();
+    for (size_t j = 0; j < results.size(); ++j)
+        json.BeginObject().Key("label").String(e.shapes[j].label).Key("status").String(sim::StatusName(results[j].status))
+            .Key("fitness").Number(results[j].fitness).Key("thesis_fitness").Number(e.shapes[j].thesisFitness).EndObject();
+    json.EndArray().Key("seconds").Number(seconds).Key("threads").Integer(threads).EndObject();
+    WriteFileAtomically((out / "summary.json").string(), json.Text() + "\n");
+    std::cout << json.Text() << "\n";
+    return 0;
+}
+
 }  // namespace
 
 std::string SweepHelp() {
     return "usage: actuator sweep EXPERIMENT.json --out DIR [--threads N]\n\n"
-           "Evaluates every point of an experiment's 1-D or 2-D grid (see assets/experiments/) and writes\n"
+           "Evaluates every point of an experiment's 1-D or 2-D grid (see assets/experiments/), or every shape\n"
+           "of an experiment that lists them ('evaluate'; then DIR/shape_K.png per shape), and writes\n"
            "  DIR/results.csv       one row per grid point: parameters, fitness, contraction, status\n"
            "  DIR/landscape.png     the fitness landscape: a line plot (1-D) or a heatmap (2-D), best marked\n"
            "  DIR/best_inflation.png, DIR/best_stretch.png   the best shape before and after\n"
@@ -146,8 +184,10 @@ int RunSweep(int argc, char** argv, int first) {
     }
     if (args.positionals.size() != 1) throw UsageError("expected one experiment file: actuator sweep EXPERIMENT.json --out DIR");
     if (!args.Has("out")) throw UsageError("--out DIR is required");
+    if (!args.Has("out")) throw UsageError("--out DIR is required");
     const Experiment e = LoadExperiment(args.positionals[0]);
-    if (!e.isSweep) throw UsageError(e.path + " describes a genetic algorithm: run it with 'actuator evolve'");
+    if (e.kind == ExperimentKind::Evolve) throw UsageError(e.path + " describes a genetic algorithm: run it with 'actuator evolve'");
+    if (e.kind == ExperimentKind::Evaluate) return RunEvaluateList(e, args);
     const int threads = ParseThreads(args);
     const fs::path out = PrepareOutput(args.Get("out"));
     WriteFileAtomically((out / "experiment.json").string(), e.text);
@@ -339,7 +379,7 @@ int RunEvolve(int argc, char** argv, int first) {
         throw UsageError("--resume: '" + out.string() + "' holds no experiment.json; is it an evolve output folder?");
     const Experiment e = resume ? ParseExperiment(ReadFile(out / "experiment.json"), (out / "experiment.json").string())
                                 : LoadExperiment(args.positionals[0]);
-    if (e.isSweep) throw UsageError(e.path + " describes a sweep: run it with 'actuator sweep'");
+    if (e.kind != ExperimentKind::Evolve) throw UsageError(e.path + " describes no genetic algorithm: run it with 'actuator sweep'");
     if (!resume) WriteFileAtomically((out / "experiment.json").string(), e.text);
     const int threads = ParseThreads(args);
 

@@ -1,68 +1,15 @@
 // The `actuator` binary as a user runs it: JSON on stdout, OBJ round trips, and every kind of bad
 // input refused with one line on stderr, exit code 2 and no file written.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+
+#include "cli_fixture.h"
 
 namespace fs = std::filesystem;
 
-namespace {
-
-struct RunResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("actuator_cli_" + std::to_string(getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-
-    static std::string Slurp(const fs::path& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-
-    RunResult Run(const std::string& args) const {
-        const std::string command = std::string(ACTUATOR_BIN) + " " + args + " > " + Path("stdout") + " 2> " + Path("stderr");
-        const int status = std::system(command.c_str());
-        RunResult r;
-        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = Slurp(dir_ / "stdout");
-        r.err = Slurp(dir_ / "stderr");
-        return r;
-    }
-
-    void ExpectRefused(const std::string& args, const std::string& mentions) const {
-        const RunResult r = Run(args);
-        EXPECT_EQ(r.exitCode, 2) << "actuator " << args << "\nstderr: " << r.err;
-        EXPECT_EQ(r.out, "") << "actuator " << args;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "want one line, got: " << r.err;
-        EXPECT_NE(r.err.find(mentions), std::string::npos) << "message should mention '" << mentions << "': " << r.err;
-    }
-
-    void Write(const std::string& name, const std::string& contents) const { std::ofstream(Path(name), std::ios::binary) << contents; }
-
-    fs::path dir_;
-};
-
-}  // namespace
+using Cli = CliTest;
 
 TEST_F(Cli, SimulatePrintsOneJsonObjectWithTheResult) {
-    const RunResult r = Run("simulate --shape abs-sine --amplitude 4 --phase 0,12.566370614359172");
+    const Result r = Run("simulate --shape abs-sine --amplitude 4 --phase 0,12.566370614359172");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     EXPECT_EQ(json["status"], "ok");
@@ -85,20 +32,20 @@ TEST_F(Cli, EveryShapeFromTheIssueRuns) {
                                    "--shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"",
                                    "--shape bspline --region middle --control-points \"4,6,2,5;2,3,7,4,6;5,5,1,2;3,3,3,3\"",
                                    "--shape sine --amplitude 4.1 --phase 0.5,2.6415926535 --load stretch"}) {
-        const RunResult r = Run("simulate " + args + " --iterations 300");
+        const Result r = Run("simulate " + args + " --iterations 300");
         ASSERT_EQ(r.exitCode, 0) << args << ": " << r.err;
         EXPECT_EQ(nlohmann::json::parse(r.out)["status"], "ok") << args;
     }
     std::string offsets;
     for (int i = 0; i < 900; ++i) offsets += "0.1 -0.05\n";
     Write("offsets.txt", offsets);
-    const RunResult r = Run("simulate --shape free-xy --offsets " + Path("offsets.txt") + " --iterations 300");
+    const Result r = Run("simulate --shape free-xy --offsets " + Path("offsets.txt") + " --iterations 300");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(r.out)["shape"]["name"], "free-xy");
 }
 
 TEST_F(Cli, SavedMeshesRoundTripExactly) {
-    const RunResult first = Run("simulate --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") +
+    const Result first = Run("simulate --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") +
                                 " --save-mesh " + Path("final.obj"));
     ASSERT_EQ(first.exitCode, 0) << first.err;
     const auto a = nlohmann::json::parse(first.out);
@@ -164,10 +111,10 @@ TEST_F(Cli, RefusedRunsWriteNoFile) {
 }
 
 TEST_F(Cli, HelpExplainsEveryOptionWithItsDefault) {
-    const RunResult main = Run("--help");
+    const Result main = Run("--help");
     EXPECT_EQ(main.exitCode, 0);
     EXPECT_NE(main.out.find("simulate"), std::string::npos);
-    const RunResult help = Run("simulate --help");
+    const Result help = Run("simulate --help");
     EXPECT_EQ(help.exitCode, 0);
     for (const char* option : {"--shape", "--amplitude", "--phase", "--region", "--control-points", "--offsets", "--mesh",
                                "--resolution", "--turns", "--load", "--iterations", "--precision", "--save-mesh"})
@@ -177,7 +124,7 @@ TEST_F(Cli, HelpExplainsEveryOptionWithItsDefault) {
 }
 
 TEST_F(Cli, NumericalFailureIsAStatusNotAnError) {
-    const RunResult r = Run("simulate --shape sine --amplitude 4.1 --iterations 40000");
+    const Result r = Run("simulate --shape sine --amplitude 4.1 --iterations 40000");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     EXPECT_NE(json["status"], "ok");

@@ -1,11 +1,7 @@
 // `actuator render` and `actuator imgdiff` as a user runs them.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+
+#include "cli_fixture.h"
 
 #include "render/image.h"
 
@@ -13,32 +9,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class RenderCli : public ::testing::Test {
+class RenderCli : public CliTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("actuator_render_" + std::to_string(getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-
-    static std::string Slurp(const fs::path& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-    struct Result {
-        int exitCode;
-        std::string out, err;
-    };
-    Result Run(const std::string& args, const std::string& environment = "") const {
-        const std::string command = environment + " " + ACTUATOR_BIN + " " + args + " > " + Path("stdout") + " 2> " + Path("stderr");
-        const int status = std::system(command.c_str());
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
-    }
     static render::Image Load(const fs::path& path) {
         const std::string bytes = Slurp(path);
         render::Image image;
@@ -51,13 +23,6 @@ protected:
         for (const auto& entry : fs::directory_iterator(folder)) count += entry.path().extension() == ".png";
         return count;
     }
-    void ExpectRefused(const std::string& args, const std::string& mentions) const {
-        const Result r = Run(args);
-        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-        EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
-    }
-    fs::path dir_;
 };
 
 }  // namespace
