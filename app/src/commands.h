@@ -22,6 +22,8 @@ int RunSweep(int argc, char** argv, int first);
 std::string SweepHelp();
 int RunEvolve(int argc, char** argv, int first);
 std::string EvolveHelp();
+int RunReproduce(int argc, char** argv, int first);
+std::string ReproduceHelp();
 std::string ImgDiffHelp();
 
 }  // namespace app

@@ -148,6 +148,38 @@ Experiment ParseExperiment(const std::string& text, const std::string& path) {
     e.title = top.String("title", std::string(""));
     e.thesis = top.String("thesis", std::string(""));
     e.note = top.String("note", std::string(""));
+    e.explanation = top.String("explanation", std::string(""));
+    if (top.Has("thesis_result")) {
+        ObjectReader result = top.Object("thesis_result");
+        auto parameters = [&](ObjectReader& object, std::vector<std::pair<std::string, double>>& into) {
+            for (const char* name : {"amplitude", "cycles", "phase_end"})
+                if (object.Has(name)) into.push_back({name, object.Number(name, std::nullopt, -1e6, 1e6)});
+        };
+        e.thesisResult.bestFitness = result.Number("best_fitness", NAN, -1e6, 1e6);
+        if (result.Has("best")) {
+            ObjectReader best = result.Object("best");
+            parameters(best, e.thesisResult.best);
+            best.Finish();
+        }
+        if (result.Has("points")) {
+            const json& points = result.Get("points");
+            if (!points.is_array()) result.Fail("expected a list of points", "points");
+            for (size_t k = 0; k < points.size(); ++k) {
+                ObjectReader point(points[k], result.Child("points[" + std::to_string(k) + "]"), path);
+                ThesisResult::Point p;
+                parameters(point, p.at);
+                p.fitness = point.Number("fitness", std::nullopt, -1e6, 1e6);
+                point.Finish();
+                e.thesisResult.points.push_back(p);
+            }
+        }
+        if (result.Has("run_best")) {
+            const json& runs = result.Get("run_best");
+            if (!runs.is_array()) result.Fail("expected a list of numbers", "run_best");
+            for (const auto& v : runs) e.thesisResult.runBest.push_back(result.NumberValue(v, "run_best", -1e6, 1e6));
+        }
+        result.Finish();
+    }
     e.seed = static_cast<std::uint64_t>(top.Integer("seed", 1, 0, (1ll << 53)));
     e.params.iterations = static_cast<int>(top.Integer("iterations", 10000, 1, 10'000'000));
     const std::string load = top.Choice("load", std::string("inflate"), {"inflate", "stretch"});

@@ -32,6 +32,18 @@ struct LabelledShape {
     double thesisFitness = NAN;  // the thesis's number for it, when it reports one
 };
 
+// What the thesis reports for an experiment, to set our numbers beside (all optional).
+struct ThesisResult {
+    double bestFitness = NAN;                    // sweeps: the landscape's best
+    std::vector<std::pair<std::string, double>> best;  // sweeps: where it was, e.g. {"amplitude", 4.1}
+    struct Point {
+        std::vector<std::pair<std::string, double>> at;  // sweep parameters, e.g. amplitude 4, cycles 4
+        double fitness = NAN;
+    };
+    std::vector<Point> points;                   // sweeps: named meshes of a table (Table 4.4)
+    std::vector<double> runBest;                 // GA: best fitness of each run
+};
+
 struct Experiment {
     std::string path;           // where it was read from
     std::string text;           // the file as read (copied into the output folder)
@@ -39,6 +51,8 @@ struct Experiment {
     std::string title;          // e.g. "Variable amplitude search"
     std::string thesis;         // where the thesis reports it, e.g. "Table 4.1, Figure 4.1"
     std::string note;           // choices made where the thesis is silent, and why
+    ThesisResult thesisResult;
+    std::string explanation;    // why our numbers may differ from the thesis's (shown when they do)
     sim::MeshDef mesh;
     sim::SimParams params;
     std::uint64_t seed = 1;

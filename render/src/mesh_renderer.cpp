@@ -238,7 +238,8 @@ std::unique_ptr<MeshRenderer> MeshRenderer::Create(const RenderDef& def, std::st
     glGenBuffers(1, &state->springBuffer);
 
     // Text follows the image size, but never below ~16 px body text: small images stay legible.
-    if (!state->overlay.Create(def.supersample * std::max(0.85f, def.height / 768.0f), error)) return nullptr;
+    const float textScale = def.textScale > 0 ? float(def.textScale) : std::max(0.85f, def.height / 768.0f);
+    if (!state->overlay.Create(def.supersample * textScale, error)) return nullptr;
     return std::unique_ptr<MeshRenderer>(new MeshRenderer(std::move(state)));
 }
 
@@ -375,6 +376,16 @@ Image MeshRenderer::Render(const Scene& scene) {
     const float barStrip = def.overlay && coloured ? std::max(width * 0.11f, fontSize * 6.0f) : 0.0f;
     const Rect panelArea{0, top, width - barStrip, float(height) - bottom};
     const int panelCount = std::max<int>(1, scene.panels.size());
+    // Panels fill a grid: one row by default, `columns` wide for contact sheets. In a grid each
+    // cell keeps a caption band of its own; a single row has its captions under the panel area.
+    const int columns = scene.columns > 0 ? std::min(scene.columns, panelCount) : panelCount;
+    const int rows = (panelCount + columns - 1) / columns;
+    const float captionBand = rows > 1 && def.overlay ? fontSize * 1.3f : 0.0f;
+    auto cellOf = [&](int k) {
+        const float w = panelArea.Width() / columns, h = panelArea.Height() / rows;
+        const float x0 = panelArea.x0 + (k % columns) * w, y0 = panelArea.y0 + (k / columns) * h;
+        return Rect{x0, y0, x0 + w, y0 + h - captionBand};
+    };
 
     // Colour scale and framing shared by every panel.
     std::vector<std::vector<double>> values;
@@ -407,9 +418,8 @@ Image MeshRenderer::Render(const Scene& scene) {
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
 
-    const float panelWidth = panelArea.Width() / panelCount;
     Vec3 toCamera;
-    const Eigen::Matrix4f viewProjection = ViewProjection(framing, def, panelWidth / panelArea.Height(), &toCamera);
+    const Eigen::Matrix4f viewProjection = ViewProjection(framing, def, cellOf(0).Width() / cellOf(0).Height(), &toCamera);
     // Lights fixed relative to the camera: key from the upper left, fill from the right.
     const Vec3 forward = -toCamera;
     const Vec3 right = forward.cross(Vec3::UnitZ()).normalized();
@@ -420,8 +430,8 @@ Image MeshRenderer::Render(const Scene& scene) {
     glBindVertexArray(s.vao);
     for (int k = 0; k < int(scene.panels.size()); ++k) {
         // GL viewports count from the bottom.
-        const int vx = int(panelArea.x0 + k * panelWidth), vy = int(height - panelArea.y1);
-        glViewport(vx, vy, int(panelWidth), int(panelArea.Height()));
+        const Rect cell = cellOf(k);
+        glViewport(int(cell.x0), int(height - cell.y1), int(cell.Width()), int(cell.Height()));
 
         const auto normals = OutwardNormals(scene.mesh, rotated[k]);
         std::vector<SurfaceVertex> vertices(rotated[k].size());
@@ -481,8 +491,10 @@ Image MeshRenderer::Render(const Scene& scene) {
         for (int k = 0; k < int(scene.panels.size()); ++k) {
             const std::string& caption = scene.panels[k].caption;
             const ImVec2 size = s.overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, caption.c_str());
-            const float cx = panelArea.x0 + (k + 0.5f) * panelWidth;
-            draw->AddText(s.overlay.TextFont(), fontSize, ImVec2(cx - size.x / 2, panelArea.y1 + fontSize * 0.3f), ink, caption.c_str());
+            const Rect cell = cellOf(k);
+            const float cx = (cell.x0 + cell.x1) / 2;
+            const float cy = rows > 1 ? cell.y1 + fontSize * 0.1f : panelArea.y1 + fontSize * 0.3f;
+            draw->AddText(s.overlay.TextFont(), fontSize, ImVec2(cx - size.x / 2, cy), ink, caption.c_str());
         }
         if (coloured) {
             const char* label = def.colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : "spring strain\n(percent)";

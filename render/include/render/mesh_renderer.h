@@ -31,6 +31,7 @@ struct RenderDef {
     bool overlay = true;              // title, parameter lines, captions and colour bar
     double elevationDegrees = 16;     // camera height above the actuator's mid-plane
     double azimuthDegrees = 30;       // camera direction around the actuator's axis
+    double textScale = 0;             // body text is 19 px times this; 0: follows the image height
 };
 RenderDef DefaultRenderDef();
 
@@ -53,6 +54,7 @@ Framing FrameMeshes(const std::vector<const sim::Positions*>& meshes);
 struct Scene {
     sim::MeshDef mesh;
     std::vector<Panel> panels;           // side by side, one camera, one scale
+    int columns = 0;                     // > 0: panels fill a grid this many wide (contact sheets)
     std::string title;
     std::vector<std::string> lines;      // overlay text under the title
     std::optional<Framing> framing;      // default: frame every panel
