@@ -16,7 +16,8 @@ enum class TurntablePlan { None, Best, All };
 
 struct RenderPlan {
     bool figures = true;                          // landscape / evolution figure and the best shape's images
-    TurntablePlan turntable = TurntablePlan::None;
+    TurntablePlan turntable = TurntablePlan::None;  // Best: the best shape; All: every grid point, or
+                                                    // every member of each GA run's final population
     int turntableFrames = 36;
 };
 

@@ -213,7 +213,11 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
     std::vector<sim::EvalJob> jobs;
     for (const auto& shape : shapes) jobs.push_back({shape, e.mesh, e.params});
     Progress progress("sweep " + ExperimentTitle(e), options.progress);
-    const auto results = sim::EvaluateBatch(jobs, options.threads, [&](int done, int total) { progress.Update(done, total, done, "grid points"); });
+    double bestSoFar = NAN;
+    const auto results = sim::EvaluateBatch(jobs, options.threads, [&](int done, int total, const sim::SimResult& finished) {
+        if (finished.status == sim::Status::Ok && !(finished.fitness <= bestSoFar)) bestSoFar = finished.fitness;
+        progress.Update(done, total, done, "best so far " + FormatNumber("%.4f", bestSoFar) + ", grid points");
+    });
     outcome.simulations += static_cast<long long>(results.size());
 
     const auto& axes = e.sweep.axes;
@@ -283,7 +287,8 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
         for (const auto& r : results) heatmap.values.push_back(r.fitness);
         if (best >= 0) {
             heatmap.highlight = static_cast<size_t>(best);
-            heatmap.highlightLabel = bestText + "  (grey: failed)";
+            const bool anyFailed = std::any_of(results.begin(), results.end(), [](const sim::SimResult& r) { return r.status != sim::Status::Ok; });
+            heatmap.highlightLabel = bestText + (anyFailed ? "  (grey cells: failed evaluations)" : "");
         }
         image = plots->RenderHeatmap(title, heatmap);
     }
@@ -325,7 +330,7 @@ void RunList(const Experiment& e, const fs::path& out, const RunOptions& options
     std::vector<sim::EvalJob> jobs;
     for (const auto& s : e.shapes) jobs.push_back({s.shape, e.mesh, e.params});
     Progress progress("evaluate " + ExperimentTitle(e), options.progress);
-    const auto results = sim::EvaluateBatch(jobs, options.threads, [&](int done, int total) { progress.Update(done, total, done, "shapes"); });
+    const auto results = sim::EvaluateBatch(jobs, options.threads, [&](int done, int total, const sim::SimResult&) { progress.Update(done, total, done, "shapes"); });
     outcome.simulations += static_cast<long long>(results.size());
     std::string csv = "index,label,fitness,contraction_percent,status,iterations,thesis_fitness\n";
     for (size_t j = 0; j < results.size(); ++j) {
@@ -549,6 +554,21 @@ void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& op
             char name[64];
             std::snprintf(name, sizeof name, "run_%d/sheets/generation_%03d.png", r + 1, runs[r].state.generation);
             if (fs::exists(out / name)) outcome.figures.push_back(name);
+        }
+        if (e.render.turntable == TurntablePlan::All) {
+            // Every member of each run's final population turning (all evaluations would be thousands).
+            for (int r = 0; r < e.runs; ++r) {
+                Experiment one = e;
+                one.render.turntable = TurntablePlan::Best;
+                const auto& population = runs[r].state.population;
+                for (size_t k = 0; k < population.size(); ++k) {
+                    ExperimentOutcome ignored;
+                    const fs::path folder = out / ("run_" + std::to_string(r + 1)) / "final_population" / ("individual_" + std::to_string(k + 1));
+                    fs::create_directories(folder);
+                    const sim::Shape shape = sim::ShapeOfGenome(population[k].genome, e.ga.genome, e.mesh);
+                    WriteBestFigures(folder, shape, one, "run " + std::to_string(r + 1) + ", individual " + std::to_string(k + 1), ignored);
+                }
+            }
         }
         if (bestRun >= 0) {
             const auto& best = runs[bestRun].state.hallOfFame.front();

@@ -9,8 +9,7 @@ namespace sim {
 
 int HardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
-std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threads,
-                                     const std::function<void(int done, int total)>& onDone) {
+std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threads, const BatchProgress& onDone) {
     const int total = static_cast<int>(jobs.size());
     std::vector<SimResult> results(jobs.size());
     if (threads <= 0) threads = HardwareThreads();
@@ -26,7 +25,7 @@ std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threa
             results[j] = Evaluate(jobs[j].shape, jobs[j].mesh, jobs[j].params);
             if (onDone) {
                 std::lock_guard lock(progressMutex);
-                onDone(++done, total);
+                onDone(++done, total, results[j]);
             }
         }
     };

@@ -33,7 +33,8 @@ TEST(Batch, ResultsDoNotDependOnThreadCount) {
 TEST(Batch, ReportsProgressForEveryJob) {
     const auto jobs = AmplitudeSweep(4);
     int calls = 0, last = 0;
-    sim::EvaluateBatch(jobs, 2, [&](int done, int total) {
+    sim::EvaluateBatch(jobs, 2, [&](int done, int total, const sim::SimResult& finished) {
+        EXPECT_EQ(finished.final.Size(), 900);
         ++calls;
         EXPECT_EQ(total, 4);
         EXPECT_EQ(done, last + 1);

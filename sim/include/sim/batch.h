@@ -15,10 +15,11 @@ struct EvalJob {
     SimParams params;
 };
 
-// 0 threads means one per hardware core. onDone (optional) is called after each job finishes,
-// from a worker thread, serialised; use it for progress lines.
-std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threads,
-                                     const std::function<void(int done, int total)>& onDone = {});
+// Called after each job finishes, from a worker thread, serialised: for progress lines.
+using BatchProgress = std::function<void(int done, int total, const SimResult& finished)>;
+
+// 0 threads means one per hardware core.
+std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threads, const BatchProgress& onDone = {});
 
 int HardwareThreads();
 
