@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "cli_options.h"
+#include "mesh_io.h"
+#include <filesystem>
 
 namespace app {
 namespace {
@@ -295,11 +297,9 @@ Experiment ParseExperiment(const std::string& text, const std::string& path) {
 }
 
 Experiment LoadExperiment(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw UsageError("cannot open experiment file '" + path + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return ParseExperiment(text.str(), path);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw UsageError("cannot open experiment file '" + path + "'");
+    return ParseExperiment(ReadTextFile(path), path);
 }
 
 }  // namespace app

@@ -449,12 +449,6 @@ void WriteRunFiles(const fs::path& dir, const RunCheckpoint& checkpoint) {
     WriteFileAtomically((dir / "checkpoint.json").string(), FormatCheckpoint(checkpoint));
 }
 
-std::string ReadFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 void WriteGenerationSheet(const fs::path& runDir, const Experiment& e, int run, CachedEvaluator& evaluate, const sim::GaState& state) {
     if (!e.render.figures) return;
@@ -480,7 +474,7 @@ void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& op
         RunCheckpoint checkpoint;
         Progress progress("evolve " + ExperimentTitle(e) + " run " + std::to_string(r + 1) + "/" + std::to_string(e.runs), options.progress);
         if (options.resume && fs::exists(dir / "checkpoint.json")) {
-            checkpoint = ParseCheckpoint(ReadFile(dir / "checkpoint.json"), (dir / "checkpoint.json").string());
+            checkpoint = ParseCheckpoint(ReadTextFile((dir / "checkpoint.json").string()), (dir / "checkpoint.json").string());
         } else {
             checkpoint.seed = sim::DeriveSeed(e.seed, static_cast<std::uint64_t>(r));
             checkpoint.state = sim::StartEvolution(e.ga, e.mesh, checkpoint.seed, evaluator);

@@ -16,7 +16,23 @@
 namespace app {
 namespace {
 
-std::string ReadWholeFile(const std::string& path) {
+// Calls visit(lineNumber, tokens) for each line with its '#' comment removed.
+template <class Visit>
+void ForEachLine(const std::string& text, Visit visit) {
+    std::istringstream lines(text);
+    std::string line;
+    int lineNumber = 0;
+    while (std::getline(lines, line)) {
+        ++lineNumber;
+        if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+        std::istringstream tokens(line);
+        visit(lineNumber, tokens);
+    }
+}
+
+}  // namespace
+
+std::string ReadTextFile(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw UsageError("cannot read '" + path + "': it is a directory");
     std::ifstream in(path, std::ios::binary);
@@ -25,8 +41,6 @@ std::string ReadWholeFile(const std::string& path) {
     contents << in.rdbuf();
     return contents.str();
 }
-
-}  // namespace
 
 std::string FormatObj(const sim::Positions& p, const sim::MeshDef& def) {
     std::string out;
@@ -54,18 +68,12 @@ std::string FormatObj(const sim::Positions& p, const sim::MeshDef& def) {
 }
 
 sim::Positions ReadObjVertices(const std::string& path) {
-    const std::string text = ReadWholeFile(path);
+    const std::string text = ReadTextFile(path);
     if (text.find('\0') != std::string::npos) throw UsageError("'" + path + "' is not a text OBJ file (binary data)");
     sim::Positions p;
-    std::istringstream lines(text);
-    std::string line;
-    int lineNumber = 0;
-    while (std::getline(lines, line)) {
-        ++lineNumber;
-        if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-        std::istringstream tokens(line);
+    ForEachLine(text, [&](int lineNumber, std::istringstream& tokens) {
         std::string keyword;
-        if (!(tokens >> keyword)) continue;
+        if (!(tokens >> keyword)) return;
         const std::string where = path + ":" + std::to_string(lineNumber);
         if (keyword == "v") {
             double xyz[3];
@@ -81,29 +89,21 @@ sim::Positions ReadObjVertices(const std::string& path) {
             p.x.push_back(xyz[0]);
             p.y.push_back(xyz[1]);
             p.z.push_back(xyz[2]);
-        } else if (keyword == "f" || keyword == "vn" || keyword == "vt" || keyword == "o" || keyword == "g" ||
-                   keyword == "s" || keyword == "l" || keyword == "usemtl" || keyword == "mtllib") {
-            continue;  // the model makes its own springs and triangles from the vertex order
-        } else {
+        } else if (keyword != "f" && keyword != "vn" && keyword != "vt" && keyword != "o" && keyword != "g" && keyword != "s" &&
+                   keyword != "l" && keyword != "usemtl" && keyword != "mtllib") {
+            // Faces and the rest are ignored: the model makes its own springs and triangles.
             throw UsageError(where + ": not an OBJ line (starts with '" + keyword.substr(0, 20) + "')");
         }
-    }
+    });
     return p;
 }
 
 std::vector<double> ReadNumberFile(const std::string& path) {
-    const std::string text = ReadWholeFile(path);
     std::vector<double> values;
-    std::istringstream lines(text);
-    std::string line;
-    int lineNumber = 0;
-    while (std::getline(lines, line)) {
-        ++lineNumber;
-        if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-        std::istringstream tokens(line);
+    ForEachLine(ReadTextFile(path), [&](int lineNumber, std::istringstream& tokens) {
         std::string word;
         while (tokens >> word) values.push_back(ParseNumber(word, path + ":" + std::to_string(lineNumber)));
-    }
+    });
     return values;
 }
 

@@ -16,6 +16,9 @@ std::string FormatObj(const sim::Positions& positions, const sim::MeshDef& def);
 // and comments; anything else is an error naming the file and line. Throws UsageError.
 sim::Positions ReadObjVertices(const std::string& path);
 
+// The whole file. Throws UsageError naming the file when it cannot be read.
+std::string ReadTextFile(const std::string& path);
+
 // Whitespace-separated numbers (comments after '#'): a free-xy offset file holds "dx dy" per vertex.
 std::vector<double> ReadNumberFile(const std::string& path);
 

@@ -23,12 +23,6 @@ int ParseThreads(const ParsedArgs& args) {
     return args.Has("threads") ? ParseInt(args.Get("threads"), "--threads", 1, 1024) : sim::HardwareThreads();
 }
 
-std::string ReadFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 std::vector<OptionSpec> SweepSpecs() {
     return {
@@ -121,7 +115,7 @@ int RunEvolve(int argc, char** argv, int first) {
     const fs::path out = resume ? fs::path(args.Get("resume")) : fs::path(args.Get("out"));
     if (resume && !fs::exists(out / "experiment.json"))
         throw UsageError("--resume: '" + out.string() + "' holds no experiment.json; is it an evolve output folder?");
-    const Experiment e = resume ? ParseExperiment(ReadFile(out / "experiment.json"), (out / "experiment.json").string())
+    const Experiment e = resume ? ParseExperiment(ReadTextFile((out / "experiment.json").string()), (out / "experiment.json").string())
                                 : LoadExperiment(args.positionals[0]);
     if (e.kind != ExperimentKind::Evolve) throw UsageError(e.path + " describes no genetic algorithm: run it with 'actuator sweep'");
     const int threads = ParseThreads(args);

@@ -19,6 +19,7 @@
 #include <numbers>
 
 #include "overlay_context.h"
+#include "render/colormap.h"
 #include "render/gl_context.h"
 
 namespace render {
@@ -32,17 +33,9 @@ namespace {
 
 using Vec3 = Eigen::Vector3f;
 
-// Matplotlib's viridis, sampled; perceptually uniform and readable in grey print.
 Vec3 Viridis(double t) {
-    static const float kStops[][3] = {{0.267f, 0.005f, 0.329f}, {0.283f, 0.141f, 0.458f}, {0.254f, 0.265f, 0.530f},
-                                      {0.207f, 0.372f, 0.553f}, {0.164f, 0.471f, 0.558f}, {0.128f, 0.567f, 0.551f},
-                                      {0.135f, 0.659f, 0.518f}, {0.267f, 0.749f, 0.441f}, {0.478f, 0.821f, 0.318f},
-                                      {0.741f, 0.873f, 0.150f}, {0.993f, 0.906f, 0.144f}};
-    constexpr int kCount = sizeof kStops / sizeof kStops[0];
-    const double x = std::clamp(t, 0.0, 1.0) * (kCount - 1);
-    const int i = std::min(static_cast<int>(x), kCount - 2);
-    const float u = static_cast<float>(x - i);
-    return Vec3(kStops[i][0], kStops[i][1], kStops[i][2]) * (1 - u) + Vec3(kStops[i + 1][0], kStops[i + 1][1], kStops[i + 1][2]) * u;
+    const Rgb c = ViridisColor(t);
+    return Vec3(c.r, c.g, c.b);
 }
 
 const Vec3 kNeutralMaterial(0.62f, 0.70f, 0.80f);  // Shading mode: a pale blue-grey silicone

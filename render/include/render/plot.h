@@ -7,13 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "render/colormap.h"
 #include "render/image.h"
 
 namespace render {
-
-struct Rgb {
-    float r = 0, g = 0, b = 0;
-};
 
 struct LineSeries {
     std::string label;           // in the legend; empty: not listed
@@ -64,8 +61,5 @@ private:
 
 // "Nice" tick positions (1, 2, 5 x 10^k steps) covering [low, high], about `count` of them.
 std::vector<double> NiceTicks(double low, double high, int count);
-
-// The viridis colour map, t in [0, 1].
-Rgb ViridisColor(double t);
 
 }  // namespace render

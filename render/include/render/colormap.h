@@ -1,0 +1,14 @@
+// Colour maps shared by mesh pictures and plots, so a colour bar means the same everywhere.
+#pragma once
+
+namespace render {
+
+struct Rgb {
+    float r = 0, g = 0, b = 0;
+};
+
+// Matplotlib's viridis, sampled: perceptually uniform and readable in grey print. t in [0, 1];
+// values outside are clamped, non-finite ones read as 0.
+Rgb ViridisColor(double t);
+
+}  // namespace render
