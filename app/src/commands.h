@@ -23,6 +23,8 @@ std::string SweepHelp();
 int RunEvolve(int argc, char** argv, int first);
 std::string EvolveHelp();
 int RunReproduce(int argc, char** argv, int first);
+int RunInspect(int argc, char** argv, int first);
+std::string InspectHelp();
 std::string ReproduceHelp();
 std::string ImgDiffHelp();
 

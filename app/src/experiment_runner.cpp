@@ -16,6 +16,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "archive.h"
 #include "checkpoint.h"
 #include "cli_options.h"
 #include "figures.h"
@@ -183,6 +184,27 @@ std::string FitnessCaption(const sim::SimResult& r) {
     return r.status == sim::Status::Ok ? FormatNumber("%.3f", r.fitness) : std::string(sim::StatusName(r.status));
 }
 
+ArchivedEvaluation Record(const Experiment& e, const sim::SimResult& r, const sim::Shape& shape, std::string label, int run = 0,
+                          int generation = -1, const sim::Genome& genome = {}) {
+    ArchivedEvaluation a;
+    a.experiment = e.id;
+    a.run = run;
+    a.generation = generation;
+    a.label = std::move(label);
+    a.genome = genome;
+    a.shape = shape;
+    a.params = e.params;
+    a.mesh = e.mesh;
+    a.initial = r.initial;
+    a.final = r.final;
+    a.status = r.status;
+    a.fitness = r.fitness;
+    a.contractionPercent = r.contractionPercent;
+    a.iterationsRun = r.iterationsRun;
+    a.elapsedMs = r.elapsedMs;
+    return a;
+}
+
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Sweeps
 // ---------------------------------------------------------------------------------------------
@@ -208,7 +230,7 @@ sim::Shape WithParameters(sim::Shape shape, const std::vector<std::pair<std::str
     return shape;
 }
 
-void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& options, ExperimentOutcome& outcome) {
+void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& options, ArchiveWriter& archive, ExperimentOutcome& outcome) {
     const auto shapes = sim::SweepShapes(e.sweep);
     std::vector<sim::EvalJob> jobs;
     for (const auto& shape : shapes) jobs.push_back({shape, e.mesh, e.params});
@@ -233,6 +255,13 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
         if (results[j].status == sim::Status::Ok && (best < 0 || results[j].fitness > results[best].fitness)) best = static_cast<int>(j);
     }
     WriteFileAtomically((out / "results.csv").string(), csv);
+    for (size_t j = 0; j < results.size(); ++j) {
+        std::string label;
+        for (const auto& axis : axes)
+            label += (label.empty() ? "" : " ") + std::string(sim::SweepParameterName(axis.parameter)) + "=" +
+                     FormatNumber("%.6g", ParameterOf(shapes[j], sim::SweepParameterName(axis.parameter)));
+        archive.Append(Record(e, results[j], shapes[j], label));
+    }
 
     std::string bestText = "no grid point evaluated successfully";
     if (best >= 0) {
@@ -326,7 +355,7 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
 // [SECTION] Lists of shapes
 // ---------------------------------------------------------------------------------------------
 
-void RunList(const Experiment& e, const fs::path& out, const RunOptions& options, ExperimentOutcome& outcome) {
+void RunList(const Experiment& e, const fs::path& out, const RunOptions& options, ArchiveWriter& archive, ExperimentOutcome& outcome) {
     std::vector<sim::EvalJob> jobs;
     for (const auto& s : e.shapes) jobs.push_back({s.shape, e.mesh, e.params});
     Progress progress("evaluate " + ExperimentTitle(e), options.progress);
@@ -337,6 +366,7 @@ void RunList(const Experiment& e, const fs::path& out, const RunOptions& options
         csv += std::to_string(j) + ",\"" + e.shapes[j].label + "\"," + Csv(results[j].fitness) + "," + Csv(results[j].contractionPercent) + "," +
                sim::StatusName(results[j].status) + "," + std::to_string(results[j].iterationsRun) + "," + Csv(e.shapes[j].thesisFitness) + "\n";
         outcome.rows.push_back({e.shapes[j].label, results[j].fitness, e.shapes[j].thesisFitness});
+        archive.Append(Record(e, results[j], e.shapes[j].shape, e.shapes[j].label));
     }
     WriteFileAtomically((out / "results.csv").string(), csv);
     if (!e.render.figures) return;
@@ -358,7 +388,8 @@ void RunList(const Experiment& e, const fs::path& out, const RunOptions& options
 // and keeps the meshes of the current generation for its contact sheet.
 class CachedEvaluator {
 public:
-    CachedEvaluator(const Experiment& e, int threads, const fs::path& runDir) : e_(e), threads_(threads), runDir_(runDir) {
+    CachedEvaluator(const Experiment& e, int threads, const fs::path& runDir, int run, ArchiveWriter& archive)
+        : e_(e), threads_(threads), runDir_(runDir), run_(run), archive_(archive) {
         if (e.render.figures) thumbnails_ = std::make_unique<ThumbnailWriter>(runDir / "thumbnails", e.mesh);
     }
 
@@ -370,6 +401,7 @@ public:
         std::vector<sim::EvalJob> jobs;
         std::vector<size_t> slots;
         std::vector<std::string> keys;
+        std::vector<const sim::Genome*> genomesOfJobs;
         for (size_t j = 0; j < genomes.size(); ++j) {
             std::string key = sim::GenomeText(*genomes[j]);
             if (auto hit = fitness_.find(key); hit != fitness_.end()) {
@@ -377,6 +409,7 @@ public:
                 continue;
             }
             jobs.push_back({sim::ShapeOfGenome(*genomes[j], e_.ga.genome, e_.mesh), e_.mesh, e_.params});
+            genomesOfJobs.push_back(genomes[j]);
             slots.push_back(j);
             keys.push_back(std::move(key));
         }
@@ -391,6 +424,8 @@ public:
             log_ += std::to_string(number) + "," + std::to_string(generation_) + "," + Csv(results[k].fitness) + "," +
                     sim::StatusName(results[k].status) + "," + (thumbnails_ ? std::string(name) : std::string()) + ",\"" + keys[k] + "\"\n";
             if (thumbnails_) thumbnails_->Write(name, results[k]);
+            archive_.Append(Record(e_, results[k], jobs[k].shape, "run " + std::to_string(run_) + " evaluation " + std::to_string(number),
+                                   run_, generation_, *genomesOfJobs[k]));
             meshes_[keys[k]] = std::move(results[k]);
         }
         simulated_ += static_cast<long long>(results.size());
@@ -433,6 +468,8 @@ private:
     const Experiment& e_;
     int threads_;
     fs::path runDir_;
+    int run_;
+    ArchiveWriter& archive_;
     std::unique_ptr<ThumbnailWriter> thumbnails_;
     int generation_ = 0;
     std::string log_;
@@ -464,12 +501,12 @@ void WriteGenerationSheet(const fs::path& runDir, const Experiment& e, int run, 
                       ExperimentTitle(e) + "  -  run " + std::to_string(run + 1) + ", generation " + std::to_string(state.generation), entries, e.mesh);
 }
 
-void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& options, ExperimentOutcome& outcome) {
+void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& options, ArchiveWriter& archive, ExperimentOutcome& outcome) {
     std::vector<RunCheckpoint> runs;
     for (int r = 0; r < e.runs; ++r) {
         const fs::path dir = out / ("run_" + std::to_string(r + 1));
         fs::create_directories(dir);
-        CachedEvaluator evaluate(e, options.threads, dir);
+        CachedEvaluator evaluate(e, options.threads, dir, r + 1, archive);
         const sim::GenomeEvaluator evaluator = [&](const std::vector<const sim::Genome*>& genomes) { return evaluate(genomes); };
         RunCheckpoint checkpoint;
         Progress progress("evolve " + ExperimentTitle(e) + " run " + std::to_string(r + 1) + "/" + std::to_string(e.runs), options.progress);
@@ -611,10 +648,12 @@ ExperimentOutcome RunExperiment(const Experiment& e, const fs::path& out, const 
     ExperimentOutcome outcome;
     outcome.dir = out;
     const auto started = Clock::now();
+    // Every simulated shape, with its meshes, for `actuator inspect` and `render --from`.
+    ArchiveWriter archive((out / "evaluations.capnp").string());
     switch (e.kind) {
-        case ExperimentKind::Sweep: RunSweep(e, out, options, outcome); break;
-        case ExperimentKind::Evaluate: RunList(e, out, options, outcome); break;
-        case ExperimentKind::Evolve: RunEvolution(e, out, options, outcome); break;
+        case ExperimentKind::Sweep: RunSweep(e, out, options, archive, outcome); break;
+        case ExperimentKind::Evaluate: RunList(e, out, options, archive, outcome); break;
+        case ExperimentKind::Evolve: RunEvolution(e, out, options, archive, outcome); break;
     }
     outcome.seconds = Seconds(started);
 

@@ -15,6 +15,7 @@ const app::Command kCommands[] = {
     {"sweep", "evaluate an experiment's grid of sine shapes; landscape figure", app::RunSweep, app::SweepHelp},
     {"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", app::RunEvolve, app::EvolveHelp},
     {"reproduce", "run every thesis experiment and write report.md with figures", app::RunReproduce, app::ReproduceHelp},
+    {"inspect", "list or filter the evaluations in an archive (evaluations.capnp)", app::RunInspect, app::InspectHelp},
     {"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", app::RunImgDiff, app::ImgDiffHelp},
 };
 

@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "archive.h"
 #include "figures.h"
 #include "mesh_io.h"
 #include "render/mesh_renderer.h"
@@ -24,6 +25,8 @@ namespace fs = std::filesystem;
 std::vector<OptionSpec> RenderOnlySpecs() {
     return {
         {"out", "DIR", "", "folder for the images (created if missing); required"},
+        {"from", "ARCHIVE", "", "render evaluation --index of an archive (evaluations.capnp) without simulating; no shape options"},
+        {"index", "K", "", "with --from: which evaluation (see actuator inspect)"},
         {"size", "WxH", "1024x768", "image size in pixels"},
         {"turntable", "N", "", "also write N frames of the inflated mesh turning a full circle to DIR/turntable/", "60"},
         {"timelapse", "N", "", "also write N frames of the inflation, one every iterations/N, to DIR/timelapse/"},
@@ -91,6 +94,50 @@ void Progress(const char* what, int done, int total) {
     if (done == total) std::fprintf(stderr, "\n");
 }
 
+// An archived evaluation drawn again from its stored meshes: no simulation.
+int RenderFromArchive(const ParsedArgs& args) {
+    for (const auto& spec : ShapeOptionSpecs())
+        if (args.Has(spec.name)) throw UsageError("--from ARCHIVE takes the shape from the archive; drop --" + spec.name);
+    for (const auto& spec : SimulationOptionSpecs())
+        if (args.Has(spec.name)) throw UsageError("--from ARCHIVE takes the settings from the archive; drop --" + spec.name);
+    if (!args.Has("index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
+    if (!args.Has("out")) throw UsageError("--out DIR is required (where the images go)");
+    const long long index = ParseInt(args.Get("index"), "--index", 0, 2'000'000'000);
+    const ArchiveContents contents = ReadArchive(args.Get("from"));
+    if (contents.evaluations.empty() && contents.truncated)
+        throw UsageError("'" + args.Get("from") + "' is not an evaluation archive (" + contents.problem + ")");
+    if (index >= static_cast<long long>(contents.evaluations.size()))
+        throw UsageError("--index " + std::to_string(index) + ": the archive holds " + std::to_string(contents.evaluations.size()) + " evaluations");
+    const ArchivedEvaluation& e = contents.evaluations[static_cast<size_t>(index)];
+    if (e.initial.Size() != sim::VertexCount(e.mesh) || e.final.Size() != e.initial.Size())
+        throw UsageError("evaluation " + std::to_string(index) + " has no usable meshes");
+
+    const fs::path out = args.Get("out");
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (!fs::is_directory(out, ec)) throw UsageError("--out: cannot create folder '" + out.string() + "'");
+    render::RenderDef def = render::DefaultRenderDef();
+    std::string error;
+    auto renderer = render::MeshRenderer::Create(def, &error);
+    if (!renderer) throw UsageError("cannot render: " + error);
+    sim::SimResult result;
+    result.status = e.status;
+    result.fitness = e.fitness;
+    result.contractionPercent = e.contractionPercent;
+    result.iterationsRun = e.iterationsRun;
+    result.initial = e.initial;
+    result.final = e.final;
+    std::string title = "archive " + (e.experiment.empty() ? std::string("") : e.experiment + " ") + "#" + std::to_string(index) + ": " +
+                        (e.genome.empty() ? e.label : ShapeTitle(e.shape)) + "  -  " + sim::LoadName(e.params.load);
+    const fs::path path = out / ("evaluation_" + std::to_string(index) + ".png");
+    WritePng(path.string(), renderer->Render(BeforeAfterScene(title, result, e.mesh)), 6);
+    JsonWriter json;
+    json.BeginObject().Key("index").Integer(index).Key("status").String(sim::StatusName(e.status)).Key("fitness").Number(e.fitness);
+    json.Key("files").BeginArray().String(path.string()).EndArray().Key("simulated").Bool(false).EndObject();
+    std::cout << json.Text() << "\n";
+    return 0;
+}
+
 }  // namespace
 
 std::string RenderHelp() {
@@ -108,7 +155,8 @@ std::string RenderHelp() {
                std::erase_if(specs, [](const OptionSpec& s) { return s.name == "load"; });
                return FormatOptions(specs);
            }() + "\nPicture options:\n" + FormatOptions(RenderOnlySpecs()) +
-           "\nExample:\n  actuator render --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n";
+           "\nExamples:\n  actuator render --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n"
+           "  actuator render --from runs/5.2/evaluations.capnp --index 17 --out figures/   (no simulation)\n";
 }
 
 int RunRender(int argc, char** argv, int first) {
@@ -117,6 +165,8 @@ int RunRender(int argc, char** argv, int first) {
         std::cout << RenderHelp();
         return 0;
     }
+    if (args.Has("from")) return RenderFromArchive(args);
+    if (args.Has("index")) throw UsageError("--index goes with --from ARCHIVE");
     const EvaluationRequest request = ParseEvaluationRequest(args);
     if (!args.Has("out")) throw UsageError("--out DIR is required (where the images go)");
 

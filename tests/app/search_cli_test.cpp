@@ -125,6 +125,11 @@ TEST_F(SearchCli, ResumeAfterAKillEndsLikeAnUninterruptedRun) {
     ASSERT_GE(generation, 3);
     EXPECT_FALSE(fs::exists(fs::path(out) / "summary.json"));
 
+    // The archive survived the kill: inspect reads every complete evaluation of it.
+    const Result afterKill = Run("inspect " + out + "/evaluations.capnp --json");
+    ASSERT_EQ(afterKill.exitCode, 0) << afterKill.err;
+    EXPECT_GE(nlohmann::json::parse(afterKill.out)["total"].get<int>(), 10);
+
     const Result resumed = Run("evolve --resume " + out);
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
     EXPECT_EQ(RunFiles(out, 2), RunFiles(dir_ / "whole", 2));
@@ -194,4 +199,51 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     EXPECT_GE(images, 30u);
     EXPECT_TRUE(fs::exists(dir_ / "thesis" / "5.2_bspline_middle" / "run_1" / "thumbnails" / "evaluation_00001.png"));
     EXPECT_TRUE(fs::exists(dir_ / "thesis" / "4.1_amplitude_sweep" / "thumbnails" / "point_0000.png"));
+}
+
+TEST_F(SearchCli, ArchivesListFilterAndRenderWithoutSimulating) {
+    ASSERT_EQ(Run("evolve " + SmallGa(3, 2) + " --out " + Path("a")).exitCode, 0);
+    const std::string archive = Path("a/evaluations.capnp");
+    const Result all = Run("inspect " + archive + " --json");
+    ASSERT_EQ(all.exitCode, 0) << all.err;
+    const auto json = nlohmann::json::parse(all.out);
+    const auto& evaluations = json["evaluations"];
+    ASSERT_EQ(json["total"].get<size_t>(), evaluations.size());
+    EXPECT_FALSE(json["truncated"].get<bool>());
+    // Every simulation of both runs is there: the logbooks' evaluation counts add up (the cache can only lower them).
+    size_t logged = 0;
+    for (int run = 1; run <= 2; ++run)
+        for (const auto& row : ReadCsv(Slurp(dir_ / "a" / ("run_" + std::to_string(run)) / "evaluations.csv"))) logged += row[0] != "evaluation";
+    EXPECT_EQ(evaluations.size(), logged);
+    for (size_t k = 0; k < evaluations.size(); ++k) EXPECT_EQ(evaluations[k]["index"].get<size_t>(), k);
+
+    const auto count = [&](const std::string& filter) {
+        const Result r = Run("inspect " + archive + " --json " + filter);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return nlohmann::json::parse(r.out)["evaluations"];
+    };
+    for (const auto& e : count("--run 2")) EXPECT_EQ(e["run"], 2);
+    for (const auto& e : count("--generation 0")) EXPECT_EQ(e["generation"], 0);
+    EXPECT_EQ(count("--generation 0 --run 1").size(), 10u);  // the initial population
+    for (const auto& e : count("--min-fitness 0.1")) EXPECT_GE(e["fitness"].get<double>(), 0.1);
+    EXPECT_EQ(count("--limit 3").size(), 3u);
+    const Result table = Run("inspect " + archive + " --status ok --limit 2");
+    EXPECT_NE(table.out.find("2 of " + std::to_string(evaluations.size()) + " evaluations shown"), std::string::npos) << table.out;
+
+    const Result rendered = Run("render --from " + archive + " --index 4 --out " + Path("again"));
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+    EXPECT_EQ(nlohmann::json::parse(rendered.out)["simulated"], false);
+    const std::string bytes = Slurp(dir_ / "again" / "evaluation_4.png");
+    render::Image image;
+    std::string error;
+    ASSERT_TRUE(render::DecodePng(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), &image, &error)) << error;
+    EXPECT_FALSE(render::IsUniform(image));
+
+    ExpectRefused("render --from " + archive + " --out " + Path("x"), "--index");
+    ExpectRefused("render --from " + archive + " --index 100000 --out " + Path("x"), "holds");
+    ExpectRefused("render --from " + archive + " --index 1 --shape sine --out " + Path("x"), "--shape");
+    ExpectRefused("inspect " + Path("missing.capnp"), "missing.capnp");
+    Write("junk.capnp", std::string(3000, '\x7f'));
+    ExpectRefused("inspect " + Path("junk.capnp"), "not an evaluation archive");
+    ExpectRefused("inspect " + archive + " --status weird", "weird");
 }

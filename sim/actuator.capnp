@@ -1,0 +1,98 @@
+# Actuator Workbench's one schema for what it stores or sends: shapes and genomes, simulation
+# parameters, meshes, evaluation results, evaluation records (archives), logbook rows.
+# Compiled by CMake (capnp compile) into the app's archive code; sim itself has no dependency on it.
+@0xd307e0379e6c9429;
+
+using Cxx = import "/capnp/c++.capnp";
+$Cxx.namespace("actuator::schema");
+
+enum Load { inflate @0; stretch @1; none @2; }
+enum Precision { float @0; double @1; }
+enum Status { ok @0; notANumber @1; diverged @2; }  # the CLI's ok, nan, diverged
+enum SplineRegion { entire @0; middle @1; }
+
+struct MeshSize {
+  resolution @0 :UInt32 = 30;   # vertices per turn
+  turns @1 :UInt32 = 30;        # turns of the helix
+}
+
+# Positions in helix order, structure-of-arrays. Archives store float32, the float solver's own
+# precision: enough to re-render; exact results are in the fitness fields.
+struct Mesh {
+  x @0 :List(Float32);
+  y @1 :List(Float32);
+  z @2 :List(Float32);
+}
+
+struct Spline {
+  controlPoints @0 :List(Float64);
+}
+
+struct Shape {
+  union {
+    cylinder @0 :Void;
+    sine @1 :Sine;
+    absSine @2 :Sine;
+    bspline @3 :BSpline;
+    freeXY @4 :FreeXY;
+    mesh @5 :Mesh;
+  }
+  struct Sine {
+    amplitude @0 :Float64;
+    phaseStart @1 :Float64;
+    phaseEnd @2 :Float64;
+  }
+  struct BSpline {
+    region @0 :SplineRegion;
+    splines @1 :List(Spline);     # 1, 2 or 4 sectors
+  }
+  struct FreeXY {
+    dx @0 :List(Float64);
+    dy @1 :List(Float64);
+  }
+}
+
+struct SimParams {
+  iterations @0 :UInt32 = 10000;
+  load @1 :Load;
+  springConstant @2 :Float64 = 0.01;
+  pressureScale @3 :Float64 = 0.005;
+  pullForce @4 :Float64 = 0.005;
+  stepScale @5 :Float64 = 0.07;
+  divergenceLimit @6 :Float64 = 10000;
+  precision @7 :Precision;
+}
+
+struct EvalResult {
+  status @0 :Status;
+  fitness @1 :Float64;              # NaN unless status is ok
+  contractionPercent @2 :Float64;
+  iterationsRun @3 :UInt32;
+  elapsedMs @4 :Float64;
+}
+
+# One simulated shape, as appended to DIR/evaluations.capnp by sweeps and GA runs.
+struct Evaluation {
+  index @0 :UInt64;                 # order within the archive, from 0
+  experiment @1 :Text;              # experiment id
+  run @2 :UInt32;                   # GA run (1-based); 0 for sweeps and lists
+  generation @3 :Int32;             # GA generation; -1 for sweeps and lists
+  label @4 :Text;                   # grid point parameters or shape label
+  genome @5 :List(Spline);          # GA genome (B-spline sectors, or one list of free-xy offsets)
+  shape @6 :Shape;
+  params @7 :SimParams;
+  meshSize @8 :MeshSize;
+  initial @9 :Mesh;
+  final @10 :Mesh;
+  result @11 :EvalResult;
+}
+
+struct LogbookRow {
+  generation @0 :UInt32;
+  evaluations @1 :UInt32;
+  best @2 :Float64;
+  worst @3 :Float64;
+  mean @4 :Float64;
+  std @5 :Float64;
+  invalid @6 :UInt32;
+}
