@@ -96,3 +96,31 @@ struct LogbookRow {
   std @5 :Float64;
   invalid @6 :UInt32;
 }
+
+# ---- Distributed evaluation (actuator serve) --------------------------------------------------
+
+# Positions at full precision, for results that must equal a local run's bit for bit.
+struct ExactMesh {
+  x @0 :List(Float64);
+  y @1 :List(Float64);
+  z @2 :List(Float64);
+}
+
+struct EvalRequest {
+  shape @0 :Shape;
+  params @1 :SimParams;
+  meshSize @2 :MeshSize;
+}
+
+struct EvalResponse {
+  result @0 :EvalResult;
+  initial @1 :ExactMesh;     # the mesh as simulated (float solver: rounded to float)
+  final @2 :ExactMesh;
+}
+
+# An evaluation server. Every request is checked (mesh size, iteration count, finite numbers,
+# shape validity); a bad one fails the whole call with a message, and the server keeps serving.
+interface Evaluator {
+  evaluate @0 (requests :List(EvalRequest)) -> (responses :List(EvalResponse));
+  info @1 () -> (threads :UInt32, maxVertices :UInt32, maxIterations :UInt32, maxRequests :UInt32);
+}

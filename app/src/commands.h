@@ -24,6 +24,8 @@ int RunEvolve(int argc, char** argv, int first);
 std::string EvolveHelp();
 int RunReproduce(int argc, char** argv, int first);
 int RunInspect(int argc, char** argv, int first);
+int RunServe(int argc, char** argv, int first);
+std::string ServeHelp();
 std::string InspectHelp();
 std::string ReproduceHelp();
 std::string ImgDiffHelp();

@@ -22,6 +22,7 @@
 #include "figures.h"
 #include "json_writer.h"
 #include "mesh_io.h"
+#include "remote.h"
 #include "render/mesh_renderer.h"
 #include "render/plot.h"
 #include "sim/batch.h"
@@ -184,6 +185,12 @@ std::string FitnessCaption(const sim::SimResult& r) {
     return r.status == sim::Status::Ok ? FormatNumber("%.3f", r.fitness) : std::string(sim::StatusName(r.status));
 }
 
+// On the evaluation servers when there are any, else on this machine's cores: same results.
+std::vector<sim::SimResult> EvaluateJobs(const RunOptions& options, const std::vector<sim::EvalJob>& jobs, const sim::BatchProgress& progress = {}) {
+    if (options.workers) return options.workers->Evaluate(jobs, progress);
+    return sim::EvaluateBatch(jobs, options.threads, progress);
+}
+
 ArchivedEvaluation Record(const Experiment& e, const sim::SimResult& r, const sim::Shape& shape, std::string label, int run = 0,
                           int generation = -1, const sim::Genome& genome = {}) {
     ArchivedEvaluation a;
@@ -236,7 +243,7 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
     for (const auto& shape : shapes) jobs.push_back({shape, e.mesh, e.params});
     Progress progress("sweep " + ExperimentTitle(e), options.progress);
     double bestSoFar = NAN;
-    const auto results = sim::EvaluateBatch(jobs, options.threads, [&](int done, int total, const sim::SimResult& finished) {
+    const auto results = EvaluateJobs(options, jobs, [&](int done, int total, const sim::SimResult& finished) {
         if (finished.status == sim::Status::Ok && !(finished.fitness <= bestSoFar)) bestSoFar = finished.fitness;
         progress.Update(done, total, done, "best so far " + FormatNumber("%.4f", bestSoFar) + ", grid points");
     });
@@ -359,7 +366,7 @@ void RunList(const Experiment& e, const fs::path& out, const RunOptions& options
     std::vector<sim::EvalJob> jobs;
     for (const auto& s : e.shapes) jobs.push_back({s.shape, e.mesh, e.params});
     Progress progress("evaluate " + ExperimentTitle(e), options.progress);
-    const auto results = sim::EvaluateBatch(jobs, options.threads, [&](int done, int total, const sim::SimResult&) { progress.Update(done, total, done, "shapes"); });
+    const auto results = EvaluateJobs(options, jobs, [&](int done, int total, const sim::SimResult&) { progress.Update(done, total, done, "shapes"); });
     outcome.simulations += static_cast<long long>(results.size());
     std::string csv = "index,label,fitness,contraction_percent,status,iterations,thesis_fitness\n";
     for (size_t j = 0; j < results.size(); ++j) {
@@ -388,8 +395,8 @@ void RunList(const Experiment& e, const fs::path& out, const RunOptions& options
 // and keeps the meshes of the current generation for its contact sheet.
 class CachedEvaluator {
 public:
-    CachedEvaluator(const Experiment& e, int threads, const fs::path& runDir, int run, ArchiveWriter& archive)
-        : e_(e), threads_(threads), runDir_(runDir), run_(run), archive_(archive) {
+    CachedEvaluator(const Experiment& e, const RunOptions& options, const fs::path& runDir, int run, ArchiveWriter& archive)
+        : e_(e), options_(options), runDir_(runDir), run_(run), archive_(archive) {
         if (e.render.figures) thumbnails_ = std::make_unique<ThumbnailWriter>(runDir / "thumbnails", e.mesh);
     }
 
@@ -413,7 +420,7 @@ public:
             slots.push_back(j);
             keys.push_back(std::move(key));
         }
-        auto results = sim::EvaluateBatch(jobs, threads_);
+        auto results = EvaluateJobs(options_, jobs);
         for (size_t k = 0; k < results.size(); ++k) {
             out[slots[k]] = {results[k].fitness, results[k].status};
             fitness_.emplace(keys[k], out[slots[k]]);
@@ -466,7 +473,7 @@ public:
 
 private:
     const Experiment& e_;
-    int threads_;
+    const RunOptions& options_;
     fs::path runDir_;
     int run_;
     ArchiveWriter& archive_;
@@ -506,7 +513,7 @@ void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& op
     for (int r = 0; r < e.runs; ++r) {
         const fs::path dir = out / ("run_" + std::to_string(r + 1));
         fs::create_directories(dir);
-        CachedEvaluator evaluate(e, options.threads, dir, r + 1, archive);
+        CachedEvaluator evaluate(e, options, dir, r + 1, archive);
         const sim::GenomeEvaluator evaluator = [&](const std::vector<const sim::Genome*>& genomes) { return evaluate(genomes); };
         RunCheckpoint checkpoint;
         Progress progress("evolve " + ExperimentTitle(e) + " run " + std::to_string(r + 1) + "/" + std::to_string(e.runs), options.progress);

@@ -27,10 +27,13 @@ struct ExperimentOutcome {
     std::string summaryJson;              // what the command prints
 };
 
+class WorkerPool;
+
 struct RunOptions {
-    int threads = 0;         // 0: all cores
-    bool resume = false;     // evolve: continue from the run folders' checkpoints
-    bool progress = true;    // progress lines on stderr
+    int threads = 0;              // 0: all cores
+    bool resume = false;          // evolve: continue from the run folders' checkpoints
+    bool progress = true;         // progress lines on stderr
+    WorkerPool* workers = nullptr;  // evaluation servers; null: this machine's cores
 };
 
 // Throws UsageError on bad input (unwritable folder, no GL context).

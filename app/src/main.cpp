@@ -6,6 +6,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "remote.h"
 
 namespace {
 
@@ -16,6 +17,7 @@ const app::Command kCommands[] = {
     {"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", app::RunEvolve, app::EvolveHelp},
     {"reproduce", "run every thesis experiment and write report.md with figures", app::RunReproduce, app::ReproduceHelp},
     {"inspect", "list or filter the evaluations in an archive (evaluations.capnp)", app::RunInspect, app::InspectHelp},
+    {"serve", "run an evaluation server for --workers (Cap'n Proto RPC)", app::RunServe, app::ServeHelp},
     {"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", app::RunImgDiff, app::ImgDiffHelp},
 };
 
@@ -26,7 +28,8 @@ std::string MainHelp() {
         "model of the 2019 thesis; see README.md).\n\nCommands:\n";
     for (const auto& c : kCommands) text += "  " + std::string(c.name) + std::string(12 - std::strlen(c.name), ' ') + c.summary + "\n";
     text += "\nRun 'actuator COMMAND --help' for a command's options and their defaults.\n"
-            "Exit codes: 0 success, 2 bad input (one line on stderr says what and where).\n";
+            "Exit codes: 0 success, 2 bad input (one line on stderr says what and where), 3 every evaluation\n"
+            "server (--workers) is gone.\n";
     return text;
 }
 
@@ -46,6 +49,10 @@ int main(int argc, char** argv) {
         if (name != command.name) continue;
         try {
             return command.run(argc, argv, 2);
+        } catch (const app::WorkersGone& error) {
+            std::cerr << "actuator " << name << ": stopped: " << error.what()
+                      << "; a GA run keeps its checkpoint (continue with actuator evolve --resume DIR)\n";
+            return 3;
         } catch (const app::UsageError& error) {
             std::cerr << "actuator " << name << ": error: " << error.what() << "\n";
             return 2;

@@ -1,0 +1,203 @@
+// Evaluation servers on loopback: results equal a local run's, a server killed mid-run loses
+// nothing, a run whose servers are all gone stops with exit code 3, and malformed or hostile
+// messages never take a server down.
+#include <arpa/inet.h>
+#include <capnp/ez-rpc.h>
+#include <capnp/message.h>
+#include <capnp/serialize.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "cli_fixture.h"
+#include "remote.h"
+#include "schema_convert.h"
+
+extern char** environ;
+namespace fs = std::filesystem;
+
+namespace {
+
+// An `actuator serve` child process on a free loopback port, killed when the test ends.
+class Server {
+public:
+    explicit Server(const fs::path& log) {
+        std::vector<std::string> args{ACTUATOR_BIN, "serve", "--listen", "127.0.0.1:0", "--threads", "1"};
+        std::vector<char*> argv;
+        for (auto& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+        posix_spawn(&pid_, ACTUATOR_BIN, &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        for (int wait = 0; wait < 500 && port_ == 0; ++wait) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            std::ifstream in(log);
+            std::string word;
+            while (in >> word)
+                if (word.rfind("127.0.0.1:", 0) == 0) port_ = std::stoi(word.substr(10));
+        }
+    }
+    ~Server() { Kill(); }
+    void Kill() {
+        if (pid_ <= 0) return;
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+        pid_ = -1;
+    }
+    bool Alive() const { return pid_ > 0 && kill(pid_, 0) == 0; }
+    std::string Address() const { return "127.0.0.1:" + std::to_string(port_); }
+    int Port() const { return port_; }
+
+private:
+    pid_t pid_ = -1;
+    int port_ = 0;
+};
+
+class Remote : public CliTest {
+protected:
+    std::string Sweep(int points, int iterations) const {
+        Write("sweep.json", R"({"id": "remote", "iterations": )" + std::to_string(iterations) + R"(,
+            "shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
+            "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 10, "points": )" + std::to_string(points) + R"(}]},
+            "render": {"figures": false}})");
+        return Path("sweep.json");
+    }
+    std::string Ga() const {
+        Write("ga.json", R"({"id": "remote-ga", "seed": 5, "iterations": 2000,
+            "evolve": {"runs": 1, "population": 8, "generations": 3, "genome": {"kind": "bspline", "splines": 1, "length": [5, 8]}},
+            "render": {"figures": false}})");
+        return Path("ga.json");
+    }
+    // A raw TCP connection that sends bytes and closes: what a broken or hostile client does.
+    static void SendRaw(int port, const std::string& bytes) {
+        const int fd = socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_port = htons(static_cast<uint16_t>(port));
+        inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+        if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+            (void)!write(fd, bytes.data(), bytes.size());
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        close(fd);
+    }
+};
+
+}  // namespace
+
+TEST_F(Remote, TwoServersGiveTheSameResultsAsALocalRun) {
+    Server a(Path("a.log")), b(Path("b.log"));
+    ASSERT_GT(a.Port(), 0);
+    ASSERT_GT(b.Port(), 0);
+    const std::string workers = " --workers " + a.Address() + "," + b.Address();
+    ASSERT_EQ(Run("sweep " + Sweep(8, 3000) + " --out " + Path("local")).exitCode, 0);
+    const Result remote = Run("sweep " + Sweep(8, 3000) + " --out " + Path("remote") + workers);
+    ASSERT_EQ(remote.exitCode, 0) << remote.err;
+    EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
+
+    ASSERT_EQ(Run("evolve " + Ga() + " --out " + Path("ga-local")).exitCode, 0);
+    const Result ga = Run("evolve " + Ga() + " --out " + Path("ga-remote") + workers + ",local");
+    ASSERT_EQ(ga.exitCode, 0) << ga.err;
+    for (const char* file : {"logbook.csv", "halloffame.csv", "best_per_generation.csv"})
+        EXPECT_EQ(Slurp(dir_ / "ga-remote" / "run_1" / file), Slurp(dir_ / "ga-local" / "run_1" / file)) << file;
+}
+
+TEST_F(Remote, AServerKilledMidRunLosesNothing) {
+    Server a(Path("a.log")), b(Path("b.log"));
+    ASSERT_GT(a.Port(), 0);
+    ASSERT_GT(b.Port(), 0);
+    ASSERT_EQ(Run("sweep " + Sweep(24, 6000) + " --out " + Path("local")).exitCode, 0);
+    // Kill server a while its first batch (half the grid, one thread: about a second) is running.
+    std::thread killer([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        a.Kill();
+    });
+    const Result remote = Run("sweep " + Sweep(24, 6000) + " --out " + Path("remote") + " --workers " + a.Address() + "," + b.Address());
+    killer.join();
+    ASSERT_EQ(remote.exitCode, 0) << remote.err;
+    EXPECT_NE(remote.err.find("worker " + a.Address() + " failed"), std::string::npos) << remote.err;
+    EXPECT_NE(remote.err.find("shapes go to the other workers"), std::string::npos);
+    EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
+    EXPECT_TRUE(b.Alive());
+}
+
+TEST_F(Remote, ARunWithoutLiveServersStopsWithExitCode3) {
+    Server a(Path("a.log"));
+    const std::string address = a.Address();
+    a.Kill();
+    const Result r = Run("evolve " + Ga() + " --out " + Path("gone") + " --workers " + address);
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("every worker is gone"), std::string::npos) << r.err;
+    ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --workers ,", "--workers");
+    ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --workers nohost", "needs a port");
+    ExpectRefused("serve --listen 127.0.0.1:99999", "--listen");
+}
+
+TEST_F(Remote, MalformedAndHostileMessagesNeverTakeTheServerDown) {
+    Server server(Path("s.log"));
+    ASSERT_GT(server.Port(), 0);
+    // Random bytes, a truncated message, and a segment table claiming an enormous message.
+    std::string random;
+    for (int i = 0; i < 4096; ++i) random += static_cast<char>((i * 2654435761u) >> 13);
+    SendRaw(server.Port(), random);
+    capnp::MallocMessageBuilder builder;
+    builder.initRoot<app::schema::EvalRequest>().initShape().initSine().setAmplitude(4.1);
+    const auto words = capnp::messageToFlatArray(builder);
+    const auto bytes = words.asBytes();
+    SendRaw(server.Port(), std::string(reinterpret_cast<const char*>(bytes.begin()), bytes.size() / 2));
+    SendRaw(server.Port(), std::string("\x00\x00\x00\x00\xff\xff\xff\x7f", 8) + std::string(64, '\0'));
+
+    capnp::EzRpcClient client(server.Address());
+    auto evaluator = client.getMain<app::schema::Evaluator>();
+    auto& waitScope = client.getWaitScope();
+    auto request = [&](auto fill) {
+        auto call = evaluator.evaluateRequest();
+        auto list = call.initRequests(1);
+        list[0].initShape().initSine().setAmplitude(4.1);
+        list[0].getShape().getSine().setPhaseEnd(2.64);
+        list[0].initParams().setIterations(200);
+        list[0].initMeshSize();
+        fill(list[0]);
+        return call.send();
+    };
+    // Semantically bad requests get an error reply naming the problem.
+    const std::vector<std::pair<std::string, std::function<void(app::schema::EvalRequest::Builder)>>> bad{
+        {"NaN amplitude", [](auto r) { r.getShape().getSine().setAmplitude(NAN); }},
+        {"huge mesh", [](auto r) { r.getMeshSize().setResolution(100000); }},
+        {"too many iterations", [](auto r) { r.getParams().setIterations(2000000000); }},
+        {"infinite constant", [](auto r) { r.getParams().setStepScale(INFINITY); }},
+        {"three-point spline", [](auto r) {
+             auto spline = r.getShape().initBspline().initSplines(1)[0].initControlPoints(3);
+             spline.set(0, 1);
+         }},
+    };
+    for (const auto& [what, fill] : bad) {
+        try {
+            request(fill).wait(waitScope);
+            ADD_FAILURE() << what << " was accepted";
+        } catch (const kj::Exception& error) {
+            EXPECT_NE(std::string(error.getDescription().cStr()).find("bad evaluation request"), std::string::npos) << what << ": " << error.getDescription().cStr();
+        }
+    }
+    auto tooMany = evaluator.evaluateRequest();
+    tooMany.initRequests(app::kServerMaxRequests + 1);
+    EXPECT_THROW(tooMany.send().wait(waitScope), kj::Exception);
+
+    // And a good request is still answered, correctly.
+    auto good = request([](auto) {}).wait(waitScope);
+    ASSERT_EQ(good.getResponses().size(), 1u);
+    EXPECT_EQ(good.getResponses()[0].getResult().getStatus(), app::schema::Status::OK);
+    EXPECT_EQ(good.getResponses()[0].getFinal().getX().size(), 900u);
+    EXPECT_TRUE(server.Alive());
+    auto info = evaluator.infoRequest().send().wait(waitScope);
+    EXPECT_EQ(info.getMaxVertices(), app::kServerMaxVertices);
+}
