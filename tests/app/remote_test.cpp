@@ -201,3 +201,26 @@ TEST_F(Remote, MalformedAndHostileMessagesNeverTakeTheServerDown) {
     auto info = evaluator.infoRequest().send().wait(waitScope);
     EXPECT_EQ(info.getMaxVertices(), app::kServerMaxVertices);
 }
+
+TEST_F(Remote, AHungServerTimesOutAndItsShapesGoToTheOthers) {
+    // A "server" that accepts connections and never answers.
+    const int listener = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+    ASSERT_EQ(bind(listener, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    ASSERT_EQ(listen(listener, 4), 0);
+    socklen_t length = sizeof address;
+    getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length);
+    const int hungPort = ntohs(address.sin_port);
+
+    Server good(Path("good.log"));
+    ASSERT_GT(good.Port(), 0);
+    ASSERT_EQ(Run("sweep " + Sweep(6, 2000) + " --out " + Path("local")).exitCode, 0);
+    const Result r = Run("sweep " + Sweep(6, 2000) + " --out " + Path("remote") + " --worker-timeout 1 --workers 127.0.0.1:" +
+                         std::to_string(hungPort) + "," + good.Address());
+    close(listener);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("no answer within the worker timeout"), std::string::npos) << r.err;
+    EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
+}
