@@ -16,6 +16,28 @@
 
 namespace app {
 
+void SetResult(ArchivedEvaluation& a, const sim::SimResult& r) {
+    a.initial = r.initial;
+    a.final = r.final;
+    a.status = r.status;
+    a.fitness = r.fitness;
+    a.contractionPercent = r.contractionPercent;
+    a.iterationsRun = r.iterationsRun;
+    a.elapsedMs = r.elapsedMs;
+}
+
+sim::SimResult ResultOf(const ArchivedEvaluation& a) {
+    sim::SimResult r;
+    r.initial = a.initial;
+    r.final = a.final;
+    r.status = a.status;
+    r.fitness = a.fitness;
+    r.contractionPercent = a.contractionPercent;
+    r.iterationsRun = a.iterationsRun;
+    r.elapsedMs = a.elapsedMs;
+    return r;
+}
+
 ArchiveWriter::ArchiveWriter(const std::string& path) : path_(path) {
     // Continue numbering after what the archive already holds (a resumed run appends to it).
     if (access(path.c_str(), F_OK) == 0) next_ = ReadArchive(path, false).evaluations.size();

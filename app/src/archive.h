@@ -29,6 +29,10 @@ struct ArchivedEvaluation {
     int iterationsRun = 0;
 };
 
+// Copies a simulation's outcome (status, numbers, meshes) into a record, and back.
+void SetResult(ArchivedEvaluation& record, const sim::SimResult& result);
+sim::SimResult ResultOf(const ArchivedEvaluation& record);
+
 class ArchiveWriter {
 public:
     // Opens (creating or appending to) the archive; indices continue after what it already holds.

@@ -202,13 +202,7 @@ ArchivedEvaluation Record(const Experiment& e, const sim::SimResult& r, const si
     a.shape = shape;
     a.params = e.params;
     a.mesh = e.mesh;
-    a.initial = r.initial;
-    a.final = r.final;
-    a.status = r.status;
-    a.fitness = r.fitness;
-    a.contractionPercent = r.contractionPercent;
-    a.iterationsRun = r.iterationsRun;
-    a.elapsedMs = r.elapsedMs;
+    SetResult(a, r);
     return a;
 }
 

@@ -120,13 +120,7 @@ int RenderFromArchive(const ParsedArgs& args) {
     std::string error;
     auto renderer = render::MeshRenderer::Create(def, &error);
     if (!renderer) throw UsageError("cannot render: " + error);
-    sim::SimResult result;
-    result.status = e.status;
-    result.fitness = e.fitness;
-    result.contractionPercent = e.contractionPercent;
-    result.iterationsRun = e.iterationsRun;
-    result.initial = e.initial;
-    result.final = e.final;
+    const sim::SimResult result = ResultOf(e);
     std::string title = "archive " + (e.experiment.empty() ? std::string("") : e.experiment + " ") + "#" + std::to_string(index) + ": " +
                         (e.genome.empty() ? e.label : ShapeTitle(e.shape)) + "  -  " + sim::LoadName(e.params.load);
     const fs::path path = out / ("evaluation_" + std::to_string(index) + ".png");

@@ -10,19 +10,20 @@ struct Overloaded : Fs... {
     using Fs::operator()...;
 };
 
-}  // namespace
-
-void SetMesh(schema::Mesh::Builder out, const sim::Positions& p) {
+// Meshes travel as three coordinate lists, float32 in archives and float64 on the wire.
+template <class Value, class Builder>
+void WriteXyz(Builder out, const sim::Positions& p) {
     const unsigned n = static_cast<unsigned>(p.Size());
     auto x = out.initX(n), y = out.initY(n), z = out.initZ(n);
     for (unsigned i = 0; i < n; ++i) {
-        x.set(i, static_cast<float>(p.x[i]));
-        y.set(i, static_cast<float>(p.y[i]));
-        z.set(i, static_cast<float>(p.z[i]));
+        x.set(i, static_cast<Value>(p.x[i]));
+        y.set(i, static_cast<Value>(p.y[i]));
+        z.set(i, static_cast<Value>(p.z[i]));
     }
 }
 
-sim::Positions GetMesh(schema::Mesh::Reader in) {
+template <class Reader>
+sim::Positions ReadXyz(Reader in) {
     // Fetch each list once: every get charges the whole list against the traversal limit.
     const auto x = in.getX(), y = in.getY(), z = in.getZ();
     const unsigned n = x.size();
@@ -36,6 +37,15 @@ sim::Positions GetMesh(schema::Mesh::Reader in) {
     }
     return p;
 }
+
+}  // namespace
+
+void SetMesh(schema::Mesh::Builder out, const sim::Positions& p) { WriteXyz<float>(out, p); }
+sim::Positions GetMesh(schema::Mesh::Reader in) { return ReadXyz(in); }
+void SetExactMesh(schema::ExactMesh::Builder out, const sim::Positions& p) { WriteXyz<double>(out, p); }
+sim::Positions GetExactMesh(schema::ExactMesh::Reader in) { return ReadXyz(in); }
+
+
 
 void SetSplines(capnp::List<schema::Spline>::Builder out, const std::vector<std::vector<double>>& splines) {
     for (unsigned k = 0; k < splines.size(); ++k) {
@@ -116,30 +126,7 @@ sim::Status FromSchema(schema::Status s) {
 
 
 
-void SetExactMesh(schema::ExactMesh::Builder out, const sim::Positions& p) {
-    const unsigned n = static_cast<unsigned>(p.Size());
-    auto x = out.initX(n), y = out.initY(n), z = out.initZ(n);
-    for (unsigned i = 0; i < n; ++i) {
-        x.set(i, p.x[i]);
-        y.set(i, p.y[i]);
-        z.set(i, p.z[i]);
-    }
-}
 
-sim::Positions GetExactMesh(schema::ExactMesh::Reader in) {
-    // Fetch each list once: every get charges the whole list against the traversal limit.
-    const auto x = in.getX(), y = in.getY(), z = in.getZ();
-    const unsigned n = x.size();
-    if (y.size() != n || z.size() != n) throw std::runtime_error("mesh coordinate lists differ in length");
-    sim::Positions p;
-    p.Resize(static_cast<int>(n));
-    for (unsigned i = 0; i < n; ++i) {
-        p.x[i] = x[i];
-        p.y[i] = y[i];
-        p.z[i] = z[i];
-    }
-    return p;
-}
 
 void SetParams(schema::SimParams::Builder p, const sim::SimParams& params) {
     p.setIterations(static_cast<std::uint32_t>(params.iterations));

@@ -41,13 +41,7 @@ protected:
         a.shape = shape;
         a.params = params;
         a.mesh = mesh;
-        a.initial = result.initial;
-        a.final = result.final;
-        a.status = result.status;
-        a.fitness = result.fitness;
-        a.contractionPercent = result.contractionPercent;
-        a.iterationsRun = result.iterationsRun;
-        a.elapsedMs = result.elapsedMs;
+        app::SetResult(a, result);
         return a;
     }
 
