@@ -115,13 +115,14 @@ TEST_F(Remote, AServerKilledMidRunLosesNothing) {
     Server a(Path("a.log")), b(Path("b.log"));
     ASSERT_GT(a.Port(), 0);
     ASSERT_GT(b.Port(), 0);
-    ASSERT_EQ(Run("sweep " + Sweep(24, 6000) + " --out " + Path("local")).exitCode, 0);
-    // Kill server a while its first batch (half the grid, one thread: about a second) is running.
+    ASSERT_EQ(Run("sweep " + Sweep(30, 10000) + " --out " + Path("local")).exitCode, 0);
+    // Kill server a while its first batch runs: half the grid on one thread is about 0.8 s of work,
+    // three times the delay, so the kill lands mid-batch even on a much faster machine.
     std::thread killer([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        std::this_thread::sleep_for(std::chrono::milliseconds(250));
         a.Kill();
     });
-    const Result remote = Run("sweep " + Sweep(24, 6000) + " --out " + Path("remote") + " --workers " + a.Address() + "," + b.Address());
+    const Result remote = Run("sweep " + Sweep(30, 10000) + " --out " + Path("remote") + " --workers " + a.Address() + "," + b.Address());
     killer.join();
     ASSERT_EQ(remote.exitCode, 0) << remote.err;
     EXPECT_NE(remote.err.find("worker " + a.Address() + " failed"), std::string::npos) << remote.err;
