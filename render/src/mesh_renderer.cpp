@@ -3,7 +3,6 @@
 // [SECTION] Camera and layout
 // [SECTION] Overlay (Dear ImGui draw lists)
 // [SECTION] Render
-#define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
 #include <GL/glext.h>
 

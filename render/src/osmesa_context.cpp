@@ -1,4 +1,3 @@
-#define GL_GLEXT_PROTOTYPES
 #include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>

@@ -2,7 +2,6 @@
 // [SECTION] Axes
 // [SECTION] Line plots
 // [SECTION] Heatmaps
-#define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
 
 #include "render/plot.h"
