@@ -77,14 +77,13 @@ struct Evaluation {
   experiment @1 :Text;              # experiment id
   run @2 :UInt32;                   # GA run (1-based); 0 for sweeps and lists
   generation @3 :Int32;             # GA generation; -1 for sweeps and lists
-  label @4 :Text;                   # grid point parameters or shape label
-  genome @5 :List(Spline);          # GA genome (B-spline sectors, or one list of free-xy offsets)
-  shape @6 :Shape;
-  params @7 :SimParams;
-  meshSize @8 :MeshSize;
-  initial @9 :Mesh;
-  final @10 :Mesh;
-  result @11 :EvalResult;
+  label @4 :Text;                   # grid point parameters, shape label, or GA evaluation number
+  shape @5 :Shape;                  # for GA runs this holds the genome: B-spline sectors or free-xy offsets
+  params @6 :SimParams;
+  meshSize @7 :MeshSize;
+  initial @8 :Mesh;
+  final @9 :Mesh;
+  result @10 :EvalResult;
 }
 
 struct LogbookRow {

@@ -58,7 +58,6 @@ void ArchiveWriter::Append(ArchivedEvaluation r) {
     e.setRun(static_cast<std::uint32_t>(r.run));
     e.setGeneration(r.generation);
     e.setLabel(r.label);
-    SetSplines(e.initGenome(static_cast<unsigned>(r.genome.size())), r.genome);
     SetShape(e.initShape(), r.shape);
     SetParams(e.initParams(), r.params);
     e.initMeshSize().setResolution(static_cast<std::uint32_t>(r.mesh.resolution));
@@ -103,7 +102,6 @@ ArchiveContents ReadArchive(const std::string& path, bool withMeshes) {
             r.run = static_cast<int>(e.getRun());
             r.generation = e.getGeneration();
             r.label = e.getLabel();
-            r.genome = GetSplines(e.getGenome());
             r.shape = GetShape(e.getShape());
             r.params = GetParams(e.getParams());
             r.mesh = sim::MeshDef{static_cast<int>(e.getMeshSize().getResolution()), static_cast<int>(e.getMeshSize().getTurns())};

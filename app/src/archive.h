@@ -18,9 +18,8 @@ struct ArchivedEvaluation {
     std::string experiment;    // experiment id
     int run = 0;               // GA run, 1-based; 0 for sweeps and lists
     int generation = -1;       // GA generation; -1 for sweeps and lists
-    std::string label;         // grid point or shape label
-    sim::Genome genome;        // empty outside GA runs
-    sim::Shape shape;
+    std::string label;         // grid point, shape label, or GA evaluation number
+    sim::Shape shape;          // for GA runs, the genome's shape (its B-spline sectors or free-xy offsets)
     sim::SimParams params;
     sim::MeshDef mesh;
     sim::Positions initial, final;  // stored as float32

@@ -192,13 +192,12 @@ std::vector<sim::SimResult> EvaluateJobs(const RunOptions& options, const std::v
 }
 
 ArchivedEvaluation Record(const Experiment& e, const sim::SimResult& r, const sim::Shape& shape, std::string label, int run = 0,
-                          int generation = -1, const sim::Genome& genome = {}) {
+                          int generation = -1) {
     ArchivedEvaluation a;
     a.experiment = e.id;
     a.run = run;
     a.generation = generation;
     a.label = std::move(label);
-    a.genome = genome;
     a.shape = shape;
     a.params = e.params;
     a.mesh = e.mesh;
@@ -402,7 +401,6 @@ public:
         std::vector<sim::EvalJob> jobs;
         std::vector<size_t> slots;
         std::vector<std::string> keys;
-        std::vector<const sim::Genome*> genomesOfJobs;
         for (size_t j = 0; j < genomes.size(); ++j) {
             std::string key = sim::GenomeText(*genomes[j]);
             if (auto hit = fitness_.find(key); hit != fitness_.end()) {
@@ -410,7 +408,6 @@ public:
                 continue;
             }
             jobs.push_back({sim::ShapeOfGenome(*genomes[j], e_.ga.genome, e_.mesh), e_.mesh, e_.params});
-            genomesOfJobs.push_back(genomes[j]);
             slots.push_back(j);
             keys.push_back(std::move(key));
         }
@@ -426,7 +423,7 @@ public:
                     sim::StatusName(results[k].status) + "," + (thumbnails_ ? std::string(name) : std::string()) + ",\"" + keys[k] + "\"\n";
             if (thumbnails_) thumbnails_->Write(name, results[k]);
             archive_.Append(Record(e_, results[k], jobs[k].shape, "run " + std::to_string(run_) + " evaluation " + std::to_string(number),
-                                   run_, generation_, *genomesOfJobs[k]));
+                                   run_, generation_));
             meshes_[keys[k]] = std::move(results[k]);
         }
         simulated_ += static_cast<long long>(results.size());

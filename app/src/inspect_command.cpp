@@ -24,8 +24,10 @@ std::vector<OptionSpec> Specs() {
     };
 }
 
+// B-spline control points (a GA genome) where there are some, else the record's label.
 std::string ShapeSummary(const ArchivedEvaluation& e) {
-    return e.genome.empty() ? e.label : "[" + sim::GenomeText(e.genome).substr(0, 60) + "]";
+    if (const auto* b = std::get_if<sim::BSplineShape>(&e.shape)) return "[" + sim::GenomeText(b->splines).substr(0, 60) + "]";
+    return e.label;
 }
 
 }  // namespace
@@ -75,7 +77,7 @@ int RunInspect(int argc, char** argv, int first) {
             json.Key("fitness").Number(e->status == sim::Status::Ok ? e->fitness : NAN).Key("contraction_percent").Number(e->contractionPercent);
             json.Key("iterations").Integer(e->iterationsRun).Key("elapsed_ms").Number(e->elapsedMs).Key("shape").String(sim::ShapeName(e->shape));
             json.Key("label").String(e->label);
-            if (!e->genome.empty()) json.Key("genome").String(sim::GenomeText(e->genome));
+            if (const auto* b = std::get_if<sim::BSplineShape>(&e->shape)) json.Key("control_points").String(sim::GenomeText(b->splines));
             json.EndObject();
         }
         json.EndArray().EndObject();

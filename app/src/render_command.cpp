@@ -122,7 +122,7 @@ int RenderFromArchive(const ParsedArgs& args) {
     if (!renderer) throw UsageError("cannot render: " + error);
     const sim::SimResult result = ResultOf(e);
     std::string title = "archive " + (e.experiment.empty() ? std::string("") : e.experiment + " ") + "#" + std::to_string(index) + ": " +
-                        (e.genome.empty() ? e.label : ShapeTitle(e.shape)) + "  -  " + sim::LoadName(e.params.load);
+                        ShapeTitle(e.shape) + (e.label.empty() ? "" : "  (" + e.label + ")") + "  -  " + sim::LoadName(e.params.load);
     const fs::path path = out / ("evaluation_" + std::to_string(index) + ".png");
     WritePng(path.string(), renderer->Render(BeforeAfterScene(title, result, e.mesh)), 6);
     JsonWriter json;

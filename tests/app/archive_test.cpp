@@ -37,7 +37,6 @@ protected:
         a.run = k;
         a.generation = 10 + k;
         a.label = "sample " + std::to_string(k);
-        if (k != 2) a.genome = genome;
         a.shape = shape;
         a.params = params;
         a.mesh = mesh;
@@ -68,7 +67,6 @@ TEST_F(Archive, RoundTripKeepsEveryField) {
         EXPECT_EQ(got.run, expected.run);
         EXPECT_EQ(got.generation, expected.generation);
         EXPECT_EQ(got.label, expected.label);
-        EXPECT_EQ(got.genome, expected.genome);
         EXPECT_EQ(sim::ShapeName(got.shape), sim::ShapeName(expected.shape));
         EXPECT_EQ(got.params.iterations, expected.params.iterations);
         EXPECT_EQ(got.params.load, expected.params.load);
@@ -86,7 +84,7 @@ TEST_F(Archive, RoundTripKeepsEveryField) {
             const auto& sine = std::get<sim::SineShape>(got.shape);
             EXPECT_EQ(sine.amplitude, 4.1);
         } else {
-            EXPECT_EQ(std::get<sim::BSplineShape>(got.shape).splines, expected.genome);
+            EXPECT_EQ(std::get<sim::BSplineShape>(got.shape).splines, std::get<sim::BSplineShape>(expected.shape).splines);
         }
     }
     // Appending later continues the numbering.
