@@ -112,18 +112,10 @@ void WriteBestFigures(const fs::path& out, const sim::Shape& shape, const Experi
     if (e.render.turntable == TurntablePlan::None) return;
     const fs::path folder = out / "turntable_best";
     fs::create_directories(folder);
-    const auto framing = render::FrameMeshes({&inflated.final});
     for (int k = 0; k < e.render.turntableFrames; ++k) {
-        render::Scene scene;
-        scene.mesh = e.mesh;
-        scene.title = caption;
-        scene.lines = {ResultLine(inflated, e.mesh)};
-        const double angle = 360.0 * k / e.render.turntableFrames;
-        scene.panels = {{inflated.final, inflated.initial, "turned " + FormatNumber("%.0f", angle) + " degrees", angle}};
-        scene.framing = framing;
         char name[32];
         std::snprintf(name, sizeof name, "frame_%04d.png", k);
-        WritePng((folder / name).string(), renderer->Render(scene), 1);
+        WritePng((folder / name).string(), renderer->Render(TurntableScene(caption, inflated, e.mesh, 360.0 * k / e.render.turntableFrames)), 1);
     }
 }
 
@@ -134,13 +126,17 @@ struct SheetEntry {
     std::string caption;
 };
 
-void WriteContactSheet(const fs::path& path, const std::string& title, const std::vector<SheetEntry>& entries, const sim::MeshDef& mesh) {
+// `renderer` is kept between calls and made anew only when the sheet's size changes: a GA run
+// draws a sheet of the same size every generation, and a renderer costs ~17 ms to create.
+void WriteContactSheet(const fs::path& path, const std::string& title, const std::vector<SheetEntry>& entries, const sim::MeshDef& mesh,
+                       std::unique_ptr<render::MeshRenderer>& renderer) {
     if (entries.empty()) return;
     // Actuators are about ten times taller than wide: many narrow columns, cells about 1:2.
     const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(entries.size() * 3.0))));
     const int rows = static_cast<int>((entries.size() + columns - 1) / columns);
     const int width = std::clamp(columns * 125 + 110, 800, 2600), height = std::clamp(rows * 250 + 110, 450, 2400);
-    auto renderer = MakeRenderer(width, height, 1, /*textScale=*/0.72);
+    if (!renderer || renderer->Def().width != width || renderer->Def().height != height)
+        renderer = MakeRenderer(width, height, 1, /*textScale=*/0.72);
     render::Scene scene;
     scene.mesh = mesh;
     scene.title = title;
@@ -209,6 +205,18 @@ ArchivedEvaluation Record(const Experiment& e, const sim::SimResult& r, const si
 // [SECTION] Sweeps
 // ---------------------------------------------------------------------------------------------
 
+double ParameterOf(const sim::Shape& shape, const std::string& name);
+
+// A grid point's parameters, e.g. "amplitude=3.48 cycles=6" (names) or "3.48 6" (values only).
+std::string PointLabel(const sim::Shape& shape, const std::vector<sim::SweepAxis>& axes, bool withNames, const char* format) {
+    std::string label;
+    for (const auto& axis : axes) {
+        const char* name = sim::SweepParameterName(axis.parameter);
+        label += (label.empty() ? "" : " ") + (withNames ? std::string(name) + "=" : std::string()) + FormatNumber(format, ParameterOf(shape, name));
+    }
+    return label;
+}
+
 double ParameterOf(const sim::Shape& shape, const std::string& name) {
     auto read = [&](const auto& s) {
         if (name == "amplitude") return s.amplitude;
@@ -255,13 +263,7 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
         if (results[j].status == sim::Status::Ok && (best < 0 || results[j].fitness > results[best].fitness)) best = static_cast<int>(j);
     }
     WriteFileAtomically((out / "results.csv").string(), csv);
-    for (size_t j = 0; j < results.size(); ++j) {
-        std::string label;
-        for (const auto& axis : axes)
-            label += (label.empty() ? "" : " ") + std::string(sim::SweepParameterName(axis.parameter)) + "=" +
-                     FormatNumber("%.6g", ParameterOf(shapes[j], sim::SweepParameterName(axis.parameter)));
-        archive.Append(Record(e, results[j], shapes[j], label));
-    }
+    for (size_t j = 0; j < results.size(); ++j) archive.Append(Record(e, results[j], shapes[j], PointLabel(shapes[j], axes, true, "%.6g")));
 
     std::string bestText = "no grid point evaluated successfully";
     if (best >= 0) {
@@ -324,12 +326,10 @@ void RunSweep(const Experiment& e, const fs::path& out, const RunOptions& option
     WritePng((out / "landscape.png").string(), image, 6);
     outcome.figures.push_back("landscape.png");
     std::vector<SheetEntry> entries;
-    for (size_t j = 0; j < results.size(); ++j) {
-        std::string caption;
-        for (const auto& axis : axes) caption += (caption.empty() ? "" : " ") + FormatNumber("%.3g", ParameterOf(shapes[j], sim::SweepParameterName(axis.parameter)));
-        entries.push_back({&results[j], caption + ": " + FitnessCaption(results[j])});
-    }
-    WriteContactSheet(out / "contact_sheet.png", ExperimentTitle(e) + "  -  every grid point, inflated", entries, e.mesh);
+    for (size_t j = 0; j < results.size(); ++j)
+        entries.push_back({&results[j], PointLabel(shapes[j], axes, false, "%.3g") + ": " + FitnessCaption(results[j])});
+    std::unique_ptr<render::MeshRenderer> sheetRenderer;
+    WriteContactSheet(out / "contact_sheet.png", ExperimentTitle(e) + "  -  every grid point, inflated", entries, e.mesh, sheetRenderer);
     ThumbnailWriter thumbnails(out / "thumbnails", e.mesh);
     for (size_t j = 0; j < results.size(); ++j) {
         char name[32];
@@ -485,18 +485,18 @@ void WriteRunFiles(const fs::path& dir, const RunCheckpoint& checkpoint) {
 }
 
 
-void WriteGenerationSheet(const fs::path& runDir, const Experiment& e, int run, CachedEvaluator& evaluate, const sim::GaState& state) {
+void WriteGenerationSheet(const fs::path& runDir, const Experiment& e, int run, CachedEvaluator& evaluate, const sim::GaState& state,
+                          std::unique_ptr<render::MeshRenderer>& renderer) {
     if (!e.render.figures) return;
     fs::create_directories(runDir / "sheets");
     const auto meshes = evaluate.MeshesOf(state.population);
     std::vector<SheetEntry> entries;
-    for (size_t k = 0; k < meshes.size(); ++k)
-        entries.push_back({meshes[k], state.population[k].Valid() ? FormatNumber("%.3f", state.population[k].fitness)
-                                                                   : std::string(sim::StatusName(state.population[k].status))});
+    for (const sim::SimResult* mesh : meshes) entries.push_back({mesh, FitnessCaption(*mesh)});
     char name[40];
     std::snprintf(name, sizeof name, "generation_%03d.png", state.generation);
     WriteContactSheet(runDir / "sheets" / name,
-                      ExperimentTitle(e) + "  -  run " + std::to_string(run + 1) + ", generation " + std::to_string(state.generation), entries, e.mesh);
+                      ExperimentTitle(e) + "  -  run " + std::to_string(run + 1) + ", generation " + std::to_string(state.generation), entries, e.mesh,
+                      renderer);
 }
 
 void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& options, ArchiveWriter& archive, ExperimentOutcome& outcome) {
@@ -505,6 +505,7 @@ void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& op
         const fs::path dir = out / ("run_" + std::to_string(r + 1));
         fs::create_directories(dir);
         CachedEvaluator evaluate(e, options, dir, r + 1, archive);
+        std::unique_ptr<render::MeshRenderer> sheetRenderer;
         const sim::GenomeEvaluator evaluator = [&](const std::vector<const sim::Genome*>& genomes) { return evaluate(genomes); };
         RunCheckpoint checkpoint;
         Progress progress("evolve " + ExperimentTitle(e) + " run " + std::to_string(r + 1) + "/" + std::to_string(e.runs), options.progress);
@@ -513,7 +514,7 @@ void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& op
         } else {
             checkpoint.seed = sim::DeriveSeed(e.seed, static_cast<std::uint64_t>(r));
             checkpoint.state = sim::StartEvolution(e.ga, e.mesh, checkpoint.seed, evaluator);
-            WriteGenerationSheet(dir, e, r, evaluate, checkpoint.state);
+            WriteGenerationSheet(dir, e, r, evaluate, checkpoint.state, sheetRenderer);
             WriteRunFiles(dir, checkpoint);
         }
         evaluate.FlushLog();
@@ -524,7 +525,7 @@ void RunEvolution(const Experiment& e, const fs::path& out, const RunOptions& op
                           << " failed (nan or diverged); the run stops here\n";
                 break;
             }
-            WriteGenerationSheet(dir, e, r, evaluate, checkpoint.state);
+            WriteGenerationSheet(dir, e, r, evaluate, checkpoint.state, sheetRenderer);
             evaluate.FlushLog();
             WriteRunFiles(dir, checkpoint);
             progress.Update(checkpoint.state.generation, e.ga.generations, evaluate.Simulated(),

@@ -46,6 +46,15 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     return scene;
 }
 
+render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, const sim::MeshDef& mesh, double angleDegrees) {
+    render::Scene scene;
+    scene.mesh = mesh;
+    scene.title = title;
+    scene.lines = {ResultLine(r, mesh)};
+    scene.panels = {{r.final, r.initial, "turned " + FormatNumber("%.0f", angleDegrees) + " degrees", angleDegrees}};
+    return scene;
+}
+
 void WritePng(const std::string& path, const render::Image& image, int compressionLevel) {
     const auto bytes = render::EncodePng(image, compressionLevel);
     WriteFileAtomically(path, std::string(bytes.begin(), bytes.end()));

@@ -260,21 +260,8 @@ int RunRender(int argc, char** argv, int first) {
             if (fs::exists(video, ec)) written.push_back(video.string());
         }
     };
-    if (turntable > 0) {
-        const render::Framing framing = render::FrameMeshes({&inflated.initial, &inflated.final});
-        double colorMax = 0;
-        for (double v : render::VertexValues(def.colorBy, request.mesh, inflated.final, inflated.initial)) colorMax = std::max(colorMax, v);
-        sequence("turntable", turntable, [&](int k) {
-            render::Scene scene;
-            scene.mesh = request.mesh;
-            scene.title = title + "  -  inflated";
-            scene.lines = {ResultLine(inflated, request.mesh)};
-            scene.panels = {{inflated.final, inflated.initial, "turned " + FormatNumber("%.0f", 360.0 * k / turntable) + " degrees", 360.0 * k / turntable}};
-            scene.framing = framing;
-            scene.colorMax = colorMax;
-            return scene;
-        });
-    }
+    if (turntable > 0)
+        sequence("turntable", turntable, [&](int k) { return TurntableScene(title + "  -  inflated", inflated, request.mesh, 360.0 * k / turntable); });
     if (timelapse > 0) {
         std::vector<const sim::Positions*> all;
         for (const auto& s : snapshots) all.push_back(&s.second);
