@@ -11,13 +11,31 @@ namespace sim {
 // Sweeps
 // ---------------------------------------------------------------------------------------------
 
-const char* SweepParameterName(SweepParameter parameter) {
-    switch (parameter) {
-        case SweepParameter::Amplitude: return "amplitude";
-        case SweepParameter::Cycles: return "cycles";
-        case SweepParameter::PhaseEnd: return "phase_end";
-    }
-    return "?";
+double SweepParameterValue(const Shape& shape, SweepParameter parameter) {
+    auto read = [&](const auto& sine) {
+        switch (parameter) {
+            case SweepParameter::Amplitude: return sine.amplitude;
+            case SweepParameter::Cycles: return (sine.phaseEnd - sine.phaseStart) / std::numbers::pi;
+            case SweepParameter::PhaseEnd: return sine.phaseEnd;
+        }
+        return std::nan("");
+    };
+    if (const auto* s = std::get_if<SineShape>(&shape)) return read(*s);
+    if (const auto* a = std::get_if<AbsSineShape>(&shape)) return read(*a);
+    return std::nan("");
+}
+
+Shape WithSweepParameter(Shape shape, SweepParameter parameter, double value) {
+    auto write = [&](auto& sine) {
+        switch (parameter) {
+            case SweepParameter::Amplitude: sine.amplitude = value; break;
+            case SweepParameter::Cycles: sine.phaseEnd = sine.phaseStart + value * std::numbers::pi; break;
+            case SweepParameter::PhaseEnd: sine.phaseEnd = value; break;
+        }
+    };
+    if (auto* s = std::get_if<SineShape>(&shape)) write(*s);
+    else if (auto* a = std::get_if<AbsSineShape>(&shape)) write(*a);
+    return shape;
 }
 
 std::vector<double> Linspace(double from, double to, int points) {
@@ -30,21 +48,8 @@ std::vector<Shape> SweepShapes(const SweepDef& def) {
     std::vector<Shape> shapes{def.base};
     for (const SweepAxis& axis : def.axes) {
         std::vector<Shape> next;
-        for (const Shape& shape : shapes) {
-            for (double value : axis.values) {
-                Shape s = shape;
-                auto apply = [&](auto& sine) {
-                    switch (axis.parameter) {
-                        case SweepParameter::Amplitude: sine.amplitude = value; break;
-                        case SweepParameter::Cycles: sine.phaseEnd = sine.phaseStart + value * std::numbers::pi; break;
-                        case SweepParameter::PhaseEnd: sine.phaseEnd = value; break;
-                    }
-                };
-                if (auto* sine = std::get_if<SineShape>(&s)) apply(*sine);
-                else if (auto* absSine = std::get_if<AbsSineShape>(&s)) apply(*absSine);
-                next.push_back(s);
-            }
-        }
+        for (const Shape& shape : shapes)
+            for (double value : axis.values) next.push_back(WithSweepParameter(shape, axis.parameter, value));
         shapes = std::move(next);
     }
     return shapes;
@@ -211,6 +216,19 @@ Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& m
         return s;
     }
     return BSplineShape{def.region, genome};
+}
+
+Genome GenomeOfShape(const Shape& shape) {
+    if (const auto* b = std::get_if<BSplineShape>(&shape)) return b->splines;
+    if (const auto* f = std::get_if<FreeXYShape>(&shape)) {
+        std::vector<double> offsets(2 * f->dx.size());
+        for (size_t i = 0; i < f->dx.size() && i < f->dy.size(); ++i) {
+            offsets[2 * i] = f->dx[i];
+            offsets[2 * i + 1] = f->dy[i];
+        }
+        return {offsets};
+    }
+    return {};
 }
 
 GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed, const GenomeEvaluator& evaluate) {

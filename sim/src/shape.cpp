@@ -48,17 +48,7 @@ std::vector<double> SineRadii(const MeshDef& def, double amplitude, double a, do
 
 }  // namespace
 
-const char* ShapeName(const Shape& shape) {
-    return std::visit(Overloaded{
-                          [](const CylinderShape&) { return "cylinder"; },
-                          [](const SineShape&) { return "sine"; },
-                          [](const AbsSineShape&) { return "abs-sine"; },
-                          [](const BSplineShape&) { return "bspline"; },
-                          [](const FreeXYShape&) { return "free-xy"; },
-                          [](const MeshShape&) { return "mesh"; },
-                      },
-                      shape);
-}
+const char* ShapeName(const Shape& shape) { return Name(KindOf(shape)); }
 
 std::string ShapeError(const Shape& shape, const MeshDef& def) {
     if (def.resolution < kMinResolution) return "resolution must be at least " + std::to_string(kMinResolution);

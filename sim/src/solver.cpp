@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 namespace sim {
@@ -315,26 +316,17 @@ SimResult Run(const Positions& initial, const MeshDef& def, const SimParams& par
 
 SimParams DefaultSimParams() { return SimParams{}; }
 
-const char* StatusName(Status status) {
-    switch (status) {
-        case Status::Ok: return "ok";
-        case Status::NaN: return "nan";
-        case Status::Diverged: return "diverged";
-    }
-    return "?";
-}
-
-const char* LoadName(Load load) {
-    switch (load) {
-        case Load::Inflate: return "inflate";
-        case Load::Stretch: return "stretch";
-        case Load::None: return "none";
-    }
-    return "?";
-}
-
-const char* PrecisionName(Precision precision) {
-    return precision == Precision::Float ? "float" : "double";
+std::string SimParamsError(const SimParams& p) {
+    if (p.iterations < 0 || p.iterations > kMaxIterations)
+        return "iterations must be between 0 and " + std::to_string(kMaxIterations);
+    const std::pair<const char*, double> constants[] = {{"spring constant", p.springConstant},
+                                                        {"pressure scale", p.pressureScale},
+                                                        {"pull force", p.pullForce},
+                                                        {"step scale", p.stepScale}};
+    for (const auto& [name, value] : constants)
+        if (!std::isfinite(value) || value < 0) return std::string(name) + " must be a finite number, not negative";
+    if (!(p.divergenceLimit > 0) || !std::isfinite(p.divergenceLimit)) return "divergence limit must be a positive finite number";
+    return "";
 }
 
 SimResult Simulate(const Positions& initial, const MeshDef& def, const SimParams& params, const SimObserver* observer) {

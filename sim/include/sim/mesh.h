@@ -30,6 +30,7 @@ struct Positions {
 
     int Size() const { return static_cast<int>(x.size()); }
     void Resize(int n) { x.assign(n, 0.0); y.assign(n, 0.0); z.assign(n, 0.0); }
+    bool operator==(const Positions&) const = default;
 };
 
 // The four spring families, as index offsets from the lower vertex: (i, i+offset) for every

@@ -22,7 +22,11 @@ enum class SweepParameter {
     Cycles,     // n: phase runs from phaseStart to phaseStart + n*pi (thesis 4.2, 4.3)
     PhaseEnd,   // b: phase runs from phaseStart to b
 };
-const char* SweepParameterName(SweepParameter parameter);  // amplitude, cycles, phase_end
+
+// A sine or abs-sine shape's value of a sweep parameter (NaN for other shapes), and the shape with
+// that parameter set (other shapes are returned unchanged).
+double SweepParameterValue(const Shape& shape, SweepParameter parameter);
+Shape WithSweepParameter(Shape shape, SweepParameter parameter, double value);
 
 struct SweepAxis {
     SweepParameter parameter = SweepParameter::Amplitude;
@@ -108,6 +112,8 @@ using GenomeEvaluator = std::function<std::vector<std::pair<double, Status>>(con
 std::string GaDefError(const GaDef& def, const MeshDef& mesh);
 
 Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& mesh);
+// The inverse: the genome a shape of this genome kind was built from (empty for another kind).
+Genome GenomeOfShape(const Shape& shape);
 
 // Creates and evaluates the initial population (generation 0).
 GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed, const GenomeEvaluator& evaluate);
@@ -118,5 +124,15 @@ bool EvolveOneGeneration(const GaDef& def, const MeshDef& mesh, GaState& state, 
 
 // A genome as text: splines separated by ';', genes by ',' (shortest round-trip digits).
 std::string GenomeText(const Genome& genome);
+
+template <>
+struct EnumNames<SweepParameter> {
+    static constexpr std::array<std::pair<SweepParameter, const char*>, 3> table{{
+        {SweepParameter::Amplitude, "amplitude"}, {SweepParameter::Cycles, "cycles"}, {SweepParameter::PhaseEnd, "phase_end"}}};
+};
+template <>
+struct EnumNames<GenomeKind> {
+    static constexpr std::array<std::pair<GenomeKind, const char*>, 2> table{{{GenomeKind::BSpline, "bspline"}, {GenomeKind::FreeXY, "free-xy"}}};
+};
 
 }  // namespace sim

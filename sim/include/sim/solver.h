@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sim/mesh.h"
+#include "sim/names.h"
 #include "sim/shape.h"
 
 namespace sim {
@@ -24,10 +25,16 @@ enum class Precision {
     Double,  // reference
 };
 
+// How an evaluation ended. Every model reports one; a failed evaluation is never a silent zero.
 enum class Status {
-    Ok,        // all positions finite and bounded after the last iteration
-    NaN,       // a position became NaN or infinite
-    Diverged,  // a position left the divergence bound: the mesh ran away
+    Ok,               // finished: the fitness and every output are meaningful
+    NaN,              // thesis: a position became NaN or infinite
+    Diverged,         // thesis: a position left the divergence bound: the mesh ran away
+    LimitPoint,       // shell models: past the pressure maximum (the actuator balloons)
+    NotConverged,     // shell models: Newton did not reach equilibrium within its budget
+    NonFinite,        // shell models: energy or forces became NaN or infinite
+    SelfIntersection, // shell models: the wall passes through itself at equilibrium
+    InvalidGeometry,  // shell models: the rest shape cannot be built (radius <= 0, self-intersecting)
 };
 
 // Parameters of the `thesis` model. Defaults are the thesis's Table 3.2 values.
@@ -44,9 +51,11 @@ struct SimParams {
 };
 SimParams DefaultSimParams();
 
-const char* StatusName(Status status);  // ok, nan, diverged
-const char* LoadName(Load load);        // inflate, stretch, none
-const char* PrecisionName(Precision precision);
+// Empty when the parameters are usable; otherwise what is wrong, for a user to read.
+std::string SimParamsError(const SimParams& params);
+
+// The largest iteration count any command accepts: about 15 minutes of a 30x30 evaluation.
+constexpr int kMaxIterations = 100'000'000;
 
 struct SimResult {
     Status status = Status::Ok;
@@ -77,5 +86,28 @@ double Fitness(const Positions& initial, const Positions& final, const MeshDef& 
 
 // FNV-1a over the bit patterns of all coordinates: equal hashes mean bit-identical meshes.
 std::uint64_t PositionsHash(const Positions& positions);
+
+template <>
+struct EnumNames<Load> {
+    static constexpr std::array<std::pair<Load, const char*>, 3> table{{
+        {Load::Inflate, "inflate"}, {Load::Stretch, "stretch"}, {Load::None, "none"}}};
+};
+template <>
+struct EnumNames<Precision> {
+    static constexpr std::array<std::pair<Precision, const char*>, 2> table{{{Precision::Float, "float"}, {Precision::Double, "double"}}};
+};
+template <>
+struct EnumNames<Status> {
+    static constexpr std::array<std::pair<Status, const char*>, 8> table{{
+        {Status::Ok, "ok"},
+        {Status::NaN, "nan"},
+        {Status::Diverged, "diverged"},
+        {Status::LimitPoint, "limit-point"},
+        {Status::NotConverged, "not-converged"},
+        {Status::NonFinite, "non-finite"},
+        {Status::SelfIntersection, "self-intersection"},
+        {Status::InvalidGeometry, "invalid-geometry"},
+    }};
+};
 
 }  // namespace sim

@@ -1,0 +1,56 @@
+// One names table per enum: the words used on the command line, in experiment files, in JSON and
+// CSV outputs and in messages. Every conversion between an enum and its text goes through here, so a
+// new value is named once and is at once accepted, printed and listed among the valid choices.
+//
+// A table is a specialisation of EnumNames<E> with a static array `table` of {value, name} pairs,
+// in the order the choices are listed to a user.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace sim {
+
+template <class E>
+struct EnumNames;  // specialised next to each enum
+
+// The name of a value ("?" for a value outside the table, which would be a programmer error).
+template <class E>
+constexpr const char* Name(E value) {
+    for (const auto& [v, name] : EnumNames<E>::table)
+        if (v == value) return name;
+    return "?";
+}
+
+// The value with this name, or nothing.
+template <class E>
+constexpr std::optional<E> FromName(std::string_view text) {
+    for (const auto& [v, name] : EnumNames<E>::table)
+        if (text == name) return v;
+    return std::nullopt;
+}
+
+// "a, b or c": the valid names, for messages and help text.
+template <class E>
+std::string Choices(const char* conjunction = "or") {
+    std::string text;
+    const auto& table = EnumNames<E>::table;
+    for (size_t k = 0; k < table.size(); ++k) {
+        if (k > 0) text += k + 1 == table.size() ? std::string(" ") + conjunction + " " : std::string(", ");
+        text += table[k].second;
+    }
+    return text;
+}
+
+// "a|b|c": the valid names as an option's value placeholder.
+template <class E>
+std::string ChoicesBar() {
+    std::string text;
+    for (const auto& [v, name] : EnumNames<E>::table) text += (text.empty() ? "" : "|") + std::string(name);
+    return text;
+}
+
+}  // namespace sim
