@@ -44,19 +44,15 @@ struct Heatmap {
     std::string highlightLabel;
 };
 
+// Drawn by the GL backend module, loaded on first use like MeshRenderer.
 class PlotRenderer {
 public:
     static std::unique_ptr<PlotRenderer> Create(int width, int height, std::string* error);
-    ~PlotRenderer();
+    virtual ~PlotRenderer() = default;
 
     // Several line plots side by side (e.g. one per GA run) under one figure title, sharing the y range.
-    Image RenderLines(const std::string& title, const std::vector<LinePlot>& plots);
-    Image RenderHeatmap(const std::string& title, const Heatmap& heatmap);
-
-private:
-    struct State;
-    explicit PlotRenderer(std::unique_ptr<State> state);
-    std::unique_ptr<State> state_;
+    virtual Image RenderLines(const std::string& title, const std::vector<LinePlot>& plots) = 0;
+    virtual Image RenderHeatmap(const std::string& title, const Heatmap& heatmap) = 0;
 };
 
 // "Nice" tick positions (1, 2, 5 x 10^k steps) covering [low, high], about `count` of them.

@@ -1,4 +1,4 @@
-// [SECTION] Colour maps and per-vertex values
+// [SECTION] Colours
 // [SECTION] GL resources: shaders and buffers
 // [SECTION] Camera and layout
 // [SECTION] Overlay (Dear ImGui draw lists)
@@ -17,17 +17,12 @@
 #include <filesystem>
 #include <numbers>
 
+#include "gl_context.h"
 #include "overlay_context.h"
 #include "render/colormap.h"
-#include "render/gl_context.h"
 
 namespace render {
 
-RenderDef DefaultRenderDef() { return RenderDef{}; }
-
-// ---------------------------------------------------------------------------------------------
-// [SECTION] Colour maps and per-vertex values
-// ---------------------------------------------------------------------------------------------
 namespace {
 
 using Vec3 = Eigen::Vector3f;
@@ -40,51 +35,6 @@ Vec3 Viridis(double t) {
 const Vec3 kNeutralMaterial(0.62f, 0.70f, 0.80f);  // Shading mode: a pale blue-grey silicone
 
 }  // namespace
-
-std::vector<double> VertexValues(ColorBy colorBy, const sim::MeshDef& mesh, const sim::Positions& p,
-                                 const sim::Positions& reference) {
-    const int n = p.Size();
-    std::vector<double> values(n, 0.0);
-    if (colorBy == ColorBy::Shading || reference.Size() != n) return values;
-    if (colorBy == ColorBy::Displacement) {
-        for (int i = 0; i < n; ++i)
-            values[i] = std::sqrt(std::pow(p.x[i] - reference.x[i], 2) + std::pow(p.y[i] - reference.y[i], 2) +
-                                  std::pow(p.z[i] - reference.z[i], 2));
-        return values;
-    }
-    std::vector<int> springs(n, 0);
-    auto length = [](const sim::Positions& q, int a, int b) {
-        return std::sqrt(std::pow(q.x[b] - q.x[a], 2) + std::pow(q.y[b] - q.y[a], 2) + std::pow(q.z[b] - q.z[a], 2));
-    };
-    for (int o : sim::SpringOffsets(mesh)) {
-        for (int a = 0; a + o < n; ++a) {
-            const double rest = length(reference, a, a + o);
-            if (rest <= 0) continue;
-            const double strain = 100.0 * std::fabs(length(p, a, a + o) / rest - 1.0);
-            values[a] += strain;
-            values[a + o] += strain;
-            ++springs[a];
-            ++springs[a + o];
-        }
-    }
-    for (int i = 0; i < n; ++i)
-        if (springs[i]) values[i] /= springs[i];
-    return values;
-}
-
-Framing FrameMeshes(const std::vector<const sim::Positions*>& meshes) {
-    Framing f{0, INFINITY, -INFINITY};
-    for (const sim::Positions* p : meshes) {
-        for (int i = 0; i < p->Size(); ++i) {
-            f.radius = std::max(f.radius, std::hypot(p->x[i], p->y[i]));
-            f.zMin = std::min(f.zMin, p->z[i]);
-            f.zMax = std::max(f.zMax, p->z[i]);
-        }
-    }
-    if (!(f.zMin <= f.zMax)) f = Framing{};
-    f.radius = std::max(f.radius, 1e-3);
-    return f;
-}
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] GL resources
@@ -179,60 +129,52 @@ struct SurfaceVertex {
 
 }  // namespace
 
-struct MeshRenderer::State {
+class MeshRendererGl final : public MeshRenderer {
+public:
+    Image Render(const Scene& scene) override;
+    const RenderDef& Def() const override { return def; }
+    std::string Description() const override { return context->Description(); }
+
     RenderDef def;
     std::unique_ptr<GlContext> context;
     GLuint surfaceProgram = 0, lineProgram = 0;
-    GLuint vao = 0, vertexBuffer = 0, triangleBuffer = 0, springBuffer = 0;
-    sim::MeshDef indexedMesh{0, 0};  // mesh size the index buffers were built for
-    GLsizei triangleIndexCount = 0, springIndexCount = 0;
+    GLuint vao = 0, vertexBuffer = 0, triangleBuffer = 0, edgeBuffer = 0, segmentBuffer = 0;
+    sim::Surface indexed;  // the surface the index buffers hold
     OverlayContext overlay;
 
-    void EnsureIndexBuffers(const sim::MeshDef& mesh) {
-        if (mesh.resolution == indexedMesh.resolution && mesh.turns == indexedMesh.turns) return;
-        std::vector<GLuint> triangles;
-        for (const auto& t : sim::Triangles(mesh)) triangles.insert(triangles.end(), {GLuint(t[0]), GLuint(t[1]), GLuint(t[2])});
-        std::vector<GLuint> springs;
-        const int n = sim::VertexCount(mesh);
-        for (int o : sim::SpringOffsets(mesh))
-            for (int a = 0; a + o < n; ++a) springs.insert(springs.end(), {GLuint(a), GLuint(a + o)});
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangleBuffer);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, triangles.size() * sizeof(GLuint), triangles.data(), GL_STATIC_DRAW);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, springBuffer);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, springs.size() * sizeof(GLuint), springs.data(), GL_STATIC_DRAW);
-        triangleIndexCount = static_cast<GLsizei>(triangles.size());
-        springIndexCount = static_cast<GLsizei>(springs.size());
-        indexedMesh = mesh;
+    void EnsureIndexBuffers(const sim::Surface& surface) {
+        if (surface == indexed) return;
+        std::vector<GLuint> edges;
+        for (const auto& [a, b] : surface.edges) edges.insert(edges.end(), {GLuint(a), GLuint(b)});
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, edgeBuffer);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, edges.size() * sizeof(GLuint), edges.data(), GL_STATIC_DRAW);
+        indexed = surface;
     }
 };
 
-MeshRenderer::MeshRenderer(std::unique_ptr<State> state) : state_(std::move(state)) {}
-MeshRenderer::~MeshRenderer() = default;
-const RenderDef& MeshRenderer::Def() const { return state_->def; }
-std::string MeshRenderer::Description() const { return state_->context->Description(); }
-
-std::unique_ptr<MeshRenderer> MeshRenderer::Create(const RenderDef& def, std::string* error) {
-    auto state = std::make_unique<State>();
-    state->def = def;
-    state->context = CreateOsMesaContext(error);
-    if (!state->context) return nullptr;
+std::unique_ptr<MeshRenderer> CreateGlMeshRenderer(const RenderDef& def, std::string* error) {
+    auto r = std::make_unique<MeshRendererGl>();
+    r->def = def;
+    r->context = CreateGlContext(error);
+    if (!r->context) return nullptr;
     const int bufferWidth = def.width * def.supersample, bufferHeight = def.height * def.supersample;
-    if (!state->context->MakeCurrent(bufferWidth, bufferHeight)) {
-        *error = "OSMesa could not make the context current";
+    if (!r->context->MakeCurrent(bufferWidth, bufferHeight)) {
+        *error = std::string(kBackendName) + " could not make the context current";
         return nullptr;
     }
-    state->surfaceProgram = CompileProgram(kSurfaceVertexShader, kSurfaceFragmentShader, error);
-    state->lineProgram = CompileProgram(kLineVertexShader, kLineFragmentShader, error);
-    if (!state->surfaceProgram || !state->lineProgram) return nullptr;
-    glGenVertexArrays(1, &state->vao);
-    glGenBuffers(1, &state->vertexBuffer);
-    glGenBuffers(1, &state->triangleBuffer);
-    glGenBuffers(1, &state->springBuffer);
+    r->surfaceProgram = CompileProgram(kSurfaceVertexShader, kSurfaceFragmentShader, error);
+    r->lineProgram = CompileProgram(kLineVertexShader, kLineFragmentShader, error);
+    if (!r->surfaceProgram || !r->lineProgram) return nullptr;
+    glGenVertexArrays(1, &r->vao);
+    glGenBuffers(1, &r->vertexBuffer);
+    glGenBuffers(1, &r->triangleBuffer);
+    glGenBuffers(1, &r->edgeBuffer);
+    glGenBuffers(1, &r->segmentBuffer);
 
     // Text follows the image size, but never below ~16 px body text: small images stay legible.
     const float textScale = def.textScale > 0 ? float(def.textScale) : std::max(0.85f, def.height / 768.0f);
-    if (!state->overlay.Create(def.supersample * textScale, error)) return nullptr;
-    return std::unique_ptr<MeshRenderer>(new MeshRenderer(std::move(state)));
+    if (!r->overlay.Create(def.supersample * textScale, error)) return nullptr;
+    return r;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -284,11 +226,11 @@ Eigen::Matrix4f ViewProjection(const Framing& framing, const RenderDef& def, flo
 }
 
 // Normals per vertex, area-weighted over the triangles around it, pointing out of the tube.
-std::vector<Vec3> OutwardNormals(const sim::MeshDef& mesh, const std::vector<Vec3>& p) {
+std::vector<Vec3> OutwardNormals(const sim::Surface& surface, const std::vector<Vec3>& p) {
     std::vector<Vec3> normals(p.size(), Vec3::Zero());
-    for (const auto& t : sim::Triangles(mesh)) {
-        // (i, i+1, i+R+1) winds inward on the helix (it turns clockwise seen from above): negate.
-        const Vec3 n = -(p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+    for (const auto& t : surface.triangles) {
+        const Vec3 n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+        if (!n.allFinite()) continue;
         for (int k : t) normals[k] += n;
     }
     for (auto& n : normals) {
@@ -305,26 +247,16 @@ std::vector<Vec3> OutwardNormals(const sim::MeshDef& mesh, const std::vector<Vec
 // ---------------------------------------------------------------------------------------------
 namespace {
 
-// Spring strain has outliers: at a pinch where the tube meets its axis, rest lengths are nearly zero
-// and a few springs reach hundreds of percent. Scaling to the 98th percentile keeps the rest readable.
-double RobustColorMax(const std::vector<std::vector<double>>& values) {
-    std::vector<double> all;
-    for (const auto& panel : values) all.insert(all.end(), panel.begin(), panel.end());
-    if (all.empty()) return 0;
-    const size_t k = std::min(all.size() - 1, static_cast<size_t>(0.98 * (all.size() - 1)));
-    std::nth_element(all.begin(), all.begin() + k, all.end());
-    return all[k];
-}
-
 std::string FormatTick(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", value);
     return text;
 }
 
-// Values above the top of the scale take its colour; the top label then reads "> max".
-void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& strip, double maxValue, bool clipped,
-                   const char* label) {
+// Values above the top of the scale take its colour; the top label then reads "> max". Marks (e.g.
+// a material's stretch limit) are lines across the bar with their label beside it.
+void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& strip, double minValue, double maxValue, bool clipped,
+                   const std::string& label, const std::vector<ScaleMark>& marks) {
     const float barWidth = strip.Width() * 0.22f;
     const float x0 = strip.x0 + strip.Width() * 0.12f, x1 = x0 + barWidth;
     const float y0 = strip.y0 + fontSize * 3.2f, y1 = strip.y1 - fontSize * 1.2f;
@@ -341,10 +273,18 @@ void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& s
     for (int k = 0; k <= 4; ++k) {
         const float y = y1 - (y1 - y0) * k / 4;
         draw->AddLine(ImVec2(x1, y), ImVec2(x1 + barWidth * 0.25f, y), ink, fontSize * 0.06f);
-        const std::string tick = (k == 4 && clipped ? "> " : "") + FormatTick(maxValue * k / 4);
+        const std::string tick = (k == 4 && clipped ? "> " : "") + FormatTick(minValue + (maxValue - minValue) * k / 4);
         draw->AddText(font, fontSize * 0.85f, ImVec2(x1 + barWidth * 0.35f, y - fontSize * 0.45f), ink, tick.c_str());
     }
-    draw->AddText(font, fontSize * 0.85f, ImVec2(strip.x0 + strip.Width() * 0.02f, strip.y0 + fontSize * 0.8f), ink, label);
+    for (const ScaleMark& mark : marks) {
+        const double t = (mark.value - minValue) / (maxValue - minValue);
+        if (!(t >= 0 && t <= 1)) continue;
+        const float y = y1 - (y1 - y0) * float(t);
+        const ImU32 red = IM_COL32(200, 30, 30, 255);
+        draw->AddLine(ImVec2(x0 - barWidth * 0.15f, y), ImVec2(x1, y), red, fontSize * 0.14f);
+        draw->AddText(font, fontSize * 0.75f, ImVec2(x1 + barWidth * 0.35f, y + fontSize * 0.3f), red, mark.label.c_str());
+    }
+    draw->AddText(font, fontSize * 0.85f, ImVec2(strip.x0 + strip.Width() * 0.02f, strip.y0 + fontSize * 0.8f), ink, label.c_str());
 }
 
 }  // namespace
@@ -353,16 +293,16 @@ void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& s
 // [SECTION] Render
 // ---------------------------------------------------------------------------------------------
 
-Image MeshRenderer::Render(const Scene& scene) {
-    State& s = *state_;
-    const RenderDef& def = s.def;
+Image MeshRendererGl::Render(const Scene& scene) {
     const int width = def.width * def.supersample, height = def.height * def.supersample;
-    s.context->MakeCurrent(width, height);
-    s.EnsureIndexBuffers(scene.mesh);
+    context->MakeCurrent(width, height);
+    static const sim::Surface kNoSurface;
+    const sim::Surface& surface = scene.surface ? *scene.surface : kNoSurface;
+    EnsureIndexBuffers(surface);
 
     // Layout: text band on top, captions below, colour bar strip on the right.
     const bool coloured = def.colorBy != ColorBy::Shading;
-    const float fontSize = s.overlay.FontSize();
+    const float fontSize = overlay.FontSize();
     const float top = def.overlay ? fontSize * (2.2f + 1.25f * scene.lines.size()) : 0.0f;
     const float bottom = def.overlay ? fontSize * 1.8f : 0.0f;
     const float barStrip = def.overlay && coloured ? std::max(width * 0.11f, fontSize * 6.0f) : 0.0f;
@@ -379,13 +319,17 @@ Image MeshRenderer::Render(const Scene& scene) {
         return Rect{x0, y0, x0 + w, y0 + h - captionBand};
     };
 
-    // Colour scale and framing shared by every panel.
+    // Colour scale and framing shared by every panel; non-finite values and positions are left out.
     std::vector<std::vector<double>> values;
-    double maxValue = 0;
+    double largestValue = -INFINITY, smallestValue = INFINITY;
     std::vector<std::vector<Vec3>> rotated;
     for (const Panel& panel : scene.panels) {
-        values.push_back(VertexValues(def.colorBy, scene.mesh, panel.positions, panel.reference));
-        for (double v : values.back()) maxValue = std::max(maxValue, v);
+        values.push_back(VertexValues(def.colorBy, surface, panel));
+        for (double v : values.back())
+            if (std::isfinite(v)) {
+                largestValue = std::max(largestValue, v);
+                smallestValue = std::min(smallestValue, v);
+            }
         const float angle = float(panel.rotationDegrees * std::numbers::pi / 180);
         const Eigen::Matrix3f rotation = Eigen::AngleAxisf(angle, Vec3::UnitZ()).toRotationMatrix();
         std::vector<Vec3> points(panel.positions.Size());
@@ -393,11 +337,12 @@ Image MeshRenderer::Render(const Scene& scene) {
             points[i] = rotation * Vec3(float(panel.positions.x[i]), float(panel.positions.y[i]), float(panel.positions.z[i]));
         rotated.push_back(std::move(points));
     }
-    const double largestValue = maxValue;
+    double minValue = scene.colorMin ? *scene.colorMin : def.colorBy == ColorBy::Values && std::isfinite(smallestValue) ? smallestValue : 0.0;
+    double maxValue = largestValue;
     if (scene.colorMax) maxValue = *scene.colorMax;
     else if (def.colorBy == ColorBy::Strain) maxValue = RobustColorMax(values);
-    if (!(maxValue > 0)) maxValue = 1;
-    const bool clipped = largestValue > maxValue * (1 + 1e-9);
+    if (!(maxValue > minValue) || !std::isfinite(maxValue)) maxValue = minValue + 1;
+    const bool clipped = std::isfinite(largestValue) && largestValue > maxValue + 1e-9 * std::fabs(maxValue);
     std::vector<const sim::Positions*> all;
     for (const Panel& panel : scene.panels) all.push_back(&panel.positions);
     const Framing framing = scene.framing ? *scene.framing : FrameMeshes(all);
@@ -418,25 +363,36 @@ Image MeshRenderer::Render(const Scene& scene) {
     const Vec3 up = right.cross(forward);
     const Vec3 keyLight = (toCamera * 0.8f - right * 0.55f + up * 0.6f).normalized();
     const Vec3 fillLight = (toCamera * 0.5f + right * 0.8f - up * 0.1f).normalized();
+    auto colourOf = [&](double v) { return Viridis((v - minValue) / (maxValue - minValue)); };
 
-    glBindVertexArray(s.vao);
+    glBindVertexArray(vao);
     for (int k = 0; k < int(scene.panels.size()); ++k) {
+        const Panel& panel = scene.panels[k];
         // GL viewports count from the bottom.
         const Rect cell = cellOf(k);
         glViewport(int(cell.x0), int(height - cell.y1), int(cell.Width()), int(cell.Height()));
+        const int n = static_cast<int>(rotated[k].size());
 
-        const auto normals = OutwardNormals(scene.mesh, rotated[k]);
-        std::vector<SurfaceVertex> vertices(rotated[k].size());
-        for (size_t i = 0; i < vertices.size(); ++i) {
-            // A panel at rest (no reference mesh) has nothing to colour: it gets the plain material,
-            // which shows its shape better than the colour map's darkest end.
-            const bool atRest = scene.panels[k].reference.Size() == 0;
-            const Vec3 c = coloured && !atRest ? Viridis(values[k][i] / maxValue) : kNeutralMaterial;
+        const auto normals = OutwardNormals(surface, rotated[k]);
+        // A panel at rest (no reference mesh and no values) has nothing to colour: it gets the plain
+        // material, which shows its shape better than the colour map's darkest end.
+        const bool atRest = def.colorBy == ColorBy::Values ? panel.values.empty() : panel.reference.Size() == 0;
+        std::vector<SurfaceVertex> vertices(n);
+        for (int i = 0; i < n; ++i) {
+            const Vec3 c = coloured && !atRest && std::isfinite(values[k][i]) ? colourOf(values[k][i]) : kNeutralMaterial;
             vertices[i] = {{rotated[k][i].x(), rotated[k][i].y(), rotated[k][i].z()},
                            {normals[i].x(), normals[i].y(), normals[i].z()},
                            {c.x(), c.y(), c.z()}};
         }
-        glBindBuffer(GL_ARRAY_BUFFER, s.vertexBuffer);
+        // Only triangles whose corners are all finite: a failed run still shows what it has.
+        std::vector<GLuint> triangles;
+        triangles.reserve(surface.triangles.size() * 3);
+        for (const auto& t : surface.triangles) {
+            if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
+            if (!rotated[k][t[0]].allFinite() || !rotated[k][t[1]].allFinite() || !rotated[k][t[2]].allFinite()) continue;
+            triangles.insert(triangles.end(), {GLuint(t[0]), GLuint(t[1]), GLuint(t[2])});
+        }
+        glBindBuffer(GL_ARRAY_BUFFER, vertexBuffer);
         glBufferData(GL_ARRAY_BUFFER, vertices.size() * sizeof(SurfaceVertex), vertices.data(), GL_STREAM_DRAW);
         glEnableVertexAttribArray(0);
         glEnableVertexAttribArray(1);
@@ -445,57 +401,91 @@ Image MeshRenderer::Render(const Scene& scene) {
         glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), (void*)offsetof(SurfaceVertex, normal));
         glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, sizeof(SurfaceVertex), (void*)offsetof(SurfaceVertex, color));
 
-        glUseProgram(s.surfaceProgram);
-        glUniformMatrix4fv(glGetUniformLocation(s.surfaceProgram, "viewProjection"), 1, GL_FALSE, viewProjection.data());
-        glUniform3fv(glGetUniformLocation(s.surfaceProgram, "toCamera"), 1, toCamera.data());
-        glUniform3fv(glGetUniformLocation(s.surfaceProgram, "keyLight"), 1, keyLight.data());
-        glUniform3fv(glGetUniformLocation(s.surfaceProgram, "fillLight"), 1, fillLight.data());
+        glUseProgram(surfaceProgram);
+        glUniformMatrix4fv(glGetUniformLocation(surfaceProgram, "viewProjection"), 1, GL_FALSE, viewProjection.data());
+        glUniform3fv(glGetUniformLocation(surfaceProgram, "toCamera"), 1, toCamera.data());
+        glUniform3fv(glGetUniformLocation(surfaceProgram, "keyLight"), 1, keyLight.data());
+        glUniform3fv(glGetUniformLocation(surfaceProgram, "fillLight"), 1, fillLight.data());
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(1.0f, 1.0f);  // the wireframe sits on the surface without z-fighting
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.triangleBuffer);
-        glDrawElements(GL_TRIANGLES, s.triangleIndexCount, GL_UNSIGNED_INT, nullptr);
+        glPolygonOffset(1.0f, 1.0f);  // lines sit on the surface without z-fighting
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, triangleBuffer);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, triangles.size() * sizeof(GLuint), triangles.data(), GL_STREAM_DRAW);
+        glDrawElements(GL_TRIANGLES, GLsizei(triangles.size()), GL_UNSIGNED_INT, nullptr);
         glDisable(GL_POLYGON_OFFSET_FILL);
 
+        glUseProgram(lineProgram);
+        glUniformMatrix4fv(glGetUniformLocation(lineProgram, "viewProjection"), 1, GL_FALSE, viewProjection.data());
         if (def.wireframe) {
-            glUseProgram(s.lineProgram);
-            glUniformMatrix4fv(glGetUniformLocation(s.lineProgram, "viewProjection"), 1, GL_FALSE, viewProjection.data());
             const float lineColor[4] = {0.10f, 0.10f, 0.12f, 1.0f};
-            glUniform4fv(glGetUniformLocation(s.lineProgram, "lineColor"), 1, lineColor);
+            glUniform4fv(glGetUniformLocation(lineProgram, "lineColor"), 1, lineColor);
             glDisableVertexAttribArray(1);
             glDisableVertexAttribArray(2);
-            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.springBuffer);
-            glDrawElements(GL_LINES, s.springIndexCount, GL_UNSIGNED_INT, nullptr);
+            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, edgeBuffer);
+            glDrawElements(GL_LINES, GLsizei(2 * surface.edges.size()), GL_UNSIGNED_INT, nullptr);
+        }
+        if (!panel.segments.empty()) {
+            // Segments (fibres) in the scene's colour map, drawn per colour band to keep one shader.
+            const float angle = float(panel.rotationDegrees * std::numbers::pi / 180);
+            const Eigen::Matrix3f rotation = Eigen::AngleAxisf(angle, Vec3::UnitZ()).toRotationMatrix();
+            glDisableVertexAttribArray(1);
+            glDisableVertexAttribArray(2);
+            glBindBuffer(GL_ARRAY_BUFFER, segmentBuffer);
+            constexpr int kBands = 16;
+            std::vector<std::vector<float>> bands(kBands);
+            for (const Segment& segment : panel.segments) {
+                const double t = std::clamp((segment.value - minValue) / (maxValue - minValue), 0.0, 1.0);
+                auto& band = bands[std::min(kBands - 1, int(t * kBands))];
+                const Vec3 a = rotation * Vec3(segment.a[0], segment.a[1], segment.a[2]);
+                const Vec3 b = rotation * Vec3(segment.b[0], segment.b[1], segment.b[2]);
+                if (!a.allFinite() || !b.allFinite()) continue;
+                band.insert(band.end(), {a.x(), a.y(), a.z(), b.x(), b.y(), b.z()});
+            }
+            glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+            for (int band = 0; band < kBands; ++band) {
+                if (bands[band].empty()) continue;
+                const Vec3 c = Viridis((band + 0.5) / kBands) * 0.85f;
+                const float lineColor[4] = {c.x(), c.y(), c.z(), 1.0f};
+                glUniform4fv(glGetUniformLocation(lineProgram, "lineColor"), 1, lineColor);
+                glBufferData(GL_ARRAY_BUFFER, bands[band].size() * sizeof(float), bands[band].data(), GL_STREAM_DRAW);
+                glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+                glLineWidth(float(def.supersample));
+                glDrawArrays(GL_LINES, 0, GLsizei(bands[band].size() / 3));
+            }
+            glLineWidth(1.0f);
         }
     }
     glBindVertexArray(0);
     glViewport(0, 0, width, height);
 
     if (def.overlay) {
-        ImDrawList* draw = s.overlay.Begin(width, height);
+        ImDrawList* draw = overlay.Begin(width, height);
         const ImU32 ink = IM_COL32(25, 25, 25, 255), grey = IM_COL32(70, 70, 70, 255);
         const float margin = fontSize * 0.7f;
-        draw->AddText(s.overlay.TitleFont(), fontSize * 1.37f, ImVec2(margin, margin * 0.8f), ink, scene.title.c_str());
+        draw->AddText(overlay.TitleFont(), fontSize * 1.37f, ImVec2(margin, margin * 0.8f), ink, scene.title.c_str());
         float y = margin * 0.8f + fontSize * 1.7f;
         for (const std::string& line : scene.lines) {
-            draw->AddText(s.overlay.TextFont(), fontSize, ImVec2(margin, y), grey, line.c_str());
+            draw->AddText(overlay.TextFont(), fontSize, ImVec2(margin, y), grey, line.c_str());
             y += fontSize * 1.25f;
         }
         for (int k = 0; k < int(scene.panels.size()); ++k) {
             const std::string& caption = scene.panels[k].caption;
-            const ImVec2 size = s.overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, caption.c_str());
+            const ImVec2 size = overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, caption.c_str());
             const Rect cell = cellOf(k);
             const float cx = (cell.x0 + cell.x1) / 2;
             const float cy = rows > 1 ? cell.y1 + fontSize * 0.1f : panelArea.y1 + fontSize * 0.3f;
-            draw->AddText(s.overlay.TextFont(), fontSize, ImVec2(cx - size.x / 2, cy), ink, caption.c_str());
+            draw->AddText(overlay.TextFont(), fontSize, ImVec2(cx - size.x / 2, cy), ink, caption.c_str());
         }
         if (coloured) {
-            const char* label = def.colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : "spring strain\n(percent)";
-            DrawColourBar(draw, s.overlay.TextFont(), fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, maxValue, clipped, label);
+            std::string label = scene.colorLabel;
+            if (label.empty())
+                label = def.colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : def.colorBy == ColorBy::Strain ? "spring strain\n(percent)" : "value";
+            DrawColourBar(draw, overlay.TextFont(), fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, minValue, maxValue, clipped, label,
+                          scene.scaleMarks);
         }
-        s.overlay.End();
+        overlay.End();
     }
 
-    return BoxDownsample(s.context->FinishAndGetPixels().data(), width, height, def.supersample, /*bottomUp=*/true);
+    return BoxDownsample(context->FinishAndGetPixels().data(), width, height, def.supersample, /*bottomUp=*/true);
 }
 
 }  // namespace render

@@ -2,9 +2,12 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
-#include "render/gl_context.h"
+#include "gl_context.h"
 
 namespace render {
+
+const char* const kBackendName = "osmesa";
+
 namespace {
 
 class OsMesaContext final : public GlContext {
@@ -28,7 +31,7 @@ public:
 
     std::string Description() const override {
         return std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) + ", " +
-               reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+               reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + " (osmesa)";
     }
 
 private:
@@ -39,7 +42,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> CreateOsMesaContext(std::string* error) {
+std::unique_ptr<GlContext> CreateGlContext(std::string* error) {
     // Debian 12's OSMesa gives a 4.5 core profile on llvmpipe; 3.3 is all the renderer needs.
     const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
                               OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,

@@ -1,4 +1,4 @@
-// [SECTION] Ticks and colours
+// [SECTION] Colours
 // [SECTION] Axes
 // [SECTION] Line plots
 // [SECTION] Heatmaps
@@ -10,33 +10,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gl_context.h"
 #include "overlay_context.h"
-#include "render/gl_context.h"
 
 namespace render {
 
 // ---------------------------------------------------------------------------------------------
-// [SECTION] Ticks and colours
+// [SECTION] Colours
 // ---------------------------------------------------------------------------------------------
-
-std::vector<double> NiceTicks(double low, double high, int count) {
-    if (!(high > low)) {
-        const double pad = std::max(std::fabs(low) * 0.1, 0.5);
-        low -= pad;
-        high += pad;
-    }
-    const double rough = (high - low) / std::max(1, count);
-    const double magnitude = std::pow(10.0, std::floor(std::log10(rough)));
-    double step = magnitude;
-    for (double m : {1.0, 2.0, 5.0, 10.0})
-        if (m * magnitude >= rough) {
-            step = m * magnitude;
-            break;
-        }
-    std::vector<double> ticks;
-    for (double t = std::ceil(low / step - 1e-9) * step; t <= high + step * 1e-9; t += step) ticks.push_back(std::fabs(t) < step * 1e-9 ? 0.0 : t);
-    return ticks;
-}
 
 namespace {
 
@@ -96,7 +77,11 @@ struct Axes {
 
 }  // namespace
 
-struct PlotRenderer::State {
+class PlotRendererGl final : public PlotRenderer {
+public:
+    Image RenderLines(const std::string& title, const std::vector<LinePlot>& plots) override;
+    Image RenderHeatmap(const std::string& title, const Heatmap& heatmap) override;
+
     int width = 0, height = 0;
     static constexpr int kSupersample = 2;
     std::unique_ptr<GlContext> context;
@@ -115,31 +100,27 @@ struct PlotRenderer::State {
     }
 };
 
-PlotRenderer::PlotRenderer(std::unique_ptr<State> state) : state_(std::move(state)) {}
-PlotRenderer::~PlotRenderer() = default;
-
-std::unique_ptr<PlotRenderer> PlotRenderer::Create(int width, int height, std::string* error) {
-    auto state = std::make_unique<State>();
-    state->width = width;
-    state->height = height;
-    state->context = CreateOsMesaContext(error);
-    if (!state->context || !state->context->MakeCurrent(width * State::kSupersample, height * State::kSupersample)) {
-        if (error && error->empty()) *error = "OSMesa could not make the context current";
+std::unique_ptr<PlotRenderer> CreateGlPlotRenderer(int width, int height, std::string* error) {
+    auto r = std::make_unique<PlotRendererGl>();
+    r->width = width;
+    r->height = height;
+    r->context = CreateGlContext(error);
+    if (!r->context || !r->context->MakeCurrent(width * PlotRendererGl::kSupersample, height * PlotRendererGl::kSupersample)) {
+        if (error && error->empty()) *error = std::string(kBackendName) + " could not make the context current";
         return nullptr;
     }
-    if (!state->overlay.Create(State::kSupersample * std::max(0.85f, height / 768.0f), error)) return nullptr;
-    return std::unique_ptr<PlotRenderer>(new PlotRenderer(std::move(state)));
+    if (!r->overlay.Create(PlotRendererGl::kSupersample * std::max(0.85f, height / 768.0f), error)) return nullptr;
+    return r;
 }
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Line plots
 // ---------------------------------------------------------------------------------------------
 
-Image PlotRenderer::RenderLines(const std::string& title, const std::vector<LinePlot>& plots) {
-    State& s = *state_;
-    ImDrawList* draw = s.Begin();
-    const OverlayContext& o = s.overlay;
-    const float W = float(s.width * State::kSupersample), H = float(s.height * State::kSupersample), fs = o.FontSize();
+Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<LinePlot>& plots) {
+    ImDrawList* draw = Begin();
+    const OverlayContext& o = overlay;
+    const float W = float(width * kSupersample), H = float(height * kSupersample), fs = o.FontSize();
     draw->AddText(o.TitleFont(), fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), kInk, title.c_str());
 
     // One y range for all plots, so runs side by side compare at a glance.
@@ -227,18 +208,17 @@ Image PlotRenderer::RenderLines(const std::string& title, const std::vector<Line
         for (const auto& series : plots[0].series) entry(series.label, Color(series.color), false);
         for (const auto& band : plots[0].bands) entry(band.label, Color(band.color, 0.35f), true);
     }
-    return s.End();
+    return End();
 }
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Heatmaps
 // ---------------------------------------------------------------------------------------------
 
-Image PlotRenderer::RenderHeatmap(const std::string& title, const Heatmap& h) {
-    State& s = *state_;
-    ImDrawList* draw = s.Begin();
-    const OverlayContext& o = s.overlay;
-    const float W = float(s.width * State::kSupersample), H = float(s.height * State::kSupersample), fs = o.FontSize();
+Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) {
+    ImDrawList* draw = Begin();
+    const OverlayContext& o = overlay;
+    const float W = float(width * kSupersample), H = float(height * kSupersample), fs = o.FontSize();
     draw->AddText(o.TitleFont(), fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), kInk, title.c_str());
 
     const size_t nx = h.xValues.size(), ny = h.yValues.size();
@@ -294,7 +274,7 @@ Image PlotRenderer::RenderHeatmap(const std::string& title, const Heatmap& h) {
         draw->AddText(o.TextFont(), fs * 0.85f, ImVec2(bx1 + fs * 0.45f, y - fs * 0.5f), kInk, TickText(t, vStep / 10).c_str());
     }
     draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(bx0 - fs * 0.8f, axes.box.y0 - fs * 1.45f), kInk, h.valueLabel.c_str());
-    return s.End();
+    return End();
 }
 
 }  // namespace render
