@@ -1,6 +1,7 @@
 # Actuator Workbench's one schema for what it stores or sends: shapes and genomes, simulation
 # parameters, meshes, evaluation results, evaluation records (archives), logbook rows.
-# Compiled by CMake (capnp compile) into the app's archive code; sim itself has no dependency on it.
+# Compiled by CMake (capnp compile) into the app's archive and server code; sim knows nothing of it.
+# Fields are only ever added (new ordinals at the end), so archives written by older versions read.
 @0xd307e0379e6c9429;
 
 using Cxx = import "/capnp/c++.capnp";
@@ -8,7 +9,8 @@ $Cxx.namespace("actuator::schema");
 
 enum Load { inflate @0; stretch @1; none @2; }
 enum Precision { float @0; double @1; }
-enum Status { ok @0; notANumber @1; diverged @2; }  # the CLI's ok, nan, diverged
+# The CLI's ok, nan, diverged, limit-point, not-converged, non-finite, self-intersection, invalid-geometry.
+enum Status { ok @0; notANumber @1; diverged @2; limitPoint @3; notConverged @4; nonFinite @5; selfIntersection @6; invalidGeometry @7; }
 enum SplineRegion { entire @0; middle @1; }
 
 struct MeshSize {
@@ -16,12 +18,15 @@ struct MeshSize {
   turns @1 :UInt32 = 30;        # turns of the helix
 }
 
-# Positions in helix order, structure-of-arrays. Archives store float32, the float solver's own
-# precision: enough to re-render; exact results are in the fitness fields.
+# Positions in the model's vertex order, structure-of-arrays. Float32 when that loses nothing (the
+# thesis model's float solver), else the exact lists are set instead.
 struct Mesh {
   x @0 :List(Float32);
   y @1 :List(Float32);
   z @2 :List(Float32);
+  exactX @3 :List(Float64);
+  exactY @4 :List(Float64);
+  exactZ @5 :List(Float64);
 }
 
 struct Spline {
@@ -71,9 +76,10 @@ struct EvalResult {
   elapsedMs @4 :Float64;
 }
 
-# One simulated shape, as appended to DIR/evaluations.capnp by sweeps and GA runs.
+# One simulated shape, as appended to DIR/evaluations.capnp by every experiment command.
 struct Evaluation {
-  index @0 :UInt64;                 # order within the archive, from 0
+  index @0 :UInt64;                 # the evaluation id: order within the archive, from 0; the same
+                                    # number in evaluations.csv, thumbnails, inspect and --index
   experiment @1 :Text;              # experiment id
   run @2 :UInt32;                   # GA run (1-based); 0 for sweeps and lists
   generation @3 :Int32;             # GA generation; -1 for sweeps and lists
@@ -84,6 +90,7 @@ struct Evaluation {
   initial @8 :Mesh;
   final @9 :Mesh;
   result @10 :EvalResult;
+  role @11 :Text;                   # grid, thesis-point, shape, individual, thesis-genome, figure
 }
 
 struct LogbookRow {
@@ -121,5 +128,8 @@ struct EvalResponse {
 # shape validity); a bad one fails the whole call with a message, and the server keeps serving.
 interface Evaluator {
   evaluate @0 (requests :List(EvalRequest)) -> (responses :List(EvalResponse));
-  info @1 () -> (threads :UInt32, maxVertices :UInt32, maxIterations :UInt32, maxRequests :UInt32);
+  info @1 () -> (threads :UInt32, maxVertices :UInt32, maxIterations :UInt32, maxRequests :UInt32,
+                 maxWork :UInt64, maxReplyWords :UInt64);
+  # maxWork bounds one call's sum of vertices x iterations; maxReplyWords the size of its reply.
+  # A client splits larger batches into calls within both.
 }

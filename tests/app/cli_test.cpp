@@ -1,10 +1,11 @@
-// The `actuator` binary as a user runs it: JSON on stdout, OBJ round trips, and every kind of bad
-// input refused with one line on stderr, exit code 2 and no file written.
+// `actuator simulate` as a user runs it: JSON on stdout, OBJ round trips, designs from archives, and
+// every kind of bad input refused with one line on stderr, exit code 2 and no file written.
 #include <nlohmann/json.hpp>
 
 #include "cli_fixture.h"
 
 namespace fs = std::filesystem;
+using ::testing::HasSubstr;
 
 using Cli = CliTest;
 
@@ -18,7 +19,9 @@ TEST_F(Cli, SimulatePrintsOneJsonObjectWithTheResult) {
     EXPECT_EQ(json["iterations"], 10000);
     EXPECT_GT(json["elapsed_ms"].get<double>(), 0);
     EXPECT_EQ(json["shape"]["name"], "abs-sine");
-    EXPECT_EQ(json["springs"], 3509);
+    EXPECT_EQ(json["shape"]["amplitude"], 4);
+    EXPECT_EQ(json["model"]["springs"], 3509);
+    EXPECT_EQ(json["model"]["pressure_scale"], 0.005);
 }
 
 TEST_F(Cli, PhaseAcceptsMultiplesOfPi) {
@@ -27,7 +30,7 @@ TEST_F(Cli, PhaseAcceptsMultiplesOfPi) {
     EXPECT_EQ(a["final_positions_hash"], b["final_positions_hash"]);
 }
 
-TEST_F(Cli, EveryShapeFromTheIssueRuns) {
+TEST_F(Cli, EveryShapeRuns) {
     for (const std::string args : {"--shape cylinder", "--shape sine --amplitude 4.1 --phase 0.5,2.6415926535",
                                    "--shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"",
                                    "--shape bspline --region middle --control-points \"4,6,2,5;2,3,7,4,6;5,5,1,2;3,3,3,3\"",
@@ -41,12 +44,20 @@ TEST_F(Cli, EveryShapeFromTheIssueRuns) {
     Write("offsets.txt", offsets);
     const Result r = Run("simulate --shape free-xy --offsets " + Path("offsets.txt") + " --iterations 300");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(nlohmann::json::parse(r.out)["shape"]["name"], "free-xy");
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["shape"]["name"], "free-xy");
+    EXPECT_EQ(json["shape"]["dx"].size(), 900u);
+    // A genome as evaluations.csv writes it (dx0,dy0,dx1,...) is accepted as it is, in a file or inline.
+    std::string genome;
+    for (int i = 0; i < 900; ++i) genome += std::string(i ? "," : "") + "0.1,-0.05";
+    Write("genome.txt", genome);
+    const auto fromGenome = nlohmann::json::parse(Run("simulate --shape free-xy --offsets " + Path("genome.txt") + " --iterations 300").out);
+    EXPECT_EQ(fromGenome["final_positions_hash"], json["final_positions_hash"]);
 }
 
 TEST_F(Cli, SavedMeshesRoundTripExactly) {
-    const Result first = Run("simulate --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") +
-                                " --save-mesh " + Path("final.obj"));
+    const Result first = Run("simulate --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") + " --save-mesh " +
+                             Path("final.obj"));
     ASSERT_EQ(first.exitCode, 0) << first.err;
     const auto a = nlohmann::json::parse(first.out);
 
@@ -59,7 +70,7 @@ TEST_F(Cli, SavedMeshesRoundTripExactly) {
     const auto c = nlohmann::json::parse(Run("simulate --mesh " + Path("final.obj") + " --iterations 0").out);
     EXPECT_EQ(c["final_positions_hash"], a["final_positions_hash"]);
 
-    // And it is a real OBJ: 900 vertices and the model's triangles.
+    // And it is a real OBJ: 900 vertices and the model's triangles, wound outward.
     const std::string obj = Slurp(Path("final.obj"));
     int vertexLines = 0, faceLines = 0;
     std::istringstream lines(obj);
@@ -69,7 +80,7 @@ TEST_F(Cli, SavedMeshesRoundTripExactly) {
     }
     EXPECT_EQ(vertexLines, 900);
     EXPECT_EQ(faceLines, 2 * (900 - 31));
-    EXPECT_NE(obj.find("\nf 1 2 32\n"), std::string::npos);
+    EXPECT_THAT(obj, HasSubstr("\nf 1 32 2\n"));
 }
 
 TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
@@ -85,9 +96,11 @@ TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
     ExpectRefused("simulate --mesh " + Path("missing.obj"), "missing.obj");
     ExpectRefused("simulate --shape cylinder --amplitude 3", "does not apply");
     ExpectRefused("simulate --bogus 1", "--bogus");
-    ExpectRefused("simulate --amplitude", "needs a value");
+    ExpectRefused("simulate --amplitude", "--amplitude");
+    ExpectRefused("simulate --amplitude 1 --amplitude 2", "--amplitude");
     ExpectRefused("simulate --turns 4", "--turns");
-    ExpectRefused("simulate --load squeeze", "squeeze");
+    ExpectRefused("simulate --load squeeze", "choose inflate, stretch or none");
+    ExpectRefused("simulate --index 3", "--from");
     ExpectRefused("frobnicate", "frobnicate");
 
     Write("short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
@@ -102,25 +115,46 @@ TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
     ExpectRefused("simulate --shape free-xy --offsets " + Path("offsets.txt"), "expected 1800");
 }
 
+TEST_F(Cli, OutputsFollowTheirExtensionAndNeverReplaceWhatIsNotOurs) {
+    ExpectRefused("simulate --save-mesh " + Path("out.stl"), "must end in .obj");
+    fs::create_symlink(Path("target.obj"), Path("link.obj"));
+    ExpectRefused("simulate --save-mesh " + Path("link.obj"), "symbolic link");
+    EXPECT_FALSE(fs::exists(Path("target.obj")));
+    ExpectRefused("simulate --save-mesh /dev/null", "not a regular file");
+    ASSERT_EQ(Run("simulate --iterations 10 --save-initial " + Path("in.obj")).exitCode, 0);
+    const std::string before = Slurp(Path("in.obj"));
+    ExpectRefused("simulate --mesh " + Path("in.obj") + " --save-mesh " + Path("in.obj"), "also an input");
+    EXPECT_EQ(Slurp(Path("in.obj")), before);
+}
+
 TEST_F(Cli, RefusedRunsWriteNoFile) {
     ExpectRefused("simulate --shape sine --amplitude x --save-mesh " + Path("out.obj"), "--amplitude");
     ExpectRefused("simulate --save-mesh " + Path("no/such/folder/out.obj"), "does not exist");
     EXPECT_FALSE(fs::exists(Path("out.obj")));
-    for (const auto& entry : fs::directory_iterator(dir_))
-        EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << "left behind " << entry.path();
+    for (const auto& entry : fs::directory_iterator(dir_)) EXPECT_THAT(entry.path().filename().string(), ::testing::Not(HasSubstr(".tmp")));
+}
+
+TEST_F(Cli, OutputThatCannotBeWrittenIsAnError) {
+    const Result r = Run("simulate --iterations 10 > /dev/full");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_THAT(r.err, HasSubstr("could not write the output"));
 }
 
 TEST_F(Cli, HelpExplainsEveryOptionWithItsDefault) {
     const Result main = Run("--help");
     EXPECT_EQ(main.exitCode, 0);
-    EXPECT_NE(main.out.find("simulate"), std::string::npos);
+    EXPECT_THAT(main.out, HasSubstr("simulate"));
+    const Result version = Run("--version");
+    EXPECT_EQ(version.exitCode, 0);
+    EXPECT_THAT(version.out, ::testing::StartsWith("actuator "));
     const Result help = Run("simulate --help");
     EXPECT_EQ(help.exitCode, 0);
-    for (const char* option : {"--shape", "--amplitude", "--phase", "--region", "--control-points", "--offsets", "--mesh",
-                               "--resolution", "--turns", "--load", "--iterations", "--precision", "--save-mesh"})
-        EXPECT_NE(help.out.find(option), std::string::npos) << option;
-    EXPECT_NE(help.out.find("(default: 10000)"), std::string::npos);
-    EXPECT_NE(help.out.find("(default: inflate)"), std::string::npos);
+    for (const char* option : {"--shape", "--amplitude", "--phase", "--region", "--control-points", "--offsets", "--mesh", "--resolution",
+                               "--turns", "--load", "--iterations", "--precision", "--save-mesh", "--from", "--pressure-scale"})
+        EXPECT_THAT(help.out, HasSubstr(option));
+    EXPECT_THAT(help.out, HasSubstr("N=10000"));
+    EXPECT_THAT(help.out, HasSubstr("=inflate"));
+    EXPECT_THAT(help.out, HasSubstr("X=0.005"));
 }
 
 TEST_F(Cli, NumericalFailureIsAStatusNotAnError) {

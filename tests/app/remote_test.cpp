@@ -8,7 +8,6 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 
 #include <chrono>
@@ -19,62 +18,51 @@
 #include "remote.h"
 #include "schema_convert.h"
 
-extern char** environ;
 namespace fs = std::filesystem;
 
 namespace {
 
+using testing_support::Child;
+using ::testing::HasSubstr;
+
 // An `actuator serve` child process on a free loopback port, killed when the test ends.
 class Server {
 public:
-    explicit Server(const fs::path& log) {
-        std::vector<std::string> args{ACTUATOR_BIN, "serve", "--listen", "127.0.0.1:0", "--threads", "1"};
-        std::vector<char*> argv;
-        for (auto& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        posix_spawn_file_actions_t actions;
-        posix_spawn_file_actions_init(&actions);
-        posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-        posix_spawn(&pid_, ACTUATOR_BIN, &actions, nullptr, argv.data(), environ);
-        posix_spawn_file_actions_destroy(&actions);
-        for (int wait = 0; wait < 500 && port_ == 0; ++wait) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-            std::ifstream in(log);
-            std::string word;
-            while (in >> word)
-                if (word.rfind("127.0.0.1:", 0) == 0) port_ = std::stoi(word.substr(10));
-        }
+    explicit Server(const fs::path& log) : log_(log), child_({ACTUATOR_BIN, "serve", "--listen", "127.0.0.1:0", "--threads", "1"}, log.string()) {
+        testing_support::WaitUntil(
+            [&] {
+                std::ifstream in(log_);
+                std::string word;
+                while (in >> word)
+                    if (word.rfind("127.0.0.1:", 0) == 0) port_ = std::stoi(word.substr(10));
+                return port_ != 0;
+            },
+            5);
     }
-    ~Server() { Kill(); }
-    void Kill() {
-        if (pid_ <= 0) return;
-        kill(pid_, SIGKILL);
-        waitpid(pid_, nullptr, 0);
-        pid_ = -1;
-    }
-    bool Alive() const { return pid_ > 0 && kill(pid_, 0) == 0; }
+    void Kill() { child_.Kill(SIGKILL); }
+    bool Alive() const { return child_.Running(); }
     std::string Address() const { return "127.0.0.1:" + std::to_string(port_); }
     int Port() const { return port_; }
 
 private:
-    pid_t pid_ = -1;
+    fs::path log_;
+    Child child_;
     int port_ = 0;
 };
 
 class Remote : public CliTest {
 protected:
     std::string Sweep(int points, int iterations) const {
-        Write("sweep.json", R"({"id": "remote", "iterations": )" + std::to_string(iterations) + R"(,
-            "shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
-            "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 10, "points": )" + std::to_string(points) + R"(}]},
-            "render": {"figures": false}})");
+        Write("sweep.json", R"({"id": "remote", "sim": {"iterations": )" + std::to_string(iterations) + R"(},
+            "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
+                      "axes": [{"parameter": "amplitude", "from": 1, "to": 10, "points": )" + std::to_string(points) + R"(}]},
+            "render": {"figures": false, "thumbnails": false}})");
         return Path("sweep.json");
     }
     std::string Ga() const {
-        Write("ga.json", R"({"id": "remote-ga", "seed": 5, "iterations": 2000,
+        Write("ga.json", R"({"id": "remote-ga", "seed": 5, "sim": {"iterations": 2000},
             "evolve": {"runs": 1, "population": 8, "generations": 3, "genome": {"kind": "bspline", "splines": 1, "length": [5, 8]}},
-            "render": {"figures": false}})");
+            "render": {"figures": false, "thumbnails": false}})");
         return Path("ga.json");
     }
     // A raw TCP connection that sends bytes and closes: what a broken or hostile client does.
@@ -109,6 +97,20 @@ TEST_F(Remote, TwoServersGiveTheSameResultsAsALocalRun) {
     ASSERT_EQ(ga.exitCode, 0) << ga.err;
     for (const char* file : {"logbook.csv", "halloffame.csv", "best_per_generation.csv"})
         EXPECT_EQ(Slurp(dir_ / "ga-remote" / "run_1" / file), Slurp(dir_ / "ga-local" / "run_1" / file)) << file;
+    EXPECT_EQ(Slurp(dir_ / "ga-remote" / "evaluations.csv"), Slurp(dir_ / "ga-local" / "evaluations.csv"));
+}
+
+// 5,000 points against one server: more than a call may carry (the server says so in info()), so
+// the pool splits the batch; the results equal the local sweep's.
+TEST_F(Remote, ALargeSweepAgainstOneServerEqualsTheLocalSweep) {
+    Server server(Path("s.log"));
+    ASSERT_GT(server.Port(), 0);
+    ASSERT_EQ(Run("sweep " + Sweep(5000, 20) + " --out " + Path("local")).exitCode, 0);
+    const Result remote = Run("sweep " + Sweep(5000, 20) + " --out " + Path("remote") + " --workers " + server.Address());
+    ASSERT_EQ(remote.exitCode, 0) << remote.err;
+    EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
+    EXPECT_EQ(Slurp(dir_ / "remote" / "evaluations.csv"), Slurp(dir_ / "local" / "evaluations.csv"));
+    EXPECT_TRUE(server.Alive());
 }
 
 TEST_F(Remote, AServerKilledMidRunLosesNothing) {
@@ -125,8 +127,8 @@ TEST_F(Remote, AServerKilledMidRunLosesNothing) {
     const Result remote = Run("sweep " + Sweep(30, 10000) + " --out " + Path("remote") + " --workers " + a.Address() + "," + b.Address());
     killer.join();
     ASSERT_EQ(remote.exitCode, 0) << remote.err;
-    EXPECT_NE(remote.err.find("worker " + a.Address() + " failed"), std::string::npos) << remote.err;
-    EXPECT_NE(remote.err.find("shapes go to the other workers"), std::string::npos);
+    EXPECT_THAT(remote.err, HasSubstr("worker " + a.Address() + " failed"));
+    EXPECT_THAT(remote.err, HasSubstr("shapes go to the other workers"));
     EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
     EXPECT_TRUE(b.Alive());
 }
@@ -137,10 +139,14 @@ TEST_F(Remote, ARunWithoutLiveServersStopsWithExitCode3) {
     a.Kill();
     const Result r = Run("evolve " + Ga() + " --out " + Path("gone") + " --workers " + address);
     EXPECT_EQ(r.exitCode, 3) << r.err;
-    EXPECT_NE(r.err.find("every worker is gone"), std::string::npos) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("every worker is gone"));
     ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --workers ,", "--workers");
     ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --workers nohost", "needs a port");
+    ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --workers 127.0.0.1:99999", "out of range");
+    ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --worker-timeout 1e10 --workers local", "--worker-timeout");
+    ExpectRefused("sweep " + Sweep(3, 100) + " --out " + Path("x") + " --worker-timeout 5", "goes with --workers");
     ExpectRefused("serve --listen 127.0.0.1:99999", "--listen");
+    ExpectRefused("serve --listen \"127.0.0.1: 5\"", "contains a space");
 }
 
 TEST_F(Remote, MalformedAndHostileMessagesNeverTakeTheServerDown) {
@@ -186,12 +192,28 @@ TEST_F(Remote, MalformedAndHostileMessagesNeverTakeTheServerDown) {
             request(fill).wait(waitScope);
             ADD_FAILURE() << what << " was accepted";
         } catch (const kj::Exception& error) {
-            EXPECT_NE(std::string(error.getDescription().cStr()).find("bad evaluation request"), std::string::npos) << what << ": " << error.getDescription().cStr();
+            EXPECT_THAT(std::string(error.getDescription().cStr()), HasSubstr("bad evaluation request")) << what;
         }
     }
+    const app::ServerLimits limits;
     auto tooMany = evaluator.evaluateRequest();
-    tooMany.initRequests(app::kServerMaxRequests + 1);
+    tooMany.initRequests(limits.maxRequests + 1);
     EXPECT_THROW(tooMany.send().wait(waitScope), kj::Exception);
+    // Inside the count limit, but the reply would pass the size bound: refused, not attempted.
+    auto tooLarge = evaluator.evaluateRequest();
+    auto large = tooLarge.initRequests(400);
+    for (unsigned k = 0; k < large.size(); ++k) {
+        large[k].initShape().setCylinder();
+        large[k].initParams().setIterations(10);
+        large[k].initMeshSize().setResolution(256);
+        large[k].getMeshSize().setTurns(256);
+    }
+    try {
+        tooLarge.send().wait(waitScope);
+        ADD_FAILURE() << "400 shapes of 256 x 256 were accepted in one call";
+    } catch (const kj::Exception& error) {
+        EXPECT_THAT(std::string(error.getDescription().cStr()), HasSubstr("the reply would take"));
+    }
 
     // And a good request is still answered, correctly.
     auto good = request([](auto) {}).wait(waitScope);
@@ -200,7 +222,8 @@ TEST_F(Remote, MalformedAndHostileMessagesNeverTakeTheServerDown) {
     EXPECT_EQ(good.getResponses()[0].getFinal().getX().size(), 900u);
     EXPECT_TRUE(server.Alive());
     auto info = evaluator.infoRequest().send().wait(waitScope);
-    EXPECT_EQ(info.getMaxVertices(), app::kServerMaxVertices);
+    EXPECT_EQ(info.getMaxVertices(), limits.maxVertices);
+    EXPECT_GT(info.getMaxReplyWords(), 0u);
 }
 
 TEST_F(Remote, AHungServerTimesOutAndItsShapesGoToTheOthers) {
@@ -217,11 +240,12 @@ TEST_F(Remote, AHungServerTimesOutAndItsShapesGoToTheOthers) {
 
     Server good(Path("good.log"));
     ASSERT_GT(good.Port(), 0);
-    ASSERT_EQ(Run("sweep " + Sweep(6, 2000) + " --out " + Path("local")).exitCode, 0);
-    const Result r = Run("sweep " + Sweep(6, 2000) + " --out " + Path("remote") + " --worker-timeout 1 --workers 127.0.0.1:" +
+    // Long enough (sixty 10,000-iteration shapes on one server thread, about 2.5 s) for the timeout to pass.
+    ASSERT_EQ(Run("sweep " + Sweep(60, 10000) + " --out " + Path("local")).exitCode, 0);
+    const Result r = Run("sweep " + Sweep(60, 10000) + " --out " + Path("remote") + " --worker-timeout 1 --workers 127.0.0.1:" +
                          std::to_string(hungPort) + "," + good.Address());
     close(listener);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("no answer within the worker timeout"), std::string::npos) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("no answer within the worker timeout"));
     EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
 }

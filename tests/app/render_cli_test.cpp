@@ -2,22 +2,17 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_fixture.h"
-
 #include "render/image.h"
 
 namespace fs = std::filesystem;
+using testing_support::LoadPng;
+using ::testing::HasSubstr;
 
 namespace {
 
 class RenderCli : public CliTest {
 protected:
-    static render::Image Load(const fs::path& path) {
-        const std::string bytes = Slurp(path);
-        render::Image image;
-        std::string error;
-        EXPECT_TRUE(render::DecodePng(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), &image, &error)) << path << ": " << error;
-        return image;
-    }
+    static render::Image Load(const fs::path& path, std::source_location where = std::source_location::current()) { return LoadPng(path, where); }
     static int CountFiles(const fs::path& folder) {
         int count = 0;
         for (const auto& entry : fs::directory_iterator(folder)) count += entry.path().extension() == ".png";
@@ -51,7 +46,7 @@ TEST_F(RenderCli, TurntableAndTimelapseWriteTheirFrames) {
     const Result r = Run("render --shape sine --size 160x120 --iterations 400 --turntable --timelapse 4 --out " + Path("seq"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(CountFiles(dir_ / "seq" / "turntable"), 60);  // --turntable alone means 60 frames
-    EXPECT_EQ(CountFiles(dir_ / "seq" / "timelapse"), 5);   // iterations 0, 100, 200, 300, 400
+    EXPECT_EQ(CountFiles(dir_ / "seq" / "timelapse"), 4);   // --timelapse N writes N frames: iterations 0, 133, 266, 400
     // The turntable moves: frame 15 (a quarter turn) differs from frame 0.
     const auto comparison = render::CompareImages(Load(dir_ / "seq" / "turntable" / "frame_0000.png"),
                                                   Load(dir_ / "seq" / "turntable" / "frame_0015.png"), render::ImageTolerance{});
@@ -62,7 +57,7 @@ TEST_F(RenderCli, VideoNeedsFfmpegAndSaysSoWhenMissing) {
     const Result r = Run("render --shape cylinder --size 160x120 --iterations 100 --turntable 3 --video --out " + Path("v"),
                          "PATH=" + Path("empty-path"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("ffmpeg is not installed"), std::string::npos) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("ffmpeg is not installed"));
     EXPECT_FALSE(fs::exists(dir_ / "v" / "turntable.mp4"));
     if (std::system("command -v ffmpeg > /dev/null 2>&1") == 0) {
         const Result withFfmpeg = Run("render --shape cylinder --size 160x120 --iterations 100 --turntable 3 --video --out " + Path("v"));
@@ -79,9 +74,26 @@ TEST_F(RenderCli, BadOptionsAreRefused) {
     ExpectRefused("render --color-by purple --out " + Path("x"), "purple");
     ExpectRefused("render --load stretch --out " + Path("x"), "--load");
     ExpectRefused("render --iterations 100 --timelapse 500 --out " + Path("x"), "--timelapse");
+    ExpectRefused("render --resolution 256 --turns 256 --iterations 100000 --timelapse 100000 --out " + Path("x"), "GB of snapshots");
+    ExpectRefused("render --video --out " + Path("x"), "--video needs");
+    ExpectRefused("render --gl-backend vulkan --out " + Path("x"), "choose osmesa or egl");
     ExpectRefused("render --png-level 12 --out " + Path("x"), "--png-level");
     std::ofstream(Path("file")) << "not a folder";
     ExpectRefused("render --out " + Path("file"), "--out");
+    // Every output is checked before any is written: stretch.png being a folder stops the run
+    // before inflation.png exists.
+    fs::create_directories(dir_ / "partial" / "stretch.png");
+    ExpectRefused("render --out " + Path("partial"), "stretch.png");
+    EXPECT_FALSE(fs::exists(dir_ / "partial" / "inflation.png"));
+}
+
+TEST_F(RenderCli, BothGlBackendsDrawTheSamePicture) {
+    ASSERT_EQ(Run("render --shape sine --size 320x240 --iterations 500 --gl-backend osmesa --out " + Path("osmesa")).exitCode, 0);
+    const Result egl = Run("render --shape sine --size 320x240 --iterations 500 --gl-backend egl --out " + Path("egl"));
+    ASSERT_EQ(egl.exitCode, 0) << egl.err;
+    EXPECT_THAT(egl.out, HasSubstr("egl surfaceless"));
+    const auto comparison = render::CompareImages(Load(dir_ / "osmesa" / "inflation.png"), Load(dir_ / "egl" / "inflation.png"), render::ImageTolerance{});
+    EXPECT_TRUE(comparison.matches) << comparison.Summary();
 }
 
 TEST_F(RenderCli, ImgDiffExitCodes) {
@@ -95,7 +107,7 @@ TEST_F(RenderCli, ImgDiffExitCodes) {
 
     Result differ = Run("imgdiff " + a + " " + b + " --diff " + Path("diff.png"));
     EXPECT_EQ(differ.exitCode, 1);
-    EXPECT_NE(differ.out.find("% of pixels differ"), std::string::npos) << differ.out;
+    EXPECT_THAT(differ.out, HasSubstr("% of pixels differ"));
     EXPECT_FALSE(render::IsUniform(Load(Path("diff.png"))));
 
     // A looser tolerance accepts the same pair.
@@ -104,6 +116,7 @@ TEST_F(RenderCli, ImgDiffExitCodes) {
     std::ofstream(Path("fake.png")) << "GIF89a";
     ExpectRefused("imgdiff " + a + " " + Path("fake.png"), "fake.png");
     ExpectRefused("imgdiff " + a + " " + Path("missing.png"), "missing.png");
-    ExpectRefused("imgdiff " + a, "two PNG files");
+    ExpectRefused("imgdiff " + a, "actual");
+    ExpectRefused("imgdiff " + a + " " + b + " --diff " + a, "also an input");
     ExpectRefused("imgdiff " + a + " " + b + " --threshold 300", "--threshold");
 }

@@ -1,33 +1,38 @@
-// `actuator sweep` and `actuator evolve`: the thesis's amplitude sweep, GA reproducibility across
-// thread counts, resume after a kill, and precise refusal of bad experiment files.
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-
-#include <chrono>
+// `actuator sweep`, `evolve`, `reproduce` and `inspect` as a user runs them: the thesis's amplitude
+// sweep, GA reproducibility across thread counts, kill-and-resume at three moments with every output
+// equal to an uninterrupted run's, results folders that never mix, one evaluation id everywhere,
+// --set, and precise refusal of bad experiment files.
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <thread>
+#include <set>
 
 #include "cli_fixture.h"
-#include "render/image.h"
+#include "csv.h"
 
-extern char** environ;
 namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing_support::Child;
+using testing_support::ExpectPicture;
+using testing_support::WaitUntil;
 
 namespace {
 
 class SearchCli : public CliTest {
 protected:
     // A GA small enough for a test but long enough (about a second per run) to be killed mid-run.
-    std::string SmallGa(int generations = 10, int runs = 2) const {
-        const std::string path = Path("ga.json");
-        Write("ga.json", R"({"id": "test", "title": "small GA", "seed": 99, "iterations": 3000,
+    std::string SmallGa(int generations = 10, int runs = 2, bool figures = true) const {
+        Write("ga.json", R"({"id": "test", "title": "small GA", "seed": 99, "sim": {"iterations": 3000},
             "evolve": {"runs": )" + std::to_string(runs) + R"(, "population": 10, "generations": )" + std::to_string(generations) +
                              R"(, "tournament": 3, "elite": 1, "mutpb": 0.5, "indpb": 0.2,
                         "genome": {"kind": "bspline", "region": "middle", "splines": 2, "control": [0, 8], "length": [5, 9]}},
-            "render": {"figures": false}})");
-        return path;
+            "render": {"figures": )" + (figures ? "true" : "false") + "}}");
+        return Path("ga.json");
+    }
+    std::string SmallSweep(int points = 24) const {
+        Write("sweep.json", R"({"id": "s", "sim": {"iterations": 4000},
+            "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
+                      "axes": [{"parameter": "amplitude", "from": 1, "to": 8, "points": )" + std::to_string(points) + R"(}]},
+            "thesis_result": {"points": [{"amplitude": 4.1, "fitness": 0.75}]}})");
+        return Path("sweep.json");
     }
     std::string RunFiles(const fs::path& out, int runs) const {
         std::string all;
@@ -36,16 +41,43 @@ protected:
                 all += std::string(file) + ":\n" + Slurp(out / ("run_" + std::to_string(r)) / file);
         return all;
     }
-    static std::vector<std::vector<std::string>> ReadCsv(const std::string& text) {
-        std::vector<std::vector<std::string>> rows;
-        std::istringstream lines(text);
-        for (std::string line; std::getline(lines, line);) {
-            std::vector<std::string> cells;
-            std::istringstream fields(line);
-            for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-            rows.push_back(cells);
+    // Every archived record with its meshes, timing aside.
+    nlohmann::json Records(const fs::path& dir) const {
+        const Result r = Run("inspect " + (dir / "evaluations.capnp").string() + " --json --export-obj " + (dir_ / ("obj_" + dir.filename().string())).string());
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        auto json = nlohmann::json::parse(r.out)["evaluations"];
+        for (auto& e : json) e.erase("elapsed_ms");
+        return json;
+    }
+    // Every file of two results folders equal, but for summary.json's timings and the lock's pid.
+    void ExpectSameOutputs(const fs::path& a, const fs::path& b, std::source_location where = std::source_location::current()) const {
+        const ::testing::ScopedTrace trace(where.file_name(), static_cast<int>(where.line()), a.string() + " vs " + b.string());
+        std::set<std::string> filesA, filesB;
+        for (const auto& e : fs::recursive_directory_iterator(a)) if (e.is_regular_file()) filesA.insert(fs::relative(e.path(), a).string());
+        for (const auto& e : fs::recursive_directory_iterator(b)) if (e.is_regular_file()) filesB.insert(fs::relative(e.path(), b).string());
+        EXPECT_EQ(filesA, filesB);
+        for (const auto& f : filesA) {
+            if (f == "summary.json" || f == ".lock" || f == "evaluations.capnp" || !filesB.count(f)) continue;
+            EXPECT_TRUE(Slurp(a / f) == Slurp(b / f)) << f << " differs";
         }
-        return rows;
+        EXPECT_EQ(Records(a), Records(b));
+        for (const auto& e : fs::recursive_directory_iterator(dir_ / ("obj_" + a.filename().string())))
+            EXPECT_TRUE(Slurp(e.path()) == Slurp(dir_ / ("obj_" + b.filename().string()) / e.path().filename())) << e.path() << " differs";
+    }
+    // Starts `args`, kills it with SIGKILL once `ready` holds, checks it was really cut off.
+    void KillWhen(const std::vector<std::string>& args, const std::function<bool()>& ready, std::source_location where = std::source_location::current()) {
+        Child child(args);
+        const bool reached = WaitUntil(ready, 60);
+        const int status = child.Kill(SIGKILL);
+        if (!reached || !WIFSIGNALED(status))
+            ADD_FAILURE_AT(where.file_name(), static_cast<int>(where.line())) << "the run finished before it could be killed; the test proves nothing";
+    }
+    static int Generation(const fs::path& checkpoint) {
+        try {
+            return nlohmann::json::parse(testing_support::Slurp(checkpoint))["generation"].get<int>();
+        } catch (...) {
+            return -1;
+        }
     }
 };
 
@@ -60,21 +92,20 @@ TEST_F(SearchCli, ThesisAmplitudeSweepPeaksBetween3And5AndTurnsNegativePast7) {
         if (row["quantity"] == "best amplitude") bestAmplitude = row["ours"].get<double>();
     EXPECT_GE(bestAmplitude, 3.0);
     EXPECT_LE(bestAmplitude, 5.0);
-    const auto rows = ReadCsv(Slurp(dir_ / "s41" / "results.csv"));
+    const auto rows = app::ParseCsv(Slurp(dir_ / "s41" / "results.csv"));
     ASSERT_EQ(rows.size(), 31u);  // header + 30 amplitudes
     EXPECT_EQ(rows[0][1], "amplitude");
     for (size_t k = 1; k < rows.size(); ++k)
         if (std::stod(rows[k][1]) > 7) EXPECT_LT(std::stod(rows[k][2]), 0) << "A=" << rows[k][1];
-    for (const char* figure : {"landscape.png", "best_inflation.png", "best_stretch.png"})
-        EXPECT_GT(fs::file_size(dir_ / "s41" / figure), 10000u) << figure;
+    for (const char* figure : {"landscape.png", "best_inflation.png", "best_stretch.png", "contact_sheet.png"}) ExpectPicture(dir_ / "s41" / figure);
 }
 
 TEST_F(SearchCli, EvolveGivesTheSameBytesWhateverTheThreadCount) {
-    const std::string experiment = SmallGa(6, 2);
+    const std::string experiment = SmallGa(6, 2, false);
     ASSERT_EQ(Run("evolve " + experiment + " --out " + Path("t1") + " --threads 1").exitCode, 0);
     const Result two = Run("evolve " + experiment + " --out " + Path("t2") + " --threads 2");
     ASSERT_EQ(two.exitCode, 0) << two.err;
-    EXPECT_EQ(RunFiles(dir_ / "t1", 2), RunFiles(dir_ / "t2", 2));
+    ExpectSameOutputs(dir_ / "t1", dir_ / "t2");
     // Different runs get different derived seeds, written into the output.
     const auto seed = [&](int run) {
         return nlohmann::json::parse(Slurp(dir_ / "t2" / ("run_" + std::to_string(run)) / "checkpoint.json"))["seed"].get<std::uint64_t>();
@@ -83,84 +114,196 @@ TEST_F(SearchCli, EvolveGivesTheSameBytesWhateverTheThreadCount) {
 }
 
 TEST_F(SearchCli, EvolveImprovesAndLogsEveryGeneration) {
-    const Result r = Run("evolve " + SmallGa(10, 1) + " --out " + Path("e"));
+    const Result r = Run("evolve " + SmallGa(10, 1, false) + " --out " + Path("e"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const auto rows = ReadCsv(Slurp(dir_ / "e" / "run_1" / "logbook.csv"));
+    const auto rows = app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "logbook.csv"));
     ASSERT_EQ(rows.size(), 12u);  // header + generations 0..10
     EXPECT_EQ(rows[0], (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "invalid"}));
     EXPECT_EQ(rows[1][1], "10");  // the initial population is evaluated whole
     for (size_t k = 2; k < rows.size(); ++k) EXPECT_GE(std::stod(rows[k][2]), std::stod(rows[k - 1][2])) << "best fell at row " << k;
     EXPECT_GT(std::stod(rows.back()[2]), std::stod(rows[1][2])) << "ten generations should improve on the initial best";
-    EXPECT_EQ(ReadCsv(Slurp(dir_ / "e" / "run_1" / "best_per_generation.csv")).size(), 12u);
-    EXPECT_GE(ReadCsv(Slurp(dir_ / "e" / "run_1" / "halloffame.csv")).size(), 2u);
+    EXPECT_EQ(app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "best_per_generation.csv")).size(), 12u);
+    EXPECT_GE(app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "halloffame.csv")).size(), 2u);
 }
 
-TEST_F(SearchCli, ResumeAfterAKillEndsLikeAnUninterruptedRun) {
-    const std::string experiment = SmallGa(12, 2);
+// Killed early in run 1, mid-way through run 1, and during run 2: each resumed run's every output
+// (archive records with their meshes, evaluations.csv, thumbnails, sheets, logbooks, hall of fame,
+// figures) equals the uninterrupted run's.
+TEST_F(SearchCli, EvolveResumedAfterAKillAtThreeMomentsEndsLikeAnUninterruptedRun) {
+    const std::string experiment = SmallGa(8, 2);
     ASSERT_EQ(Run("evolve " + experiment + " --out " + Path("whole")).exitCode, 0);
-
-    // Start the same run, kill it hard once the first run has checkpointed generation 3.
-    const std::string out = Path("killed");
-    std::vector<std::string> args{ACTUATOR_BIN, "evolve", experiment, "--out", out};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t child = 0;
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-    ASSERT_EQ(posix_spawn(&child, ACTUATOR_BIN, &actions, nullptr, argv.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&actions);
-    const fs::path checkpoint = fs::path(out) / "run_1" / "checkpoint.json";
-    int generation = -1;
-    for (int wait = 0; wait < 3000 && generation < 3; ++wait) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        if (!fs::exists(checkpoint)) continue;
-        try { generation = nlohmann::json::parse(Slurp(checkpoint))["generation"].get<int>(); } catch (...) {}
+    struct Moment {
+        const char* name;
+        std::function<bool(const fs::path&)> ready;
+    };
+    const Moment moments[] = {
+        {"first", [](const fs::path& out) { return fs::exists(out / "thumbnails" / "evaluation_000003.png"); }},
+        {"middle", [](const fs::path& out) { return Generation(out / "run_1" / "checkpoint.json") >= 3; }},
+        {"second", [](const fs::path& out) { return Generation(out / "run_2" / "checkpoint.json") >= 1; }},
+    };
+    for (const Moment& m : moments) {
+        const fs::path out = dir_ / m.name;
+        KillWhen({ACTUATOR_BIN, "evolve", experiment, "--out", out.string()}, [&] { return m.ready(out); });
+        EXPECT_FALSE(fs::exists(out / "summary.json")) << m.name;
+        const Result resumed = Run("evolve --resume " + out.string());
+        ASSERT_EQ(resumed.exitCode, 0) << m.name << ": " << resumed.err;
+        ExpectSameOutputs(dir_ / "whole", out);
     }
-    kill(child, SIGKILL);
-    int status = 0;
-    waitpid(child, &status, 0);
-    ASSERT_TRUE(WIFSIGNALED(status)) << "the run finished before it could be killed; the test proves nothing";
-    ASSERT_GE(generation, 3);
-    EXPECT_FALSE(fs::exists(fs::path(out) / "summary.json"));
+}
 
-    // The archive survived the kill: inspect reads every complete evaluation of it.
-    const Result afterKill = Run("inspect " + out + "/evaluations.capnp --json");
-    ASSERT_EQ(afterKill.exitCode, 0) << afterKill.err;
-    EXPECT_GE(nlohmann::json::parse(afterKill.out)["total"].get<int>(), 10);
-
-    const Result resumed = Run("evolve --resume " + out);
+TEST_F(SearchCli, SweepResumedAfterAKillEndsLikeAnUninterruptedRun) {
+    const std::string experiment = SmallSweep();
+    ASSERT_EQ(Run("sweep " + experiment + " --out " + Path("whole") + " --threads 1").exitCode, 0);
+    const fs::path out = dir_ / "cut";
+    KillWhen({ACTUATOR_BIN, "sweep", experiment, "--out", out.string(), "--threads", "1"},
+             [&] { return fs::exists(out / "thumbnails" / "evaluation_000007.png"); });
+    const Result resumed = Run("sweep --resume " + out.string() + " --threads 2");
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
-    EXPECT_EQ(RunFiles(out, 2), RunFiles(dir_ / "whole", 2));
+    ExpectSameOutputs(dir_ / "whole", out);
+}
+
+TEST_F(SearchCli, AFolderWithResultsIsNeverMixedInto) {
+    const std::string experiment = SmallGa(1, 1, false);
+    ASSERT_EQ(Run("evolve " + experiment + " --out " + Path("a")).exitCode, 0);
+    const std::string archive = Slurp(dir_ / "a" / "evaluations.capnp"), csv = Slurp(dir_ / "a" / "evaluations.csv");
+    ExpectRefused("evolve " + experiment + " --out " + Path("a"), "already holds results");
+    ExpectRefused("sweep " + SmallSweep() + " --out " + Path("a"), "already holds results");
+    EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.capnp"), archive);
+    EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.csv"), csv);
+    ExpectRefused("evolve " + experiment + " --out " + Path("a") + " --resume --overwrite", "exclude each other");
+    ExpectRefused("evolve --resume " + Path("nothing-here"), "holds no experiment.json");
+    // Resuming a finished run changes nothing.
+    ASSERT_EQ(Run("evolve --resume " + Path("a")).exitCode, 0);
+    EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.csv"), csv);
+}
+
+TEST_F(SearchCli, OverwriteKeepsTheOldResultsUntilTheNewRunHasOne) {
+    ASSERT_EQ(Run("evolve " + SmallGa(1, 1, false) + " --out " + Path("a")).exitCode, 0);
+    const std::string old = Slurp(dir_ / "a" / "evaluations.csv");
+    // A run that fails before its first result puts the old results back.
+    Write("bad.json", R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}, "render": {"figures": 1}})");
+    ExpectRefused("sweep " + Path("bad.json") + " --out " + Path("a") + " --overwrite", "expected true or false");
+    EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.csv"), old);
+    // Interrupted (SIGTERM) before its first result: the old results are back in place.
+    Write("slow.json", R"({"sim": {"iterations": 3000000}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
+    {
+        Child child({ACTUATOR_BIN, "sweep", Path("slow.json"), "--out", Path("a"), "--overwrite"});
+        ASSERT_TRUE(WaitUntil([&] { return fs::exists(Path("a/run.json")) && Slurp(dir_ / "a" / "run.json").find("3000000") != std::string::npos; }, 30));
+        EXPECT_TRUE(fs::exists(Path("a.replaced-" + std::to_string(child.Pid())))) << "the old results are set aside, not deleted";
+        child.Kill(SIGTERM);
+    }
+    EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.csv"), old);
+    // A run that gets its results replaces them.
+    ASSERT_EQ(Run("sweep " + SmallSweep(3) + " --out " + Path("a") + " --overwrite").exitCode, 0);
+    EXPECT_THAT(Slurp(dir_ / "a" / "evaluations.csv"), HasSubstr(",grid,"));
+    for (const auto& e : fs::directory_iterator(dir_)) EXPECT_THAT(e.path().filename().string(), ::testing::Not(HasSubstr("replaced")));
+}
+
+TEST_F(SearchCli, OneEvaluationIdInTheArchiveTheLogTheThumbnailsAndRender) {
+    ASSERT_EQ(Run("evolve " + SmallGa(3, 2) + " --out " + Path("a")).exitCode, 0);
+    const std::string archive = Path("a/evaluations.capnp");
+    const auto records = Records(dir_ / "a");
+    const auto log = app::ParseCsv(Slurp(dir_ / "a" / "evaluations.csv"));
+    ASSERT_EQ(log.size(), records.size() + 1);
+    for (size_t k = 0; k < records.size(); ++k) {
+        EXPECT_EQ(records[k]["id"].get<size_t>(), k);
+        EXPECT_EQ(log[k + 1][0], std::to_string(k));
+        EXPECT_EQ(log[k + 1][1], records[k]["role"]);
+        EXPECT_TRUE(fs::exists(dir_ / "a" / "thumbnails" / log[k + 1][10])) << log[k + 1][10];
+    }
+    EXPECT_EQ(log[5][10], "evaluation_000004.png");
+    // inspect filters.
+    const auto count = [&](const std::string& filter) {
+        const Result r = Run("inspect " + archive + " --json " + filter);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return nlohmann::json::parse(r.out)["evaluations"];
+    };
+    for (const auto& e : count("--run 2")) EXPECT_EQ(e["run"], 2);
+    EXPECT_EQ(count("--generation 0 --run 1").size(), 10u);  // the initial population
+    for (const auto& e : count("--min-fitness 0.1")) EXPECT_GE(e["fitness"].get<double>(), 0.1);
+    EXPECT_EQ(count("--limit 3").size(), 3u);
+    const auto top = count("--top 3");
+    ASSERT_EQ(top.size(), 3u);
+    EXPECT_GE(top[0]["fitness"].get<double>(), top[1]["fitness"].get<double>());
+    EXPECT_EQ(count("--role figure").size(), 1u);  // the best design's stretch test
+    // Complete records: every control point of every spline, with the region.
+    EXPECT_EQ(records[0]["shape"]["region"], "middle");
+    EXPECT_EQ(records[0]["shape"]["control_points"].size(), 2u);
+    const Result table = Run("inspect " + archive + " --status ok --limit 2");
+    EXPECT_THAT(table.out, HasSubstr("2 of " + std::to_string(records.size()) + " evaluations shown"));
+
+    // render --from and simulate --from take the same id.
+    const Result rendered = Run("render --from " + archive + " --index 4 --out " + Path("again") + " --turntable 2");
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+    EXPECT_EQ(nlohmann::json::parse(rendered.out)["simulated"], false);
+    ExpectPicture(dir_ / "again" / "evaluation_000004.png");
+    EXPECT_TRUE(fs::exists(dir_ / "again" / "turntable" / "frame_0001.png"));
+    const Result again = Run("simulate --from " + archive + " --index 4");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(nlohmann::json::parse(again.out)["fitness"], records[4]["fitness"]);
+    // The design column feeds straight back into simulate.
+    const Result fromCsv = Run("simulate --shape bspline --control-points \"" + log[5][11] + "\" --iterations 3000");
+    EXPECT_EQ(nlohmann::json::parse(fromCsv.out)["fitness"], records[4]["fitness"]);
+
+    ExpectRefused("render --from " + archive + " --out " + Path("x"), "--index");
+    ExpectRefused("render --from " + archive + " --index 100000 --out " + Path("x"), "holds evaluations 0 to");
+    ExpectRefused("render --from " + archive + " --index 1 --shape sine --out " + Path("x"), "--shape");
+    ExpectRefused("render --from " + archive + " --index 1 --timelapse 3 --out " + Path("x"), "--timelapse");
+    ExpectRefused("simulate --from " + archive + " --index 1 --amplitude 3", "--amplitude");
+    ExpectRefused("inspect " + Path("missing.capnp"), "missing.capnp");
+    Write("junk.capnp", std::string(3000, '\x7f'));
+    ExpectRefused("inspect " + Path("junk.capnp"), "not an evaluation archive");
+    ExpectRefused("inspect " + archive + " --status weird", "weird");
+    ExpectRefused("inspect " + archive + " --top 2 --sort id", "--top");
+}
+
+TEST_F(SearchCli, SetOverridesAnyExperimentKeyAndIsCheckedLikeTheFile) {
+    const Result r = Run("evolve " + SmallGa(10, 2, false) + " --out " + Path("o") + " --set evolve.generations=2 --set evolve.runs=1 --set sim.iterations=500");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(app::ParseCsv(Slurp(dir_ / "o" / "run_1" / "logbook.csv")).size(), 4u);
+    EXPECT_FALSE(fs::exists(dir_ / "o" / "run_2"));
+    // The saved experiment is what ran.
+    const auto saved = nlohmann::json::parse(Slurp(dir_ / "o" / "experiment.json"));
+    EXPECT_EQ(saved["evolve"]["generations"], 2);
+    EXPECT_EQ(saved["sim"]["iterations"], 500);
+    ExpectRefused("evolve " + SmallGa() + " --out " + Path("p") + " --set evolve.generatons=2", "did you mean 'evolve.generations'");
+    ExpectRefused("evolve " + SmallGa() + " --out " + Path("p") + " --set sim.pressure_scale=-1", "--set sim.pressure_scale=-1");
+    ExpectRefused("evolve " + SmallGa() + " --out " + Path("p") + " --set evolve", "KEY.PATH=VALUE");
+    ExpectRefused("sweep " + SmallSweep() + " --out " + Path("p") + " --set sweep.axes[3].points=2", "has 1 entries");
+    EXPECT_FALSE(fs::exists(Path("p")) && fs::exists(Path("p/evaluations.capnp")));
 }
 
 TEST_F(SearchCli, BadExperimentFilesAreRefusedPrecisely) {
-    const std::string sweep = R"({"shape": {"family": "sine"}, "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})";
-    auto refuse = [&](const std::string& text, const std::string& mentions) {
+    const std::string sweep = R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})";
+    auto refuse = [&](const std::string& text, const std::string& mentions, std::source_location where = std::source_location::current()) {
         Write("bad.json", text);
-        ExpectRefused("sweep " + Path("bad.json") + " --out " + Path("o"), mentions);
+        ExpectRefused("sweep " + Path("bad.json") + " --out " + Path("o"), mentions, where);
     };
-    refuse(R"({"shape": {"family": "sine"}, "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}, "iteratons": 5})",
+    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}, "iteratons": 5})",
            "'iteratons': unknown key");
-    refuse(R"({"shape": {"family": "sine"}, "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": "many"}]}})",
-           "'sweep.axes[0].points': expected a whole number");
-    refuse(R"({"shape": {"family": "sine"}, "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 0}]}})",
-           "'sweep.axes[0].points': out of range");
-    refuse(R"({"shape": {"family": "cone"}, "sweep": {"axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})",
-           "'shape.family': unknown value 'cone'");
-    refuse(R"({"evolve": {"population": 10, "tournament": 3, "mutpb": 1.5, "genome": {"kind": "bspline"}}})", "'evolve.mutpb': out of range");
+    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": "many"}]}})",
+           "'sweep.axes[0].points': expected a whole number, got 'many'");
+    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 0}]}})",
+           "'sweep.axes[0].points': '0' is out of range");
+    refuse(R"({"sweep": {"shape": {"family": "cone"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})",
+           "'sweep.shape.family': unknown value 'cone'");
+    refuse(R"({"evolve": {"population": 10, "tournament": 3, "mutpb": 1.5, "genome": {"kind": "bspline"}}})", "'evolve.mutpb': '1.5' is out of range");
     refuse(R"({"evolve": {"genome": {"kind": "bspline", "length": [3, 9]}}})", "'evolve.genome.length'");
     refuse(R"({"evolve": {"genome": {"kind": "bspline", "splines": 3}}})", "'evolve.genome.splines'");
-    refuse(R"({"shape": {"family": "sine"}})", "exactly one of");
-    refuse(R"({"shape": {"family": "sine"}, "sweep": )", "not valid JSON");
+    refuse(R"({"evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 18446744073709551615}})", "'18446744073709551615' is out of range");
+    refuse(R"({"sweep": {"shape": {"family": "sine", "amplitude": 1e400}, "axes": []}})", "line 1");
+    refuse(R"({"sweep": {"shape": {"family": "sine"}}})", "'sweep.axes': missing");
+    refuse(R"({"shape": {"family": "sine"}, "sweep": {}})", "'shape': has moved");
+    refuse(R"({"iterations": 100, "sweep": {}})", "'iterations': has moved");
+    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}, "sim": {"pressure": 0.01}})",
+           "did you mean 'sim.pressure_scale'");
+    refuse(R"({"sweep": )", "not valid JSON");
     refuse("[1, 2]", "must hold a JSON object");
-    refuse(R"({"load": "squash", )" + sweep.substr(1), "'load': unknown value");
+    refuse(R"({"sim": {"load": "squash"}, )" + sweep.substr(1), "'sim.load': unknown value 'squash'");
     Write("ok.json", sweep);
     ExpectRefused("evolve " + Path("ok.json") + " --out " + Path("o"), "run it with 'actuator sweep'");
     ExpectRefused("sweep " + Path("missing.json") + " --out " + Path("o"), "missing.json");
     ExpectRefused("sweep " + Path("ok.json"), "--out");
-    ExpectRefused("evolve --resume " + Path("nothing-here"), "experiment.json");
     EXPECT_FALSE(fs::exists(Path("o/results.csv")));
 }
 
@@ -170,7 +313,7 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     for (const auto& entry : fs::directory_iterator(fs::path(ACTUATOR_ASSETS_DIR) / "experiments")) {
         const std::string command = entry.path().filename().string().rfind("5.", 0) == 0 ? "evolve " : "sweep ";
         const Result r = Run(command + entry.path().string());
-        EXPECT_NE(r.err.find("--out DIR is required"), std::string::npos) << entry.path() << ": " << r.err;
+        EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
         ++files;
     }
     EXPECT_EQ(files, 10);
@@ -181,69 +324,17 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string report = Slurp(dir_ / "thesis" / "report.md");
     for (const char* section : {"## 4.1 ", "## 4.2 ", "## 4.3 ", "## 5.1 ", "## 5.2 ", "## 5.3 ", "## 5.4 ", "## 5.5 ", "## 6.1 ", "## 6.2 "})
-        EXPECT_NE(report.find(section), std::string::npos) << "missing section " << section;
-    EXPECT_NE(report.find("| ours | thesis |"), std::string::npos);
+        EXPECT_THAT(report, HasSubstr(section));
+    EXPECT_THAT(report, HasSubstr("| ours | thesis |"));
     // Every figure the report shows exists and is a real picture.
     size_t images = 0;
     for (size_t at = report.find("]("); at != std::string::npos; at = report.find("](", at + 2)) {
         if (report.compare(at - 1, 1, "`") == 0 || report[report.rfind('[', at) - 1] != '!') continue;  // links, not images
         const size_t end = report.find(')', at);
-        const std::string file = report.substr(at + 2, end - at - 2);
         ++images;
-        const std::string bytes = Slurp(dir_ / "thesis" / file);
-        render::Image image;
-        std::string error;
-        ASSERT_TRUE(render::DecodePng(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), &image, &error)) << file << ": " << error;
-        EXPECT_FALSE(render::IsUniform(image)) << file;
+        ExpectPicture(dir_ / "thesis" / report.substr(at + 2, end - at - 2));
     }
     EXPECT_GE(images, 30u);
-    EXPECT_TRUE(fs::exists(dir_ / "thesis" / "5.2_bspline_middle" / "run_1" / "thumbnails" / "evaluation_00001.png"));
-    EXPECT_TRUE(fs::exists(dir_ / "thesis" / "4.1_amplitude_sweep" / "thumbnails" / "point_0000.png"));
-}
-
-TEST_F(SearchCli, ArchivesListFilterAndRenderWithoutSimulating) {
-    ASSERT_EQ(Run("evolve " + SmallGa(3, 2) + " --out " + Path("a")).exitCode, 0);
-    const std::string archive = Path("a/evaluations.capnp");
-    const Result all = Run("inspect " + archive + " --json");
-    ASSERT_EQ(all.exitCode, 0) << all.err;
-    const auto json = nlohmann::json::parse(all.out);
-    const auto& evaluations = json["evaluations"];
-    ASSERT_EQ(json["total"].get<size_t>(), evaluations.size());
-    EXPECT_FALSE(json["truncated"].get<bool>());
-    // Every simulation of both runs is there: the logbooks' evaluation counts add up (the cache can only lower them).
-    size_t logged = 0;
-    for (int run = 1; run <= 2; ++run)
-        for (const auto& row : ReadCsv(Slurp(dir_ / "a" / ("run_" + std::to_string(run)) / "evaluations.csv"))) logged += row[0] != "evaluation";
-    EXPECT_EQ(evaluations.size(), logged);
-    for (size_t k = 0; k < evaluations.size(); ++k) EXPECT_EQ(evaluations[k]["index"].get<size_t>(), k);
-
-    const auto count = [&](const std::string& filter) {
-        const Result r = Run("inspect " + archive + " --json " + filter);
-        EXPECT_EQ(r.exitCode, 0) << r.err;
-        return nlohmann::json::parse(r.out)["evaluations"];
-    };
-    for (const auto& e : count("--run 2")) EXPECT_EQ(e["run"], 2);
-    for (const auto& e : count("--generation 0")) EXPECT_EQ(e["generation"], 0);
-    EXPECT_EQ(count("--generation 0 --run 1").size(), 10u);  // the initial population
-    for (const auto& e : count("--min-fitness 0.1")) EXPECT_GE(e["fitness"].get<double>(), 0.1);
-    EXPECT_EQ(count("--limit 3").size(), 3u);
-    const Result table = Run("inspect " + archive + " --status ok --limit 2");
-    EXPECT_NE(table.out.find("2 of " + std::to_string(evaluations.size()) + " evaluations shown"), std::string::npos) << table.out;
-
-    const Result rendered = Run("render --from " + archive + " --index 4 --out " + Path("again"));
-    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
-    EXPECT_EQ(nlohmann::json::parse(rendered.out)["simulated"], false);
-    const std::string bytes = Slurp(dir_ / "again" / "evaluation_4.png");
-    render::Image image;
-    std::string error;
-    ASSERT_TRUE(render::DecodePng(std::vector<std::uint8_t>(bytes.begin(), bytes.end()), &image, &error)) << error;
-    EXPECT_FALSE(render::IsUniform(image));
-
-    ExpectRefused("render --from " + archive + " --out " + Path("x"), "--index");
-    ExpectRefused("render --from " + archive + " --index 100000 --out " + Path("x"), "holds");
-    ExpectRefused("render --from " + archive + " --index 1 --shape sine --out " + Path("x"), "--shape");
-    ExpectRefused("inspect " + Path("missing.capnp"), "missing.capnp");
-    Write("junk.capnp", std::string(3000, '\x7f'));
-    ExpectRefused("inspect " + Path("junk.capnp"), "not an evaluation archive");
-    ExpectRefused("inspect " + archive + " --status weird", "weird");
+    EXPECT_TRUE(fs::exists(dir_ / "thesis" / "5.2_bspline_middle" / "thumbnails" / "evaluation_000001.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "thesis" / "4.1_amplitude_sweep" / "thumbnails" / "evaluation_000000.png"));
 }

@@ -8,6 +8,7 @@
 
 #include "render/mesh_renderer.h"
 #include "sim/solver.h"
+#include "sim/surface.h"
 
 namespace {
 
@@ -21,7 +22,7 @@ struct Fixture {
     }
     render::Scene Turntable(int frame, int frames) const {
         render::Scene scene;
-        scene.mesh = sim::DefaultMeshDef();
+        scene.surface = std::make_shared<const sim::Surface>(sim::HelixSurface(sim::DefaultMeshDef()));
         scene.title = "sine A = 4.1";
         scene.lines = {"fitness 0.5818"};
         scene.panels = {{result.final, result.initial, "turntable", 360.0 * frame / frames}};

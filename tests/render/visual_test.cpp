@@ -10,6 +10,7 @@
 
 #include "render/mesh_renderer.h"
 #include "sim/solver.h"
+#include "sim/surface.h"
 
 namespace fs = std::filesystem;
 
@@ -56,9 +57,9 @@ render::Image RenderCase(const Case& c, const render::RenderDef& def) {
     EXPECT_TRUE(renderer) << error;
     if (!renderer) return {};
     render::Scene scene;
-    scene.mesh = sim::DefaultMeshDef();
+    scene.surface = std::make_shared<const sim::Surface>(sim::HelixSurface(sim::DefaultMeshDef()));
     scene.title = c.name;
-    scene.lines = {"fitness " + std::to_string(result.fitness), "status " + std::string(sim::StatusName(result.status))};
+    scene.lines = {"fitness " + std::to_string(result.fitness), "status " + std::string(sim::Name(result.status))};
     if (c.singlePanel) scene.panels = {{result.final, result.initial, "turned", c.rotationDegrees}};
     else scene.panels = {{result.initial, {}, "before", 0}, {result.final, result.initial, "after", 0}};
     return renderer->Render(scene);

@@ -52,7 +52,7 @@ TEST(ThesisValues, AbsSineAmplitude4OverFourPiContracts0964) {
     for (auto precision : {sim::Precision::Float, sim::Precision::Double}) {
         const auto r = sim::Evaluate(sim::AbsSineShape{4.0, 0.0, 4 * kPi}, sim::DefaultMeshDef(), Params(sim::Load::Inflate, precision));
         ASSERT_EQ(r.status, sim::Status::Ok);
-        EXPECT_NEAR(r.fitness, 0.964, 0.005) << sim::PrecisionName(precision)
+        EXPECT_NEAR(r.fitness, 0.964, 0.005) << sim::Name(precision)
                                              << "; reproduce: actuator simulate --shape abs-sine --amplitude 4 --phase 0,4pi";
         EXPECT_NEAR(r.contractionPercent, 100 * r.fitness / 30, 1e-12);
     }
@@ -63,7 +63,7 @@ TEST(ThesisValues, SineAmplitude41StretchedGivesMinus1718) {
     for (auto precision : {sim::Precision::Float, sim::Precision::Double}) {
         const auto r = sim::Evaluate(sim::SineShape{4.1, 0.5, kPi - 0.5}, sim::DefaultMeshDef(), Params(sim::Load::Stretch, precision));
         ASSERT_EQ(r.status, sim::Status::Ok);
-        EXPECT_NEAR(r.fitness, -1.718, 0.005) << sim::PrecisionName(precision)
+        EXPECT_NEAR(r.fitness, -1.718, 0.005) << sim::Name(precision)
                                               << "; reproduce: actuator simulate --shape sine --amplitude 4.1 --load stretch";
     }
 }
@@ -123,7 +123,7 @@ TEST(Invariants, FloatStaysWithin0005OfDouble) {
             const auto d = sim::Evaluate(shape, sim::DefaultMeshDef(), Params(load, sim::Precision::Double));
             ASSERT_EQ(f.status, d.status) << name;
             if (d.status != sim::Status::Ok) continue;
-            EXPECT_NEAR(f.fitness, d.fitness, 0.005) << name << " load " << sim::LoadName(load);
+            EXPECT_NEAR(f.fitness, d.fitness, 0.005) << name << " load " << sim::Name(load);
         }
     }
 }
@@ -141,7 +141,7 @@ TEST(Invariants, AgreesWithAPlainEdgeListImplementation) {
             for (int i = 0; i < 900; ++i)
                 worst = std::max({worst, std::fabs(r.final.x[i] - expected.x[i]), std::fabs(r.final.y[i] - expected.y[i]),
                                   std::fabs(r.final.z[i] - expected.z[i])});
-            EXPECT_LT(worst, 1e-9) << name << " load " << sim::LoadName(load);
+            EXPECT_LT(worst, 1e-9) << name << " load " << sim::Name(load);
         }
     }
 }
@@ -206,7 +206,7 @@ TEST(NumericalFailure, ZeroLengthSpringExertsNoForce) {
     p.z[301] = p.z[300];
     for (auto precision : {sim::Precision::Float, sim::Precision::Double}) {
         const auto r = sim::Simulate(p, def, Params(sim::Load::Inflate, precision, 500));
-        EXPECT_EQ(r.status, sim::Status::Ok) << sim::PrecisionName(precision);
+        EXPECT_EQ(r.status, sim::Status::Ok) << sim::Name(precision);
         EXPECT_TRUE(std::isfinite(r.fitness));
     }
 }

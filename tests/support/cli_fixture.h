@@ -1,57 +1,45 @@
 // Runs the `actuator` binary as a user would, in a fresh temporary folder per test, and checks the
 // contract for bad input: exit code 2, one line on stderr naming the problem, nothing on stdout.
+// Failures point at the calling line (std::source_location).
 #pragma once
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <source_location>
 #include <string>
+
+#include "png.h"
+#include "process.h"
+#include "temp_folder.h"
 
 class CliTest : public ::testing::Test {
 protected:
-    struct Result {
-        int exitCode = -1;
-        std::string out, err;
-    };
+    using Result = testing_support::RunResult;
 
-    void SetUp() override {
-        dir_ = std::filesystem::temp_directory_path() /
-               ("actuator_test_" + std::to_string(getpid()) + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        std::filesystem::remove_all(dir_);
-        std::filesystem::create_directories(dir_);
-    }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
+    CliTest() : folder_(::testing::UnitTest::GetInstance()->current_test_info()->name()), dir_(folder_.Path()) {}
 
     std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-
-    static std::string Slurp(const std::filesystem::path& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-
+    static std::string Slurp(const std::filesystem::path& path) { return testing_support::Slurp(path); }
     void Write(const std::string& name, const std::string& contents) const { std::ofstream(Path(name), std::ios::binary) << contents; }
 
     // `environment` is put before the command, e.g. "PATH=/nowhere".
     Result Run(const std::string& args, const std::string& environment = "") const {
-        const std::string command = environment + " " + ACTUATOR_BIN + " " + args + " > " + Path("stdout") + " 2> " + Path("stderr");
-        const int status = std::system(command.c_str());
-        return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, Slurp(dir_ / "stdout"), Slurp(dir_ / "stderr")};
+        return testing_support::RunShell(environment + " " + ACTUATOR_BIN + " " + args, dir_);
     }
 
-    void ExpectRefused(const std::string& args, const std::string& mentions) const {
+    void ExpectRefused(const std::string& args, const std::string& mentions, std::source_location where = std::source_location::current()) const {
         const Result r = Run(args);
-        EXPECT_EQ(r.exitCode, 2) << "actuator " << args << "\nstderr: " << r.err;
-        EXPECT_EQ(r.out, "") << "actuator " << args;
+        const ::testing::ScopedTrace trace(where.file_name(), static_cast<int>(where.line()), "actuator " + args);
+        EXPECT_EQ(r.exitCode, 2) << "stderr: " << r.err;
+        EXPECT_EQ(r.out, "");
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "want one line, got: " << r.err;
-        EXPECT_NE(r.err.find(mentions), std::string::npos) << "message should mention '" << mentions << "': " << r.err;
+        EXPECT_THAT(r.err, ::testing::HasSubstr(mentions));
     }
 
+    testing_support::TempFolder folder_;
     std::filesystem::path dir_;
 };

@@ -1,0 +1,156 @@
+#include "checkpoint.h"
+
+#include <cmath>
+
+#include "csv.h"
+#include "errors.h"
+
+namespace app {
+namespace {
+
+using Json = nlohmann::ordered_json;
+constexpr int kCheckpointVersion = 2;
+
+Json NumberOrNull(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+double NumberOrNaN(const Json& value) { return value.is_null() ? std::nan("") : value.get<double>(); }
+
+Json IndividualJson(const sim::Individual& individual) {
+    return Json{{"genome", individual.genome}, {"evaluated", individual.evaluated}, {"fitness", NumberOrNull(individual.fitness)},
+                {"status", sim::Name(individual.status)}};
+}
+
+// A genome this experiment's GA could have made: the right number of gene lists, lengths and
+// values within the bounds, a buildable shape.
+void CheckGenome(const sim::Genome& genome, const Experiment& e) {
+    const sim::GenomeDef& g = e.ga.genome;
+    if (g.kind == sim::GenomeKind::BSpline) {
+        if (static_cast<int>(genome.size()) != g.splines) throw std::runtime_error("a genome has " + std::to_string(genome.size()) + " splines, the experiment " + std::to_string(g.splines));
+        for (const auto& spline : genome) {
+            if (static_cast<int>(spline.size()) < g.lengthMin || static_cast<int>(spline.size()) > g.lengthMax)
+                throw std::runtime_error("a spline has " + std::to_string(spline.size()) + " control points, outside " + std::to_string(g.lengthMin) +
+                                         " to " + std::to_string(g.lengthMax));
+            for (double c : spline)
+                if (!(c >= g.controlMin && c <= g.controlMax) || c != std::floor(c)) throw std::runtime_error("a control point is outside the control range");
+        }
+    } else {
+        if (genome.size() != 1 || genome[0].size() != 2 * static_cast<size_t>(sim::VertexCount(e.mesh)))
+            throw std::runtime_error("a free-xy genome has the wrong number of offsets");
+        for (double v : genome[0])
+            if (!(std::fabs(v) <= std::max(g.bound, g.initRange))) throw std::runtime_error("a free-xy offset is outside the bound");
+    }
+    if (const std::string error = sim::ShapeError(sim::ShapeOfGenome(genome, g, e.mesh), e.mesh); !error.empty()) throw std::runtime_error(error);
+}
+
+sim::Individual IndividualFrom(const Json& j, const Experiment& e) {
+    sim::Individual individual;
+    individual.genome = j.at("genome").get<sim::Genome>();
+    individual.evaluated = j.at("evaluated").get<bool>();
+    individual.fitness = NumberOrNaN(j.at("fitness"));
+    const auto status = sim::FromName<sim::Status>(j.at("status").get<std::string>());
+    if (!status) throw std::runtime_error("unknown status " + j.at("status").dump());
+    individual.status = *status;
+    if (individual.evaluated && individual.status == sim::Status::Ok && !std::isfinite(individual.fitness))
+        throw std::runtime_error("a valid individual has no fitness");
+    CheckGenome(individual.genome, e);
+    return individual;
+}
+
+}  // namespace
+
+std::string FormatCheckpoint(const RunCheckpoint& c) {
+    Json j;
+    j["version"] = kCheckpointVersion;
+    j["experiment_hash"] = c.experimentHash;
+    j["seed"] = c.seed;
+    j["generation"] = c.state.generation;
+    j["archive_count"] = c.archiveCount;
+    j["rng"] = c.state.rng.State();
+    j["population"] = Json::array();
+    for (const auto& individual : c.state.population) j["population"].push_back(IndividualJson(individual));
+    j["logbook"] = Json::array();
+    for (const auto& row : c.state.logbook)
+        j["logbook"].push_back(Json{{"generation", row.generation}, {"evaluations", row.evaluations}, {"best", NumberOrNull(row.best)},
+                                    {"worst", NumberOrNull(row.worst)}, {"mean", NumberOrNull(row.mean)}, {"std", NumberOrNull(row.stddev)},
+                                    {"invalid", row.invalid}});
+    j["best_per_generation"] = Json::array();
+    for (const auto& individual : c.state.bestPerGeneration) j["best_per_generation"].push_back(IndividualJson(individual));
+    j["hall_of_fame"] = Json::array();
+    for (const auto& individual : c.state.hallOfFame) j["hall_of_fame"].push_back(IndividualJson(individual));
+    j["experiment"] = c.experiment;
+    return j.dump() + "\n";
+}
+
+RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, const Experiment& e) {
+    Json j;
+    try {
+        j = Json::parse(text);
+    } catch (const std::exception&) {
+        throw UsageError(path + ": not a checkpoint (not valid JSON); remove it to restart this run, or --overwrite");
+    }
+    RunCheckpoint c;
+    try {
+        if (j.at("version").get<int>() != kCheckpointVersion) throw std::runtime_error("written by another version");
+        c.experimentHash = j.at("experiment_hash").get<std::string>();
+        c.experiment = j.at("experiment");
+    } catch (const std::exception& error) {
+        throw UsageError(path + ": not a usable checkpoint (" + error.what() + ")");
+    }
+    if (c.experimentHash != ExperimentHash(e)) {
+        const std::string changed = ExperimentDifference(c.experiment, e.document);
+        throw UsageError("--resume: the experiment changed since this run started (" + (changed.empty() ? std::string("its text differs") : changed) +
+                         "); put it back, or start afresh with --overwrite");
+    }
+    try {
+        c.seed = j.at("seed").get<std::uint64_t>();
+        c.state.generation = j.at("generation").get<int>();
+        c.archiveCount = j.at("archive_count").get<std::uint64_t>();
+        const auto rng = j.at("rng").get<std::array<std::uint64_t, 4>>();
+        if (rng == std::array<std::uint64_t, 4>{}) throw std::runtime_error("the generator's state is all zero (xoshiro256** would repeat zeros forever)");
+        c.state.rng.SetState(rng);
+        for (const auto& individual : j.at("population")) c.state.population.push_back(IndividualFrom(individual, e));
+        for (const auto& row : j.at("logbook"))
+            c.state.logbook.push_back(sim::LogbookRow{row.at("generation").get<int>(), row.at("evaluations").get<int>(), NumberOrNaN(row.at("best")),
+                                                      NumberOrNaN(row.at("worst")), NumberOrNaN(row.at("mean")), NumberOrNaN(row.at("std")),
+                                                      row.at("invalid").get<int>()});
+        for (const auto& individual : j.at("best_per_generation")) c.state.bestPerGeneration.push_back(IndividualFrom(individual, e));
+        for (const auto& individual : j.at("hall_of_fame")) c.state.hallOfFame.push_back(IndividualFrom(individual, e));
+        if (static_cast<int>(c.state.population.size()) != e.ga.population)
+            throw std::runtime_error("the population has " + std::to_string(c.state.population.size()) + " individuals, the experiment " +
+                                     std::to_string(e.ga.population));
+        if (c.state.generation < 0 || c.state.generation > e.ga.generations) throw std::runtime_error("generation out of range");
+        if (c.state.logbook.size() != static_cast<size_t>(c.state.generation + 1) || c.state.bestPerGeneration.size() != c.state.logbook.size())
+            throw std::runtime_error("the logbook does not match the generation");
+        if (c.state.hallOfFame.size() > sim::kHallOfFameSize) throw std::runtime_error("the hall of fame is too long");
+        for (const auto& individual : c.state.population)
+            if (!individual.evaluated) throw std::runtime_error("an individual was never evaluated");
+    } catch (const std::exception& error) {
+        throw UsageError(path + ": not a usable checkpoint (" + error.what() + "); remove it to restart this run, or --overwrite");
+    }
+    return c;
+}
+
+std::string LogbookCsv(const sim::GaState& state) {
+    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "std", "invalid"});
+    for (const auto& r : state.logbook)
+        csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
+                       CsvNumber(r.stddev), std::to_string(r.invalid)});
+    return csv;
+}
+
+std::string BestPerGenerationCsv(const sim::GaState& state) {
+    std::string csv = CsvRow({"generation", "fitness", "status", "genome"});
+    for (size_t g = 0; g < state.bestPerGeneration.size(); ++g) {
+        const auto& b = state.bestPerGeneration[g];
+        csv += CsvRow({std::to_string(g), CsvNumber(b.Valid() ? b.fitness : NAN), sim::Name(b.status), CsvField(sim::GenomeText(b.genome))});
+    }
+    return csv;
+}
+
+std::string HallOfFameCsv(const sim::GaState& state) {
+    std::string csv = CsvRow({"rank", "fitness", "genome"});
+    for (size_t k = 0; k < state.hallOfFame.size(); ++k)
+        csv += CsvRow({std::to_string(k + 1), CsvNumber(state.hallOfFame[k].fitness), CsvField(sim::GenomeText(state.hallOfFame[k].genome))});
+    return csv;
+}
+
+}  // namespace app

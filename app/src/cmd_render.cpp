@@ -1,0 +1,276 @@
+// `actuator render`: pictures of one design. Evaluates it under inflation and under the stretch
+// load (both on the evaluator, in parallel), then writes inflation.png and stretch.png (before and
+// after, one camera, one scale), and on request a turntable of the inflated mesh, a time-lapse of
+// the inflation, and MP4s of both through ffmpeg. With --from ARCHIVE it draws a stored evaluation
+// without simulating.
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "archive.h"
+#include "cli.h"
+#include "commands.h"
+#include "evaluator.h"
+#include "figures.h"
+#include "files.h"
+#include "json_out.h"
+#include "render/backend.h"
+#include "shape_options.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Time-lapse snapshots are kept in memory to fix one camera and colour scale over all frames.
+constexpr double kMaxSnapshotBytes = 2.0 * (1ull << 30);
+
+std::string ShellQuote(const std::string& text) {
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+bool HaveFfmpeg() { return std::system("command -v ffmpeg > /dev/null 2>&1") == 0; }
+
+void EncodeVideo(const fs::path& frames, const fs::path& output) {
+    const std::string command = "ffmpeg -y -loglevel error -framerate 30 -i " + ShellQuote((frames / "frame_%04d.png").string()) +
+                                " -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' " + ShellQuote(output.string());
+    if (std::system(command.c_str()) != 0) std::cerr << "note: ffmpeg failed to make " << output.string() << "\n";
+}
+
+void FrameProgress(const char* what, int done, int total) {
+    if (!isatty(STDERR_FILENO)) return;
+    std::fprintf(stderr, "\r%s: frame %d/%d", what, done, total);
+    if (done == total) std::fprintf(stderr, "\n");
+}
+
+// A folder for frames: refused early when something that is not a folder is in the way.
+void CheckFolder(const fs::path& folder, const std::string& what) {
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(folder, ec)) && !fs::is_directory(fs::symlink_status(folder, ec)))
+        throw UsageError(what + ": " + Quote(folder.string()) + " is in the way and is not a folder");
+}
+
+struct PictureOptions {
+    std::string out;
+    std::string size = "1024x768";
+    int turntable = 0;
+    int timelapse = 0;
+    bool video = false;
+    int pngLevel = 6;
+    std::string backend;
+    render::RenderDef def = render::DefaultRenderDef();
+};
+
+}  // namespace
+
+int RunRender(int argc, char** argv, int first) {
+    Cli cli("render", "Evaluates one design under inflation and under the stretch load and writes DIR/inflation.png and DIR/stretch.png: before "
+                      "and after, side by side, one camera and scale; on request DIR/turntable/frame_NNNN.png (the inflated mesh turning), "
+                      "DIR/timelapse/frame_NNNN.png (the mesh while it inflates) and MP4s of both. Prints a JSON summary.");
+    ShapeOptions shape;
+    sim::SimParams params = sim::DefaultSimParams();
+    std::string from;
+    int index = 0;
+    PictureOptions p;
+    AddShapeOptions(cli, shape);
+    cli.Group("Model options (thesis; both loads)");
+    cli.Fields(params);
+    cli.Group("Design from an archive");
+    cli.Text("--from", from, "draw a stored evaluation (DIR/evaluations.capnp) with --index, without simulating; no shape or model options")
+        ->type_name("ARCHIVE");
+    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40);
+    cli.Group("Picture options");
+    cli.Text("--out", p.out, "folder for the images (created if missing); required")->type_name("DIR");
+    cli.Text("--size", p.size, "image size in pixels")->type_name("WxH");
+    std::string turntable;
+    cli.Text("--turntable", turntable, "also write N frames of the inflated mesh turning a full circle to DIR/turntable/ (60 when N is left out)")
+        ->expected(0, 1)
+        ->type_name("[N]")
+        ->default_str("60");
+    cli.Integer("--timelapse", p.timelapse, "also write N frames of the inflation to DIR/timelapse/: the first, evenly spaced ones, and the last", 2, 100000);
+    cli.Flag("--video", p.video, "also encode the frame sequences as MP4 with ffmpeg (skipped with a note if ffmpeg is missing)");
+    cli.Enum("--background", p.def.background, "image background");
+    cli.Enum("--color-by", p.def.colorBy, "surface colour: distance moved, spring strain, or plain");
+    cli.Flag("--wireframe", p.def.wireframe, "draw the springs over the surface");
+    bool noOverlay = false;
+    cli.Flag("--no-overlay", noOverlay, "leave out the title, numbers, captions and colour bar");
+    cli.Integer("--supersample", p.def.supersample, "render at N times the size and average down (anti-aliasing; 1 = off)", 1, 4);
+    cli.Number("--elevation", p.def.elevationDegrees, "camera height above the mid-plane, degrees", -89, 89);
+    cli.Number("--azimuth", p.def.azimuthDegrees, "camera direction around the actuator's axis, degrees");
+    cli.Integer("--png-level", p.pngLevel, "zlib compression level of the PNG files (frame sequences use 1 unless given)", 0, 9);
+    cli.Text("--gl-backend", p.backend, "OpenGL backend module: osmesa or egl (default: $ACTUATOR_GL_BACKEND, else osmesa)")->type_name("NAME");
+    cli.Examples(
+        "  actuator render --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n"
+        "  actuator render --from runs/5.2/evaluations.capnp --index 17 --out figures/ --turntable 36   (no simulation)\n");
+    if (!cli.Parse(argc, argv, first)) return 0;
+    if (cli.Given("--turntable")) p.turntable = static_cast<int>(ParseInteger(turntable.empty() ? "60" : turntable, "--turntable", 1, 100000));
+    p.def.overlay = !noOverlay;
+    if (!cli.Given("--out")) throw UsageError("--out DIR is required (where the images go)");
+    {
+        const auto x = p.size.find('x');
+        if (x == std::string::npos) throw UsageError("--size: expected WxH like 1024x768, got " + Quote(p.size));
+        p.def.width = static_cast<int>(ParseInteger(p.size.substr(0, x), "--size width", 64, 8192));
+        p.def.height = static_cast<int>(ParseInteger(p.size.substr(x + 1), "--size height", 64, 8192));
+    }
+    if (static_cast<long long>(p.def.width) * p.def.height * p.def.supersample * p.def.supersample > 64ll << 20)
+        throw UsageError("--size x --supersample: more than 64 megapixels to render; lower one of them");
+    if (cli.Given("--gl-backend")) {
+        std::string error;
+        if (!render::SetBackend(p.backend, &error)) throw UsageError("--gl-backend: " + error);
+    }
+    const int frameLevel = cli.Given("--png-level") ? p.pngLevel : 1;
+    if (cli.Given("--video") && !p.turntable && !p.timelapse) throw UsageError("--video needs --turntable or --timelapse (the frames it encodes)");
+
+    // The design: from the options, or stored in an archive.
+    sim::EvalJob job;
+    std::optional<ArchiveRecord> stored;
+    if (cli.Given("--from")) {
+        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
+        cli.RefuseIfGiven("--timelapse", "needs a simulation; --from draws the stored meshes (re-simulate with actuator simulate --from)");
+        cli.RefuseFields(params, "does not go with --from: the settings come from the archive");
+        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
+        stored = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
+        job = stored->job;
+        if (stored->result.initial.Size() != sim::VertexCount(job.mesh) || stored->result.final.Size() != stored->result.initial.Size())
+            throw UsageError("evaluation " + std::to_string(index) + " of " + Quote(from) + " has no usable meshes");
+    } else {
+        cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
+        cli.RefuseIfGiven("--load", "does not apply: render shows both loads (inflation and stretch)");
+        job = {BuildShape(cli, shape), shape.mesh, params};
+    }
+    if (p.timelapse > std::max(1, job.params.iterations) + 1)
+        throw UsageError(fmt::format("--timelapse: {} frames but only {} iterations", p.timelapse, job.params.iterations));
+    const double snapshotBytes = double(p.timelapse) * sim::VertexCount(job.mesh) * 3 * sizeof(double);
+    if (snapshotBytes > kMaxSnapshotBytes)
+        throw UsageError(fmt::format("--timelapse: {} frames of {} vertices would hold {:.1f} GB of snapshots, more than {:.0f} GB; use fewer frames or a "
+                                     "smaller mesh",
+                                     p.timelapse, sim::VertexCount(job.mesh), snapshotBytes / 1e9, kMaxSnapshotBytes / 1e9));
+
+    // Every output checked before any work: nothing is half-written on bad input.
+    const fs::path out = p.out;
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (!fs::is_directory(out, ec)) throw UsageError("--out: cannot create folder " + Quote(out.string()));
+    const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
+    std::vector<std::string> files;
+    if (stored) files.push_back(fmt::format("evaluation_{:06}.png", index));
+    else files.insert(files.end(), {"inflation.png", "stretch.png"});
+    if (p.turntable) CheckFolder(out / "turntable", "--turntable");
+    if (p.timelapse) CheckFolder(out / "timelapse", "--timelapse");
+    if (p.video && p.turntable) files.push_back("turntable.mp4");
+    if (p.video && p.timelapse) files.push_back("timelapse.mp4");
+    for (const auto& name : files) {
+        CheckOutputPath((out / name).string(), "--out");
+        RefuseOutputThatIsInput((out / name).string(), "--out", inputs);
+    }
+    const bool video = p.video && HaveFfmpeg();
+    if (p.video && !video) std::cerr << "note: ffmpeg is not installed, so no MP4 is made (apt-get install ffmpeg)\n";
+
+    auto renderer = MakeRenderer(p.def);
+    const auto started = std::chrono::steady_clock::now();
+    sim::SimResult inflated, stretched;
+    if (stored) {
+        inflated = stored->result;
+    } else {
+        sim::EvalJob inflate = job, stretch = job;
+        inflate.params.load = sim::Load::Inflate;
+        stretch.params.load = sim::Load::Stretch;
+        auto results = MakeLocalEvaluator(2)->EvaluateAll({inflate, stretch});
+        inflated = std::move(results[0]);
+        stretched = std::move(results[1]);
+    }
+    const double simulateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+
+    std::vector<std::string> written;
+    const auto renderStarted = std::chrono::steady_clock::now();
+    const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
+                                                   ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", sim::Name(job.params.load))
+                                     : ShapeTitle(job.shape);
+    if (stored) {
+        const fs::path path = out / files.front();
+        WritePng(path.string(), renderer->Render(BeforeAfterScene(title, inflated, job.mesh)), p.pngLevel);
+        written.push_back(path.string());
+    } else {
+        DesignFigures figures{title, &inflated, &stretched, job.mesh, 0, ""};
+        for (const auto& name : WriteDesignFigures(*renderer, out, figures, p.pngLevel, frameLevel)) written.push_back((out / name).string());
+    }
+
+    // Sequences: camera and colour scale fixed over all frames, so only the mesh moves.
+    auto sequence = [&](const char* folderName, int frames, auto&& sceneOf) {
+        const fs::path folder = out / folderName;
+        fs::create_directories(folder, ec);
+        if (!fs::is_directory(folder, ec)) throw UsageError("cannot create folder " + Quote(folder.string()));
+        FrameWriter writer(frameLevel);
+        for (int k = 0; k < frames; ++k) {
+            writer.Write((folder / fmt::format("frame_{:04}.png", k)).string(), renderer->Render(sceneOf(k)));
+            FrameProgress(folderName, k + 1, frames);
+        }
+        writer.Wait();
+        written.push_back((folder / "frame_%04d.png").string() + " x " + std::to_string(frames));
+        if (video) {
+            const fs::path mp4 = out / (std::string(folderName) + ".mp4");
+            EncodeVideo(folder, mp4);
+            if (fs::exists(mp4, ec)) written.push_back(mp4.string());
+        }
+    };
+    if (p.turntable > 0)
+        sequence("turntable", p.turntable,
+                 [&](int k) { return TurntableScene(title + "  -  inflated", inflated, job.mesh, 360.0 * k / p.turntable); });
+    if (p.timelapse > 0) {
+        // A re-run of the inflation that watches: the first state, every `interval` iterations, the last.
+        std::vector<std::pair<int, sim::Positions>> snapshots;
+        sim::SimObserver observer;
+        sim::SimParams watched = job.params;
+        watched.load = sim::Load::Inflate;
+        observer.interval = std::max(1, watched.iterations / (p.timelapse - 1));
+        observer.onSnapshot = [&](int iteration, const sim::Positions& positions) {
+            if (static_cast<int>(snapshots.size()) < p.timelapse - 1) snapshots.emplace_back(iteration, positions);
+            return true;
+        };
+        const sim::SimResult watchedResult = sim::Simulate(sim::BuildInitialPositions(job.shape, job.mesh), job.mesh, watched, &observer);
+        snapshots.emplace_back(watchedResult.iterationsRun, watchedResult.final);
+        std::vector<const sim::Positions*> all;
+        for (const auto& s : snapshots) all.push_back(&s.second);
+        const render::Framing framing = render::FrameMeshes(all);
+        const auto surface = SurfaceOf(job.mesh);
+        double colorMax = 0;
+        for (const auto& s : snapshots)
+            for (double v : render::VertexValues(p.def.colorBy, *surface, render::Panel{s.second, watchedResult.initial, "", 0, {}, {}}))
+                if (std::isfinite(v)) colorMax = std::max(colorMax, v);
+        sequence("timelapse", static_cast<int>(snapshots.size()), [&](int k) {
+            render::Scene scene;
+            scene.surface = surface;
+            scene.title = title + "  -  inflating";
+            const sim::Positions& positions = snapshots[k].second;
+            const double fitness = sim::Fitness(watchedResult.initial, positions, job.mesh);
+            scene.lines = {fmt::format("iteration {} of {},  fitness {:.4f},  contraction {:.2f} %", snapshots[k].first, watched.iterations, fitness,
+                                       100 * fitness / job.mesh.turns)};
+            scene.panels = {{positions, watchedResult.initial, "iteration " + std::to_string(snapshots[k].first), 0, {}, {}}};
+            scene.framing = framing;
+            scene.colorMax = colorMax;
+            return scene;
+        });
+    }
+    const double renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStarted).count();
+
+    Json summary;
+    summary["inflation"] = Json{{"status", sim::Name(inflated.status)}, {"fitness", NumberJson(inflated.status == sim::Status::Ok ? inflated.fitness : NAN)}};
+    if (!stored)
+        summary["stretch"] = Json{{"status", sim::Name(stretched.status)}, {"fitness", NumberJson(stretched.status == sim::Status::Ok ? stretched.fitness : NAN)}};
+    summary["files"] = written;
+    summary["simulated"] = !stored;
+    summary["simulate_ms"] = simulateMs;
+    summary["render_ms"] = renderMs;
+    summary["renderer"] = renderer->Description();
+    std::cout << summary.dump() << "\n";
+    return 0;
+}
+
+}  // namespace app

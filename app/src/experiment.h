@@ -1,0 +1,110 @@
+// Experiment files: one JSON file describes an experiment (the model, a grid, a list of shapes or a
+// genetic algorithm, the seed, what to draw, and what the thesis reported). Parsed strictly: an
+// unknown key (with the nearest valid one named), a wrong type or an out-of-range value is refused
+// with the file, the key and the reason. `--set key.path=value` overrides any key before parsing and
+// is checked like the file.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sim/search.h"
+#include "sim/solver.h"
+
+namespace app {
+
+enum class TurntablePlan { None, Best, All };
+
+struct RenderPlan {
+    bool figures = true;                            // landscape / evolution figure and the best design's images
+    bool thumbnails = true;                         // a small before/after picture of every evaluation
+    TurntablePlan turntable = TurntablePlan::None;  // Best: the best design; All: every grid point, or
+                                                    // every member of each GA run's final population
+    int turntableFrames = 36;
+};
+
+enum class ExperimentKind {
+    Sweep,     // a 1-D or 2-D grid of sine parameters (thesis chapter 4)
+    Evolve,    // the genetic algorithm (chapter 5)
+    Evaluate,  // a list of given shapes, e.g. the stretch tests of chapter 6
+};
+
+struct LabelledShape {
+    std::string label;
+    sim::Shape shape;
+    double thesisFitness = NAN;  // the thesis's number for it, when it reports one
+};
+
+// What the thesis reports for an experiment, to set our numbers beside (all optional).
+struct ThesisResult {
+    double bestFitness = NAN;                                 // sweeps: the landscape's best
+    std::vector<std::pair<sim::SweepParameter, double>> best;  // sweeps: where it was
+    struct Point {
+        std::vector<std::pair<sim::SweepParameter, double>> at;  // e.g. amplitude 4, cycles 4
+        double fitness = NAN;
+    };
+    std::vector<Point> points;    // sweeps: named meshes of a table (Table 4.4)
+    std::vector<double> runBest;  // GA: best fitness of each run
+};
+
+struct Experiment {
+    std::string path;         // where it was read from
+    std::string id;           // e.g. "4.1"
+    std::string title;        // e.g. "Variable amplitude search"
+    std::string thesis;       // where the thesis reports it, e.g. "Table 4.1, Figure 4.1"
+    std::string note;         // choices made where the thesis is silent, and why
+    std::string explanation;  // why our numbers may differ from the thesis's (shown when they do)
+    ThesisResult thesisResult;
+    sim::MeshDef mesh;
+    sim::SimParams params;
+    std::uint64_t seed = 1;
+    ExperimentKind kind = ExperimentKind::Sweep;
+    sim::SweepDef sweep;
+    std::vector<LabelledShape> shapes;  // Evaluate
+    sim::GaDef ga;
+    int runs = 1;  // independent GA runs, seeds derived from `seed`
+    RenderPlan render;
+    nlohmann::ordered_json document;  // the file with every --set applied: what DIR/experiment.json holds
+};
+
+// A --set KEY.PATH=VALUE. VALUE is JSON when it parses as JSON, else a string ("pi/2" is a string
+// that number fields read as an expression).
+struct Override {
+    std::string path;
+    std::string value;
+};
+// "evolve.generations=5" -> {"evolve.generations", "5"}. Throws UsageError.
+Override ParseOverride(const std::string& text);
+
+// Reads and validates. Throws UsageError("FILE: 'KEY': reason").
+Experiment LoadExperiment(const std::string& path, const std::vector<Override>& overrides = {});
+Experiment ParseExperiment(const std::string& text, const std::string& path, const std::vector<Override>& overrides = {});
+
+// The experiment as saved into a results folder, and a short hash of it (FNV-1a over the canonical
+// text), stored in checkpoints so that a resume refuses an edited experiment.
+std::string ExperimentText(const Experiment& e);
+std::string ExperimentHash(const Experiment& e);
+// What differs between two saved experiments, as "key: old -> new" (at most a few).
+std::string ExperimentDifference(const nlohmann::ordered_json& before, const nlohmann::ordered_json& after);
+
+std::string ExperimentTitle(const Experiment& e);  // "4.1  Variable amplitude search"
+
+// The experiment shrunk for a smoke test: at most 3 values per sweep axis, one GA run of 2
+// generations of 6, 2000 iterations. Same files and figures, in seconds.
+Experiment QuickVersion(const Experiment& experiment);
+
+}  // namespace app
+
+template <>
+struct sim::EnumNames<app::TurntablePlan> {
+    static constexpr std::array<std::pair<app::TurntablePlan, const char*>, 3> table{
+        {{app::TurntablePlan::None, "none"}, {app::TurntablePlan::Best, "best"}, {app::TurntablePlan::All, "all"}}};
+};
+template <>
+struct sim::EnumNames<app::ExperimentKind> {
+    static constexpr std::array<std::pair<app::ExperimentKind, const char*>, 3> table{
+        {{app::ExperimentKind::Sweep, "sweep"}, {app::ExperimentKind::Evolve, "evolve"}, {app::ExperimentKind::Evaluate, "evaluate"}}};
+};

@@ -1,0 +1,62 @@
+// Runs one experiment into a results folder and says what came of it: files, timings, and our
+// numbers beside the thesis's. RunExperiment is a dispatcher; each kind has its own file
+// (run_sweep.cpp, run_list.cpp, run_evolve.cpp). Shared by sweep, evolve and reproduce.
+#pragma once
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "evaluator.h"
+#include "experiment.h"
+#include "recorder.h"
+#include "results_folder.h"
+
+namespace app {
+
+struct ComparisonRow {
+    std::string quantity;  // e.g. "best fitness", "best amplitude", "run 2 best fitness"
+    double ours = NAN;
+    double thesis = NAN;   // NaN when the thesis gives no number
+};
+
+struct ExperimentOutcome {
+    std::filesystem::path dir;
+    double seconds = 0;
+    long long simulations = 0;          // this session's
+    std::vector<std::string> figures;   // files in dir worth showing, in reading order
+    std::vector<ComparisonRow> rows;
+    std::vector<std::string> details;   // lines such as the best genome of each run
+    std::string summaryJson;            // what the command prints
+};
+
+struct RunOptions {
+    Evaluator* evaluator = nullptr;      // where every simulation runs
+    bool resume = false;                 // continue from the folder's archive and checkpoints
+    bool progress = true;                // progress lines on stderr
+    ResultsFolder* folder = nullptr;     // told of the first complete result (--overwrite)
+};
+
+// Throws UsageError on bad input (an edited experiment on resume, an unwritable folder, no GL).
+ExperimentOutcome RunExperiment(const Experiment& experiment, const std::filesystem::path& out, const RunOptions& options);
+
+// What the kinds share while they run.
+struct RunContext {
+    const Experiment& e;
+    std::filesystem::path dir;
+    const RunOptions& options;
+    Recorder& recorder;
+    ExperimentOutcome& outcome;
+};
+
+void RunSweep(RunContext& c);
+void RunList(RunContext& c);
+void RunEvolution(RunContext& c);
+
+// The best design's figures under both loads (its inflation result is given; the stretch test is
+// evaluated and archived as a figure evaluation), with a turntable when the experiment asks.
+void WriteBestFigures(RunContext& c, const std::filesystem::path& folder, const sim::Shape& shape, const sim::SimResult& inflated,
+                      const std::string& title, int turntableFrames, bool listInOutcome);
+
+}  // namespace app

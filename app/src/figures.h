@@ -1,0 +1,87 @@
+// Pictures shared by the commands: titles and result lines, the before/after and turntable scenes,
+// the one "inflation + stretch (+ turntable)" figure set of a design, contact sheets, thumbnails,
+// and PNG files written whole or not at all.
+#pragma once
+
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/image.h"
+#include "render/mesh_renderer.h"
+#include "sim/batch.h"
+
+namespace app {
+
+std::string ShapeTitle(const sim::Shape& shape);  // "sine  A = 4.1, phase 0.5 to pi-0.5"
+std::string ResultLine(const sim::SimResult& result, const sim::MeshDef& mesh);  // status, fitness, contraction
+std::string FitnessCaption(const sim::SimResult& result);                         // "0.582" or the status
+
+// The surface a job's meshes are drawn on.
+std::shared_ptr<const sim::Surface> SurfaceOf(const sim::MeshDef& mesh);
+
+// The mesh before (plain material) and after (coloured by the renderer's mode), one camera and scale.
+render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& result, const sim::MeshDef& mesh);
+// One turntable frame: the final mesh turned `angleDegrees` about its axis. The default framing (a
+// cylinder about the axis) and colour scale do not change with the angle: frames hold still.
+render::Scene TurntableScene(const std::string& title, const sim::SimResult& result, const sim::MeshDef& mesh, double angleDegrees);
+
+// Throws UsageError when no renderer can be made.
+std::unique_ptr<render::MeshRenderer> MakeRenderer(int width, int height, int supersample = 2, double textScale = 0);
+std::unique_ptr<render::MeshRenderer> MakeRenderer(const render::RenderDef& def);
+
+void WritePng(const std::string& path, const render::Image& image, int compressionLevel);
+
+// Frames go to disk on another thread while the next one renders; at most one write in flight.
+class FrameWriter {
+public:
+    explicit FrameWriter(int pngLevel) : pngLevel_(pngLevel) {}
+    ~FrameWriter();
+    void Write(std::string path, render::Image image);
+    void Wait();  // rethrows a write error
+
+private:
+    int pngLevel_;
+    std::future<void> pending_;
+};
+
+// A design's figures: `inflation.png`-style before/after under each load, and a turntable of the
+// inflated mesh when `turntableFrames` > 0. Names are `prefix` + "inflation.png", ... Returns the
+// files written, relative to `folder`.
+struct DesignFigures {
+    std::string title;
+    const sim::SimResult* inflated = nullptr;
+    const sim::SimResult* stretched = nullptr;  // may be null
+    sim::MeshDef mesh;
+    int turntableFrames = 0;
+    std::string prefix;  // "" for render, "best_" for experiments
+};
+std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, const std::filesystem::path& folder, const DesignFigures& figures,
+                                            int figureLevel = 6, int frameLevel = 1);
+
+// Every mesh of a sweep or a generation in one picture: inflated, one camera and colour scale, a
+// caption under each. Failed evaluations show what they have, captioned with the status.
+struct SheetEntry {
+    const sim::SimResult* result;
+    std::string caption;
+};
+// `renderer` is kept between calls and made anew only when the sheet's size changes.
+void WriteContactSheet(const std::filesystem::path& path, const std::string& title, const std::vector<SheetEntry>& entries,
+                       const sim::MeshDef& mesh, std::unique_ptr<render::MeshRenderer>& renderer);
+
+// Small before/after pictures of single evaluations, named by evaluation id.
+class ThumbnailWriter {
+public:
+    explicit ThumbnailWriter(std::filesystem::path folder);
+    void Write(std::uint64_t id, const sim::SimResult& result, const sim::MeshDef& mesh);
+    static std::string Name(std::uint64_t id);  // "evaluation_000017.png"
+    const std::filesystem::path& Folder() const { return folder_; }
+
+private:
+    std::filesystem::path folder_;
+    std::unique_ptr<render::MeshRenderer> renderer_;
+};
+
+}  // namespace app

@@ -1,0 +1,196 @@
+#include "files.h"
+
+#include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+#include "errors.h"
+#include "number_expression.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Temporaries in flight, kept where a signal handler can reach them without allocating.
+constexpr int kTemporarySlots = 32;
+struct TemporarySlot {
+    std::atomic<bool> used{false};
+    char path[PATH_MAX]{};
+};
+std::array<TemporarySlot, kTemporarySlots> gTemporaries;
+std::atomic<void (*)()> gRestore{nullptr};
+std::atomic<unsigned> gTemporaryCounter{0};
+
+int Register(const std::string& path) {
+    if (path.size() >= PATH_MAX) return -1;
+    for (int k = 0; k < kTemporarySlots; ++k) {
+        bool expected = false;
+        if (gTemporaries[k].used.load() || !gTemporaries[k].used.compare_exchange_strong(expected, true)) continue;
+        std::memcpy(gTemporaries[k].path, path.c_str(), path.size() + 1);
+        return k;
+    }
+    return -1;  // more than 32 writes at once: this one is not cleaned up on a signal
+}
+
+void Unregister(int slot) {
+    if (slot >= 0) gTemporaries[slot].used.store(false);
+}
+
+void OnInterrupt(int signal) {
+    for (auto& slot : gTemporaries)
+        if (slot.used.load()) unlink(slot.path);
+    if (auto restore = gRestore.load()) restore();
+    ::signal(signal, SIG_DFL);
+    raise(signal);
+}
+
+std::string Reason() { return std::strerror(errno); }
+
+}  // namespace
+
+bool IsTemporaryName(const std::string& name) {
+    return name.rfind(".act", 0) == 0 && name.size() > 8 && name.compare(name.size() - 4, 4, ".tmp") == 0;
+}
+
+std::string ReadInputFile(const std::string& path, std::uintmax_t maxBytes) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw UsageError("cannot open " + Quote(path) + ": " + Reason());
+    struct stat info {};
+    fstat(fd, &info);
+    if (S_ISDIR(info.st_mode)) {
+        ::close(fd);
+        throw UsageError("cannot read " + Quote(path) + ": it is a folder");
+    }
+    auto tooLarge = [&] {
+        ::close(fd);
+        return UsageError(Quote(path) + " is larger than " + std::to_string(maxBytes >> 20) + " MiB, the limit for an input file");
+    };
+    if (S_ISREG(info.st_mode) && static_cast<std::uintmax_t>(info.st_size) > maxBytes) throw tooLarge();
+    std::string contents;
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            const std::string reason = Reason();
+            ::close(fd);
+            throw UsageError("cannot read " + Quote(path) + ": " + reason);
+        }
+        if (n == 0) break;
+        contents.append(buffer, static_cast<size_t>(n));
+        if (contents.size() > maxBytes) throw tooLarge();
+    }
+    ::close(fd);
+    return contents;
+}
+
+std::vector<double> ReadNumberFile(const std::string& path) {
+    std::vector<double> values;
+    std::istringstream lines(ReadInputFile(path));
+    std::string line;
+    for (int lineNumber = 1; std::getline(lines, line); ++lineNumber) {
+        if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+        std::istringstream words(line);
+        for (std::string word; words >> word;) values.push_back(ParseNumber(word, path + ":" + std::to_string(lineNumber)));
+    }
+    return values;
+}
+
+void CheckOutputPath(const std::string& path, const std::string& what) {
+    if (path.empty()) throw UsageError(what + ": empty file name");
+    const fs::path target(path);
+    if (target.filename().string().size() > NAME_MAX)
+        throw UsageError(what + ": the file name " + Quote(target.filename().string()) + " is longer than " + std::to_string(NAME_MAX) + " bytes");
+    std::error_code ec;
+    const fs::file_status status = fs::symlink_status(target, ec);
+    if (fs::exists(status)) {
+        if (fs::is_directory(status)) throw UsageError(what + ": " + Quote(path) + " is a folder");
+        if (fs::is_symlink(status)) throw UsageError(what + ": " + Quote(path) + " is a symbolic link; give the file it points to, or another name");
+        if (!fs::is_regular_file(status)) throw UsageError(what + ": " + Quote(path) + " is not a regular file (a device, pipe or socket); give a file name");
+    }
+    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    if (!fs::is_directory(folder, ec)) throw UsageError(what + ": folder " + Quote(folder.string()) + " does not exist");
+    if (access(folder.c_str(), W_OK) != 0) throw UsageError(what + ": cannot write in " + Quote(folder.string()));
+}
+
+void RefuseOutputThatIsInput(const std::string& output, const std::string& outputWhat, const std::vector<std::string>& inputs) {
+    std::error_code ec;
+    for (const std::string& input : inputs) {
+        if (input.empty()) continue;
+        const bool same = fs::exists(output, ec) && fs::exists(input, ec) ? fs::equivalent(output, input, ec)
+                                                                         : fs::weakly_canonical(output, ec) == fs::weakly_canonical(input, ec);
+        if (same) throw UsageError(outputWhat + ": " + Quote(output) + " is also an input of this command; write to another file");
+    }
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& contents) {
+    CheckOutputPath(path, "cannot write " + Quote(path));
+    const fs::path target(path);
+    const std::string temporary =
+        (target.parent_path() / (".act" + std::to_string(getpid()) + "-" + std::to_string(gTemporaryCounter++) + ".tmp")).string();
+    const int slot = Register(temporary);
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        const std::string reason = Reason();
+        Unregister(slot);
+        throw UsageError("cannot write " + Quote(path) + ": " + reason);
+    }
+    size_t written = 0;
+    bool ok = true;
+    while (written < contents.size()) {
+        const ssize_t n = ::write(fd, contents.data() + written, contents.size() - written);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            ok = false;
+            break;
+        }
+        written += static_cast<size_t>(n);
+    }
+    ok = ok && fsync(fd) == 0;
+    const int savedErrno = errno;
+    ok = ::close(fd) == 0 && ok;
+    if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
+        const std::string reason = std::strerror(ok ? errno : savedErrno);
+        unlink(temporary.c_str());
+        Unregister(slot);
+        throw UsageError("cannot write " + Quote(path) + ": " + reason);
+    }
+    Unregister(slot);
+}
+
+void InstallInterruptCleanup() {
+    struct sigaction action {};
+    action.sa_handler = OnInterrupt;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+}
+
+void SetInterruptRestore(void (*restore)()) { gRestore.store(restore); }
+
+void RemoveStaleTemporaries(const fs::path& folder) {
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (!IsTemporaryName(name)) continue;
+        const long pid = std::strtol(name.c_str() + 4, nullptr, 10);
+        if (pid > 0 && pid != getpid() && kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove(it->path(), ec);
+    }
+}
+
+bool CloseStdout() {
+    const bool flushed = std::fflush(stdout) == 0 && !std::ferror(stdout);
+    return std::fclose(stdout) == 0 && flushed;
+}
+
+}  // namespace app

@@ -1,0 +1,51 @@
+// Files the way the workbench treats them: inputs read with a size limit, outputs written whole or
+// not at all (a short temporary beside the target, then rename), never onto something that is not
+// a regular file of ours, and temporaries cleaned up when a run is interrupted.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace app {
+
+// Inputs larger than this are refused before they are read whole (an OBJ of a 1024 x 1024 mesh is
+// about 60 MB).
+constexpr std::uintmax_t kMaxInputBytes = 256ull << 20;
+
+// The whole file. Refuses a folder, a missing file and a file over `maxBytes` (devices and pipes
+// are read up to the limit), naming the file. Throws UsageError.
+std::string ReadInputFile(const std::string& path, std::uintmax_t maxBytes = kMaxInputBytes);
+
+// Whitespace-separated numbers (comments after '#'): a free-xy offset file holds "dx dy" per vertex.
+std::vector<double> ReadNumberFile(const std::string& path);
+
+// Refuses, before any long work, an output path that cannot be written as a regular file: an empty
+// or too long name, a folder, a symlink or device in the way, a missing or read-only folder.
+void CheckOutputPath(const std::string& path, const std::string& what);
+
+// Refuses an output that is also an input of the same command (it would be overwritten).
+void RefuseOutputThatIsInput(const std::string& output, const std::string& outputWhat, const std::vector<std::string>& inputs);
+
+// Writes the whole file or nothing. Throws UsageError (with the path and the system's reason).
+void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+// On SIGINT and SIGTERM: remove this process's temporaries, run the registered restore step (see
+// ResultsFolder), then die of the signal as usual. Installed once by main().
+void InstallInterruptCleanup();
+// A step run on interruption, e.g. putting back the folder that --overwrite set aside. It must be
+// async-signal-safe; `nullptr` clears it.
+void SetInterruptRestore(void (*restore)());
+
+// Removes temporaries left in `folder` by processes that no longer exist (after SIGKILL).
+void RemoveStaleTemporaries(const std::filesystem::path& folder);
+
+// Flushes and closes stdout; false when what was printed could not be written (a full disk,
+// /dev/full, a closed pipe).
+bool CloseStdout();
+
+// Cleared to a stable, short name: temporaries are ".act<pid>-<n>.tmp" beside their target.
+bool IsTemporaryName(const std::string& fileName);
+
+}  // namespace app

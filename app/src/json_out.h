@@ -1,0 +1,25 @@
+// JSON outputs, through nlohmann's ordered_json (keys in the order written; numbers with the
+// shortest text that reads back as the same double; NaN and infinities as null). One way to write
+// a design, a model's settings and a result, shared by simulate, render, inspect and summaries.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "sim/batch.h"
+
+namespace app {
+
+using Json = nlohmann::ordered_json;
+
+Json NumberJson(double value);  // null when not finite
+
+// The design with every parameter: sine amplitude and phase; B-spline region and each spline's
+// control points; free-xy offsets; a mesh's vertex count.
+Json ShapeJson(const sim::Shape& shape);
+// The model's settings (thesis: every SimParams field and the mesh size).
+Json ModelJson(const sim::EvalJob& job);
+// Status, fitness, contraction, iterations, time.
+Json ResultNumbersJson(const sim::SimResult& result, const sim::SimParams& params);
+
+}  // namespace app

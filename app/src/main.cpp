@@ -1,0 +1,90 @@
+// actuator: the Actuator Workbench command line. Dispatches to subcommands; turns bad input into one
+// line on stderr and exit code 2, and output that could not be written into an error.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <new>
+
+#include "cli.h"
+#include "commands.h"
+#include "errors.h"
+#include "files.h"
+
+namespace {
+
+struct Command {
+    const char* name;
+    const char* summary;
+    int (*run)(int argc, char** argv, int first);  // argv[first] is the first argument after the name
+};
+
+const Command kCommands[] = {
+    {"simulate", "evaluate one design and print its result as JSON", app::RunSimulate},
+    {"render", "pictures of one design: before/after, stretch, turntable, time-lapse", app::RunRender},
+    {"sweep", "evaluate an experiment's grid of sine shapes or its list of shapes; landscape figure", app::RunSweepCommand},
+    {"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", app::RunEvolveCommand},
+    {"reproduce", "run every thesis experiment and write report.md with figures", app::RunReproduce},
+    {"inspect", "list, filter, sort and export the evaluations in an archive", app::RunInspect},
+    {"serve", "run an evaluation server for --workers (Cap'n Proto RPC)", app::RunServe},
+    {"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", app::RunImgDiff},
+};
+
+std::string MainHelp() {
+    std::string text = std::string("actuator ") + app::Version() +
+                       "\n\nusage: actuator COMMAND [options]\n\n"
+                       "Actuator Workbench: generative design of thin-walled soft pneumatic actuators (see README.md).\n\nCommands:\n";
+    for (const auto& c : kCommands) text += "  " + std::string(c.name) + std::string(12 - std::strlen(c.name), ' ') + c.summary + "\n";
+    text += "\nRun 'actuator COMMAND --help' for a command's options and their defaults.\n"
+            "Exit codes: 0 success, 2 bad input (one line on stderr says what and where), 3 every evaluation\n"
+            "server (--workers) is gone, 70 an internal error (a bug: please report it).\n";
+    return text;
+}
+
+int Finish(int code, const std::string& name) {
+    // Output that could not be written (a full disk, /dev/full, a closed pipe) is not a success.
+    if (!app::CloseStdout()) {
+        std::cerr << "actuator" << (name.empty() ? "" : " " + name) << ": error: could not write the output (" << std::strerror(errno) << ")\n";
+        return code == 0 ? 74 : code;
+    }
+    return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    app::InstallInterruptCleanup();
+    if (argc < 2) {
+        std::cerr << MainHelp();
+        return 2;
+    }
+    const std::string name = argv[1];
+    if (name == "--help" || name == "-h" || name == "help") {
+        std::cout << MainHelp();
+        return Finish(0, "");
+    }
+    if (name == "--version") {
+        std::cout << "actuator " << app::Version() << "\n";
+        return Finish(0, "");
+    }
+    for (const auto& command : kCommands) {
+        if (name != command.name) continue;
+        try {
+            return Finish(command.run(argc, argv, 2), name);
+        } catch (const app::WorkersGone& error) {
+            std::cerr << "actuator " << name << ": stopped: " << error.what() << "; continue later with --resume\n";
+            return Finish(3, name);
+        } catch (const app::UsageError& error) {
+            std::cerr << "actuator " << name << ": error: " << error.what() << "\n";
+            return Finish(2, name);
+        } catch (const std::bad_alloc&) {
+            std::cerr << "actuator " << name << ": error: out of memory\n";
+            return Finish(2, name);
+        } catch (const std::exception& error) {
+            std::cerr << "actuator " << name << ": internal error: " << error.what() << "\n";
+            return Finish(70, name);
+        }
+    }
+    std::cerr << "actuator: error: unknown command " << app::Quote(name) << " (run 'actuator --help' for the list)\n";
+    return 2;
+}

@@ -1,0 +1,70 @@
+#include "obj_io.h"
+
+#include <charconv>
+#include <cstdio>
+#include <sstream>
+
+#include "errors.h"
+#include "files.h"
+#include "number_expression.h"
+
+namespace app {
+
+std::string FormatObj(const sim::Positions& p, const sim::Surface& surface, const std::string& comment) {
+    std::string out;
+    out.reserve(static_cast<size_t>(p.Size()) * 80 + surface.triangles.size() * 24);
+    out += "# " + comment + "\n";
+    char line[128];
+    for (int i = 0; i < p.Size(); ++i) {
+        char* end = line;
+        *end++ = 'v';
+        for (double c : {p.x[i], p.y[i], p.z[i]}) {
+            *end++ = ' ';
+            end = std::to_chars(end, line + sizeof line, c).ptr;
+        }
+        *end++ = '\n';
+        out.append(line, end);
+    }
+    for (const auto& t : surface.triangles) {
+        std::snprintf(line, sizeof line, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+        out += line;
+    }
+    return out;
+}
+
+sim::Positions ReadObjVertices(const std::string& path) {
+    const std::string text = ReadInputFile(path);
+    if (text.find('\0') != std::string::npos) throw UsageError(Quote(path) + " is not a text OBJ file (binary data)");
+    sim::Positions p;
+    std::istringstream lines(text);
+    std::string line;
+    for (int lineNumber = 1; std::getline(lines, line); ++lineNumber) {
+        if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+        std::istringstream tokens(line);
+        std::string keyword;
+        if (!(tokens >> keyword)) continue;
+        const std::string where = path + ":" + std::to_string(lineNumber);
+        if (keyword == "v") {
+            double xyz[3];
+            std::string word;
+            for (double& c : xyz) {
+                if (!(tokens >> word)) throw UsageError(where + ": a 'v' line needs three coordinates");
+                c = ParseNumber(word, where);
+            }
+            if (tokens >> word) {  // optional w
+                ParseNumber(word, where);
+                if (tokens >> word) throw UsageError(where + ": too many numbers on a 'v' line");
+            }
+            p.x.push_back(xyz[0]);
+            p.y.push_back(xyz[1]);
+            p.z.push_back(xyz[2]);
+        } else if (keyword != "f" && keyword != "vn" && keyword != "vt" && keyword != "o" && keyword != "g" && keyword != "s" &&
+                   keyword != "l" && keyword != "usemtl" && keyword != "mtllib") {
+            // Faces and the rest are ignored: the model makes its own springs and triangles.
+            throw UsageError(where + ": not an OBJ line (starts with " + Quote(keyword) + ")");
+        }
+    }
+    return p;
+}
+
+}  // namespace app

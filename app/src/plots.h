@@ -1,0 +1,25 @@
+// The figures of numbers an experiment writes: a sweep's fitness landscape (a line plot for one
+// axis, a heat map for two) and a GA's evolution (best, mean and worst per generation, per run).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "experiment.h"
+#include "render/image.h"
+
+namespace app {
+
+// `fitness` in grid order (NaN for failed points); `best` the best point's index or -1.
+render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fitness, int best, const std::string& bestText);
+
+struct RunCurve {
+    std::string title;  // e.g. "run 2"
+    std::vector<sim::LogbookRow> logbook;
+};
+render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
+
+// How a sweep axis is named on plots, e.g. "amplitude A".
+std::string AxisLabel(sim::SweepParameter parameter);
+
+}  // namespace app

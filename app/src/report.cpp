@@ -1,0 +1,69 @@
+#include "report.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace app {
+
+bool MarkedlyDifferent(double ours, double thesis) {
+    if (!std::isfinite(thesis)) return false;
+    if (!std::isfinite(ours)) return true;
+    return std::fabs(ours - thesis) > 0.05 && std::fabs(ours - thesis) > 0.1 * std::fabs(thesis);
+}
+
+namespace {
+
+std::string Cell(double value) { return std::isfinite(value) ? fmt::format("{:.4g}", value) : "-"; }
+
+}  // namespace
+
+std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator) {
+    long long simulations = 0;
+    for (const auto& entry : entries) simulations += entry.outcome.simulations;
+    std::string md = "# Reproducing the 2019 thesis with Actuator Workbench\n\n";
+    if (quick)
+        md += "**Quick run** (`--quick`): at most 3 values per sweep axis, one GA run of 2 generations of 6 individuals, 2,000 "
+              "iterations. The numbers below check that everything runs; they are not the thesis's experiments.\n\n";
+    md += "Model: the `thesis` model of `shared/MODEL.md` (helical 30 x 30 mass-spring mesh, cross-product inflation, clamped ends). "
+          "Every experiment file is in `assets/experiments/`; its settings are copied beside its results.\n\n";
+    md += "| | |\n|---|---|\n";
+    md += "| experiments | " + std::to_string(entries.size()) + " |\n";
+    md += "| simulations | " + std::to_string(simulations) + " |\n";
+    md += fmt::format("| wall time | {:.1f} s ({:.1f} min) |\n", seconds, seconds / 60);
+    md += fmt::format("| throughput | {:.1f} evaluations/s on {}, figures included |\n\n", seconds > 0 ? simulations / seconds : 0, evaluator);
+    md += "## Contents\n\n";
+    for (const auto& entry : entries)
+        md += "- [" + entry.experiment.id + " " + entry.experiment.title + "](#" + entry.folder + ")\n";
+    md += "\n";
+
+    for (const auto& entry : entries) {
+        const Experiment& e = entry.experiment;
+        const ExperimentOutcome& o = entry.outcome;
+        md += "<a id=\"" + entry.folder + "\"></a>\n\n## " + e.id + " " + e.title + "\n\n";
+        if (!e.thesis.empty()) md += "Thesis: " + e.thesis + ".\n\n";
+        if (!e.note.empty()) md += "Settings: " + e.note + "\n\n";
+        md += fmt::format("Results in [`{0}/`]({0}/): {1} simulations in {2:.1f} s.\n\n", entry.folder, o.simulations, o.seconds);
+        if (!o.rows.empty()) {
+            md += "| | ours | thesis | difference |\n|---|---:|---:|---:|\n";
+            for (const auto& row : o.rows)
+                md += "| " + row.quantity + " | " + Cell(row.ours) + " | " + Cell(row.thesis) + " | " +
+                      (std::isfinite(row.ours) && std::isfinite(row.thesis) ? fmt::format("{:+.3g}", row.ours - row.thesis) : std::string("-")) +
+                      (MarkedlyDifferent(row.ours, row.thesis) ? " **" : "") + " |\n";
+            md += "\n";
+        }
+        for (const auto& line : o.details) md += "- " + line + "\n";
+        if (!o.details.empty()) md += "\n";
+        bool differs = false;
+        for (const auto& row : o.rows) differs = differs || MarkedlyDifferent(row.ours, row.thesis);
+        if (differs && quick)
+            md += "Differences here come from the quick run's reduced grids and generations.\n\n";
+        else if (differs)
+            md += "**Why the numbers differ** (rows marked **): " +
+                  (e.explanation.empty() ? std::string("no explanation recorded for this experiment.") : e.explanation) + "\n\n";
+        for (const auto& figure : o.figures) md += "![" + e.id + " " + figure + "](" + entry.folder + "/" + figure + ")\n\n";
+    }
+    return md;
+}
+
+}  // namespace app

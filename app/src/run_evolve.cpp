@@ -1,0 +1,239 @@
+// The thesis's genetic algorithm (chapter 5) for as many independent runs as the experiment asks:
+// sim's pure GA steps around an evaluation callback, every evaluation recorded, the run's tables,
+// a contact sheet of every generation and a checkpoint written after each generation. A resume
+// cuts the archive back to the newest checkpoint and continues from it: every output then equals
+// an uninterrupted run's.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <map>
+#include <optional>
+#include <unordered_map>
+
+#include "checkpoint.h"
+#include "errors.h"
+#include "experiment_runner.h"
+#include "files.h"
+#include "plots.h"
+#include "progress.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Evaluates genomes through the recorder, each distinct genome once per run (the simulation is
+// deterministic, so this changes speed only), and keeps the meshes of the current population for
+// its contact sheet.
+class GenomeCache {
+public:
+    GenomeCache(RunContext& c, int run) : c_(c), run_(run) {}
+
+    // After a resume: what this run had evaluated up to its checkpoint.
+    void Restore(const std::vector<ArchiveRecord>& records) {
+        for (const ArchiveRecord& r : records) {
+            if (r.role != Role::Individual || r.run != run_) continue;
+            const std::string key = sim::GenomeText(sim::GenomeOfShape(r.job.shape));
+            fitness_.emplace(key, std::pair{r.result.fitness, r.result.status});
+            ids_.emplace(key, r.id);
+        }
+    }
+
+    void SetGeneration(int generation) { generation_ = generation; }
+
+    std::vector<std::pair<double, sim::Status>> operator()(const std::vector<const sim::Genome*>& genomes) {
+        std::vector<std::pair<double, sim::Status>> out(genomes.size());
+        std::vector<sim::EvalJob> jobs;
+        std::vector<EvaluationTag> tags;
+        std::vector<size_t> slots;
+        std::vector<std::string> keys;
+        for (size_t j = 0; j < genomes.size(); ++j) {
+            std::string key = sim::GenomeText(*genomes[j]);
+            if (auto hit = fitness_.find(key); hit != fitness_.end()) {
+                out[j] = hit->second;
+                continue;
+            }
+            // The same new genome twice in one batch is simulated once.
+            if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+                slots.push_back(j);
+                continue;
+            }
+            jobs.push_back({sim::ShapeOfGenome(*genomes[j], c_.e.ga.genome, c_.e.mesh), c_.e.mesh, c_.e.params});
+            tags.push_back({Role::Individual, run_, generation_, fmt::format("run {} generation {}", run_, generation_)});
+            slots.push_back(j);
+            keys.push_back(std::move(key));
+        }
+        c_.recorder.Evaluate(jobs, tags, [&](std::uint64_t id, size_t k, sim::SimResult&& r) {
+            fitness_.emplace(keys[k], std::pair{r.fitness, r.status});
+            ids_.emplace(keys[k], id);
+            meshes_[keys[k]] = std::move(r);
+        });
+        for (size_t slot : slots) out[slot] = fitness_.at(sim::GenomeText(*genomes[slot]));
+        return out;
+    }
+
+    // The simulated meshes of a population: kept from this session, else read back from the archive
+    // (after a resume). The kept meshes are then trimmed to this population.
+    std::vector<const sim::SimResult*> MeshesOf(const std::vector<sim::Individual>& population) {
+        std::vector<std::uint64_t> missing;
+        std::vector<std::string> keys;
+        for (const auto& individual : population) {
+            keys.push_back(sim::GenomeText(individual.genome));
+            if (!meshes_.count(keys.back())) missing.push_back(ids_.at(keys.back()));
+        }
+        for (ArchiveRecord& r : c_.recorder.ReadBack(missing)) meshes_[sim::GenomeText(sim::GenomeOfShape(r.job.shape))] = std::move(r.result);
+        std::unordered_map<std::string, sim::SimResult> kept;
+        for (const auto& key : keys)
+            if (!kept.count(key)) kept.emplace(key, std::move(meshes_.at(key)));
+        meshes_ = std::move(kept);
+        std::vector<const sim::SimResult*> out;
+        for (const auto& key : keys) out.push_back(&meshes_.at(key));
+        return out;
+    }
+
+    std::uint64_t IdOf(const sim::Genome& genome) const { return ids_.at(sim::GenomeText(genome)); }
+
+private:
+    RunContext& c_;
+    int run_;
+    int generation_ = 0;
+    std::unordered_map<std::string, std::pair<double, sim::Status>> fitness_;
+    std::unordered_map<std::string, std::uint64_t> ids_;
+    std::unordered_map<std::string, sim::SimResult> meshes_;
+};
+
+void WriteRunFiles(const fs::path& dir, const RunCheckpoint& checkpoint) {
+    WriteFileAtomically((dir / "logbook.csv").string(), LogbookCsv(checkpoint.state));
+    WriteFileAtomically((dir / "best_per_generation.csv").string(), BestPerGenerationCsv(checkpoint.state));
+    WriteFileAtomically((dir / "halloffame.csv").string(), HallOfFameCsv(checkpoint.state));
+    // Last: a checkpoint always describes files that are already complete.
+    WriteFileAtomically((dir / "checkpoint.json").string(), FormatCheckpoint(checkpoint));
+}
+
+std::string SheetName(int generation) { return fmt::format("sheets/generation_{:03}.png", generation); }
+
+void WriteGenerationSheet(RunContext& c, const fs::path& runDir, int run, GenomeCache& cache, const sim::GaState& state,
+                          std::unique_ptr<render::MeshRenderer>& renderer) {
+    if (!c.e.render.figures) return;
+    std::error_code ec;
+    fs::create_directories(runDir / "sheets", ec);
+    const auto meshes = cache.MeshesOf(state.population);
+    std::vector<SheetEntry> entries;
+    for (const sim::SimResult* mesh : meshes) entries.push_back({mesh, FitnessCaption(*mesh)});
+    WriteContactSheet(runDir / SheetName(state.generation),
+                      fmt::format("{}  -  run {}, generation {}", ExperimentTitle(c.e), run, state.generation), entries, c.e.mesh, renderer);
+}
+
+std::string GenomeSummary(const Experiment& e, const sim::Genome& genome) {
+    return e.ga.genome.kind == sim::GenomeKind::BSpline ? "[" + sim::GenomeText(genome) + "]" : "of " + std::to_string(genome[0].size()) + " offsets";
+}
+
+}  // namespace
+
+void RunEvolution(RunContext& c) {
+    const Experiment& e = c.e;
+    auto runDir = [&](int r) { return c.dir / ("run_" + std::to_string(r)); };
+
+    // Resume: every run up to the newest checkpoint; the archive is cut back to that checkpoint.
+    std::vector<std::optional<RunCheckpoint>> saved(static_cast<size_t>(e.runs));
+    int newest = 0;  // 1-based run of the newest checkpoint; 0: none
+    if (c.options.resume) {
+        for (int r = 1; r <= e.runs; ++r) {
+            const fs::path path = runDir(r) / "checkpoint.json";
+            std::error_code ec;
+            if (!fs::exists(path, ec)) continue;
+            saved[r - 1] = ParseCheckpoint(ReadInputFile(path.string()), path.string(), e);
+            newest = r;
+        }
+        for (int r = 1; r < newest; ++r)
+            if (!saved[r - 1]) throw UsageError("--resume: " + Quote(runDir(r).string()) + " has no checkpoint, yet a later run has one");
+        c.recorder.RollBack(newest ? saved[newest - 1]->archiveCount : 0);
+    }
+
+    std::vector<RunCheckpoint> runs;
+    std::vector<std::unique_ptr<GenomeCache>> caches;
+    for (int r = 1; r <= e.runs; ++r) {
+        const fs::path dir = runDir(r);
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (!fs::is_directory(dir, ec)) throw UsageError("cannot create folder " + Quote(dir.string()));
+        caches.push_back(std::make_unique<GenomeCache>(c, r));
+        GenomeCache& cache = *caches.back();
+        const sim::GenomeEvaluator evaluator = [&](const std::vector<const sim::Genome*>& genomes) { return cache(genomes); };
+        std::unique_ptr<render::MeshRenderer> sheetRenderer;
+        Progress progress(fmt::format("evolve {} run {}/{}", ExperimentTitle(e), r, e.runs), c.options.progress);
+        RunCheckpoint checkpoint;
+        if (r <= newest) {
+            checkpoint = std::move(*saved[r - 1]);
+            cache.Restore(c.recorder.Existing());
+        } else {
+            checkpoint.seed = sim::DeriveSeed(e.seed, static_cast<std::uint64_t>(r - 1));
+            checkpoint.experimentHash = ExperimentHash(e);
+            checkpoint.experiment = e.document;
+            cache.SetGeneration(0);
+            checkpoint.state = sim::StartEvolution(e.ga, e.mesh, checkpoint.seed, evaluator);
+            WriteGenerationSheet(c, dir, r, cache, checkpoint.state, sheetRenderer);
+            checkpoint.archiveCount = c.recorder.Count();
+            WriteRunFiles(dir, checkpoint);
+        }
+        while (checkpoint.state.generation < e.ga.generations) {
+            cache.SetGeneration(checkpoint.state.generation + 1);
+            if (!sim::EvolveOneGeneration(e.ga, e.mesh, checkpoint.state, evaluator)) {
+                std::cerr << "run " << r << ": every individual of generation " << checkpoint.state.generation
+                          << " failed (nan or diverged); the run stops here\n";
+                break;
+            }
+            WriteGenerationSheet(c, dir, r, cache, checkpoint.state, sheetRenderer);
+            checkpoint.archiveCount = c.recorder.Count();
+            WriteRunFiles(dir, checkpoint);
+            progress.Update(checkpoint.state.generation, e.ga.generations, c.recorder.Simulated(),
+                            fmt::format("best {:.4f}, generation", checkpoint.state.logbook.back().best));
+        }
+        runs.push_back(std::move(checkpoint));
+    }
+
+    int bestRun = -1;
+    for (int r = 0; r < e.runs; ++r) {
+        const auto& s = runs[r].state;
+        const double best = s.hallOfFame.empty() ? NAN : s.hallOfFame.front().fitness;
+        c.outcome.rows.push_back({fmt::format("run {} best fitness", r + 1), best,
+                                  r < static_cast<int>(e.thesisResult.runBest.size()) ? e.thesisResult.runBest[r] : NAN});
+        if (s.hallOfFame.empty()) continue;
+        c.outcome.details.push_back(fmt::format("run {} (seed {}): best genome {}", r + 1, runs[r].seed, GenomeSummary(e, s.hallOfFame.front().genome)));
+        if (bestRun < 0 || best > runs[bestRun].state.hallOfFame.front().fitness) bestRun = r;
+    }
+    if (!e.render.figures) return;
+
+    std::vector<RunCurve> curves;
+    for (int r = 0; r < e.runs; ++r) curves.push_back({fmt::format("run {}", r + 1), runs[r].state.logbook});
+    WritePng((c.dir / "evolution.png").string(), EvolutionImage(e, curves), 6);
+    c.outcome.figures.push_back("evolution.png");
+    for (int r = 0; r < e.runs; ++r) {
+        const std::string sheet = "run_" + std::to_string(r + 1) + "/" + SheetName(runs[r].state.generation);
+        std::error_code ec;
+        if (fs::exists(c.dir / sheet, ec)) c.outcome.figures.push_back(sheet);
+    }
+    if (e.render.turntable == TurntablePlan::All) {
+        // Every member of each run's final population turning (all evaluations would be thousands).
+        for (int r = 0; r < e.runs; ++r) {
+            const auto& population = runs[r].state.population;
+            for (size_t k = 0; k < population.size(); ++k) {
+                const fs::path folder = runDir(r + 1) / "final_population" / ("individual_" + std::to_string(k + 1));
+                std::error_code ec;
+                fs::create_directories(folder, ec);
+                const ArchiveRecord record = c.recorder.ReadBack({caches[r]->IdOf(population[k].genome)}).at(0);
+                WriteBestFigures(c, folder, record.job.shape, record.result, fmt::format("run {}, individual {}", r + 1, k + 1), e.render.turntableFrames,
+                                 false);
+            }
+        }
+    }
+    if (bestRun >= 0) {
+        const auto& best = runs[bestRun].state.hallOfFame.front();
+        const ArchiveRecord record = c.recorder.ReadBack({caches[bestRun]->IdOf(best.genome)}).at(0);
+        const std::string title = fmt::format("best of run {}: {}", bestRun + 1,
+                                              e.ga.genome.kind == sim::GenomeKind::BSpline ? ShapeTitle(record.job.shape) : std::string("free-xy offsets"));
+        WriteBestFigures(c, c.dir, record.job.shape, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
+    }
+}
+
+}  // namespace app

@@ -1,0 +1,53 @@
+// A list of given shapes (thesis chapter 6's stretch tests): each evaluated once under the
+// experiment's load, tabulated beside the thesis's number, and pictured before and after.
+// Resumable: shapes are archived in order, so a resume continues after the last archived one.
+#include <fmt/format.h>
+
+#include "csv.h"
+#include "experiment_runner.h"
+#include "files.h"
+#include "progress.h"
+
+namespace app {
+
+void RunList(RunContext& c) {
+    const Experiment& e = c.e;
+    const size_t n = e.shapes.size();
+    size_t done = 0;
+    for (const ArchiveRecord& r : c.recorder.Existing()) {
+        if (done >= n || r.role != Role::Shape || r.id != done) break;
+        ++done;
+    }
+    if (c.options.resume) c.recorder.RollBack(done);
+
+    Progress progress("evaluate " + ExperimentTitle(e), c.options.progress);
+    std::vector<sim::EvalJob> jobs;
+    std::vector<EvaluationTag> tags;
+    for (size_t j = done; j < n; ++j) {
+        jobs.push_back({e.shapes[j].shape, e.mesh, e.params});
+        tags.push_back({Role::Shape, 0, -1, e.shapes[j].label});
+    }
+    c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&&) {
+        progress.Update(static_cast<long long>(done + k + 1), static_cast<long long>(n), static_cast<long long>(k + 1), "shapes");
+    });
+
+    // Table and figures from the archive: the same whether the run was resumed or not.
+    std::string csv = CsvRow({"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
+    std::unique_ptr<render::MeshRenderer> renderer;
+    const char* load = sim::Name(e.params.load);
+    c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) {
+        const LabelledShape& shape = e.shapes[r.id];
+        const bool ok = r.result.status == sim::Status::Ok;
+        csv += CsvRow({std::to_string(r.id), CsvField(shape.label), ok ? CsvNumber(r.result.fitness) : "", ok ? CsvNumber(r.result.contractionPercent) : "",
+                       sim::Name(r.result.status), std::to_string(r.result.iterationsRun), CsvNumber(shape.thesisFitness)});
+        c.outcome.rows.push_back({shape.label, ok ? r.result.fitness : NAN, shape.thesisFitness});
+        if (!e.render.figures) return;
+        if (!renderer) renderer = MakeRenderer(1024, 768);
+        const std::string name = fmt::format("shape_{:02}.png", r.id);
+        WritePng((c.dir / name).string(), renderer->Render(BeforeAfterScene(shape.label + "  -  " + load, r.result, e.mesh)), 6);
+        c.outcome.figures.push_back(name);
+    });
+    WriteFileAtomically((c.dir / "results.csv").string(), csv);
+}
+
+}  // namespace app
