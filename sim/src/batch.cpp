@@ -22,7 +22,7 @@ std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threa
     int done = 0;
     auto worker = [&] {
         for (int j = next++; j < total; j = next++) {
-            results[j] = Evaluate(jobs[j].shape, jobs[j].mesh, jobs[j].params);
+            results[j] = Evaluate(jobs[j]);
             if (onDone) {
                 std::lock_guard lock(progressMutex);
                 onDone(++done, total, results[j]);

@@ -21,10 +21,12 @@ enum class SweepParameter {
     Amplitude,  // A
     Cycles,     // n: phase runs from phaseStart to phaseStart + n*pi (thesis 4.2, 4.3)
     PhaseEnd,   // b: phase runs from phaseStart to b
+    PressureKpa,  // the target gauge pressure of the membrane and shell models: a load, not a shape
+                  // parameter (sweeps over jobs: SweepJobs in batch.h)
 };
 
-// A sine or abs-sine shape's value of a sweep parameter (NaN for other shapes), and the shape with
-// that parameter set (other shapes are returned unchanged).
+// A sine or abs-sine shape's value of a sweep parameter (NaN for other shapes and for PressureKpa),
+// and the shape with that parameter set (other shapes and PressureKpa: returned unchanged).
 double SweepParameterValue(const Shape& shape, SweepParameter parameter);
 Shape WithSweepParameter(Shape shape, SweepParameter parameter, double value);
 
@@ -127,8 +129,9 @@ std::string GenomeText(const Genome& genome);
 
 template <>
 struct EnumNames<SweepParameter> {
-    static constexpr std::array<std::pair<SweepParameter, const char*>, 3> table{{
-        {SweepParameter::Amplitude, "amplitude"}, {SweepParameter::Cycles, "cycles"}, {SweepParameter::PhaseEnd, "phase_end"}}};
+    static constexpr std::array<std::pair<SweepParameter, const char*>, 4> table{{
+        {SweepParameter::Amplitude, "amplitude"}, {SweepParameter::Cycles, "cycles"}, {SweepParameter::PhaseEnd, "phase_end"},
+        {SweepParameter::PressureKpa, "pressure_kpa"}}};
 };
 template <>
 struct EnumNames<GenomeKind> {

@@ -11,6 +11,8 @@
 #include "sim/mesh.h"
 #include "sim/names.h"
 #include "sim/shape.h"
+#include "sim/shell.h"
+#include "sim/status.h"
 
 namespace sim {
 
@@ -25,17 +27,6 @@ enum class Precision {
     Double,  // reference
 };
 
-// How an evaluation ended. Every model reports one; a failed evaluation is never a silent zero.
-enum class Status {
-    Ok,               // finished: the fitness and every output are meaningful
-    NaN,              // thesis: a position became NaN or infinite
-    Diverged,         // thesis: a position left the divergence bound: the mesh ran away
-    LimitPoint,       // shell models: past the pressure maximum (the actuator balloons)
-    NotConverged,     // shell models: Newton did not reach equilibrium within its budget
-    NonFinite,        // shell models: energy or forces became NaN or infinite
-    SelfIntersection, // shell models: the wall passes through itself at equilibrium
-    InvalidGeometry,  // shell models: the rest shape cannot be built (radius <= 0, self-intersecting)
-};
 
 // Parameters of the `thesis` model. Defaults are the thesis's Table 3.2 values.
 struct SimParams {
@@ -61,10 +52,12 @@ struct SimResult {
     Status status = Status::Ok;
     double fitness = 0.0;             // mesh units; NaN unless status is Ok
     double contractionPercent = 0.0;  // 100 * fitness / turns; NaN unless status is Ok
-    int iterationsRun = 0;            // where the run stopped (== params.iterations when Ok)
+    int iterationsRun = 0;            // thesis: where the run stopped (== params.iterations when Ok);
+                                      // membrane and shell: Newton iterations, all load steps
     double elapsedMs = 0.0;           // wall time of the relaxation alone
     Positions initial;                // the shaped rest mesh
     Positions final;                  // positions after the last iteration run
+    ShellOutputs shell;               // membrane and shell models only
 };
 
 // Called every `interval` iterations (and with iteration 0 before the first) with the current
@@ -95,19 +88,6 @@ struct EnumNames<Load> {
 template <>
 struct EnumNames<Precision> {
     static constexpr std::array<std::pair<Precision, const char*>, 2> table{{{Precision::Float, "float"}, {Precision::Double, "double"}}};
-};
-template <>
-struct EnumNames<Status> {
-    static constexpr std::array<std::pair<Status, const char*>, 8> table{{
-        {Status::Ok, "ok"},
-        {Status::NaN, "nan"},
-        {Status::Diverged, "diverged"},
-        {Status::LimitPoint, "limit-point"},
-        {Status::NotConverged, "not-converged"},
-        {Status::NonFinite, "non-finite"},
-        {Status::SelfIntersection, "self-intersection"},
-        {Status::InvalidGeometry, "invalid-geometry"},
-    }};
 };
 
 }  // namespace sim

@@ -1,0 +1,178 @@
+// The models of record (shared/SHELL.md): `membrane`, an incompressible hyperelastic thin sheet, and
+// `shell`, the membrane plus discrete-shell bending; a tube of silicone in millimetres, newtons and
+// megapascals (N/mm^2), closed by end caps, held by rigid clamps, loaded by pressure (or a sealed gas,
+// a prescribed volume, an axial force), solved to static equilibrium by Newton's method on Eigen's
+// sparse LDLT. Contraction, blocking force, stiffness, stretch and stress come out in physical units.
+//
+// Evaluation is a pure function of (shape, ShellDef): safe to call from many threads.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sim/mesh.h"
+#include "sim/names.h"
+#include "sim/shape.h"
+#include "sim/status.h"
+#include "sim/surface.h"
+
+namespace sim {
+
+enum class ModelKind {
+    Thesis,    // the 2019 thesis's mass-spring model (MODEL.md), kept exact for reproduction
+    Membrane,  // hyperelastic membrane, no bending: verification and speed
+    Shell,     // membrane plus discrete-shell bending: the default for new studies
+};
+
+enum class MaterialLaw { NeoHookean, MooneyRivlin, Yeoh };
+
+// Silicones with their suppliers' data (SHELL.md section 3). `Custom` keeps the constants given.
+enum class MaterialPreset { Ecoflex0030, Ecoflex0050, DragonSkin10, DragonSkin20, DragonSkin30, Elastosil4601, Custom };
+
+// How the actuator is loaded.
+enum class ShellLoad {
+    Inflate,  // prescribed gauge pressure, raised in steps to the target
+    Gas,      // a sealed charge of gas at the target pressure, isothermal (p V = const) as it deforms
+    Volume,   // prescribed enclosed volume (follows the curve past the pressure maximum)
+    Force,    // an axial force on the top clamp, no pressure
+    Blocked,  // the target pressure with the top clamp held: the blocking force
+};
+
+// How the tube's ends are held.
+enum class EndCondition {
+    Clamped,  // rigid clamps: the end rings keep their shape; the top clamp slides along the axis
+    Sliding,  // end plates the end rings slide on: free radially, held axially (closed-form checks)
+};
+
+struct GeometryDef {
+    double radiusMm = 5;      // base radius R: one thesis radius unit
+    double lengthMm = 150;    // between the ends, including the clamped rings
+    double thicknessMm = 1;   // wall thickness h
+    int ringVertices = 30;    // vertices per ring
+    int rings = 30;           // rings along the length; 0: chosen so that triangles are near equilateral.
+                              // 30, the thesis's mesh size: near-equilateral at R = 5, L = 150 is 30 x 166
+                              // and 30 times slower, for a contraction within 1 % (the mesh study of
+                              // the reproduce chapter)
+    int clampRings = 2;       // rings held by each end clamp
+    EndCondition ends = EndCondition::Clamped;
+};
+
+// A silicone. The values come from a preset (MaterialPresetDef, where each is written once, with its
+// source); any may be overridden.
+struct MaterialDef {
+    MaterialPreset preset = MaterialPreset::Custom;
+    MaterialLaw law = MaterialLaw::NeoHookean;
+    double muKpa = 0;                  // neo-Hookean small-strain shear modulus, kPa
+    double c10Kpa = 0, c01Kpa = 0;     // Mooney-Rivlin constants, kPa (shear modulus 2 (C10 + C01))
+    double c20Kpa = 0, c30Kpa = 0;     // Yeoh's higher constants, kPa (C10 is shared with Mooney-Rivlin)
+    double tensileStrengthKpa = 0;     // supplier's tensile strength, kPa
+    double elongationAtBreak = 0;      // supplier's elongation at break as a fraction (900 % = 9)
+    double stretchLimit = 0;           // largest allowed principal stretch; 0: 1 + elongationAtBreak / 2
+    double densityKgPerM3 = 0;         // for silicone volume and mass
+};
+// The preset's constants and limits, with their sources (materials.cpp).
+MaterialDef MaterialPresetDef(MaterialPreset preset);
+// The small-strain shear modulus of a material, kPa.
+double ShearModulusKpa(const MaterialDef& material);
+double StretchLimit(const MaterialDef& material);
+
+struct LoadDef {
+    ShellLoad kind = ShellLoad::Inflate;
+    double pressureKpa = 3;    // target gauge pressure (Inflate, Gas, Blocked); negative is vacuum
+    double forceN = 0;         // axial force on the top clamp, + pulls it up (Force)
+    double volumeRatio = 1.5;  // target enclosed volume over the rest volume (Volume)
+    int steps = 4;             // load steps: the contraction-pressure curve's points
+};
+
+struct SolverDef {
+    double tolerance = 1e-8;   // converged when the largest free-node force is below this x mu h l
+    int maxIterations = 50;    // Newton iterations per load step
+    int maxBisections = 6;     // a failed step is halved at most this often (down to 1/64)
+    bool selfContact = true;   // check every converged state for self-intersection
+};
+
+struct ShellDef {
+    GeometryDef geometry;
+    MaterialDef material = MaterialPresetDef(MaterialPreset::Ecoflex0030);
+    LoadDef load;
+    SolverDef solver;
+};
+ShellDef DefaultShellDef();
+
+// Empty when the definition is usable; otherwise what is wrong, for a user to read.
+std::string ShellDefError(const ShellDef& def);
+
+// The mesh size a definition gives: rings chosen for near-equilateral triangles when rings is 0.
+int RingCount(const GeometryDef& geometry);
+
+// What an evaluation of a shell model says beyond the common result fields (SHELL.md section 10).
+struct ShellOutputs {
+    std::vector<double> curvePressureKpa;          // the load steps' pressures
+    std::vector<double> curveContractionPercent;   // contraction at each (positive = shorter)
+    std::vector<double> curveVolumeMm3;            // enclosed volume at each
+    double targetPressureKpa = NAN;                // the pressure the contraction is reported at
+    double limitPressureKpa = NAN;                 // the pressure maximum, when met
+    double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
+    double axialStiffnessNPerMm = NAN;             // dF/du at the free equilibrium
+    double restVolumeMm3 = NAN, volumeMm3 = NAN;   // enclosed, caps included
+    double maxStretch = NAN;                       // largest principal stretch of the wall
+    double maxStressKpa = NAN;                     // largest principal true (Cauchy) stress
+    double stretchLimit = NAN, tensileStrengthKpa = NAN;  // the material's, to compare with
+    double displacementMm = NAN;                   // top clamp's axial displacement u
+    int newtonIterations = 0;
+    int factorizations = 0;
+    std::vector<Positions> steps;                  // positions at each load step (for pictures)
+};
+
+// A design evaluated under a shell model (bending on: `shell`; off: `membrane`). Pure and thread-safe.
+struct SimResult;
+SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending);
+
+// The wall's triangles (and caps) and edges for drawing, in the model's vertex order.
+Surface ShellSurface(const GeometryDef& geometry);
+
+// Per-vertex largest principal stretch and true stress (kPa) of a deformed shell, averaged from the
+// triangles around each vertex: for colour maps.
+struct ShellFields {
+    std::vector<double> stretch, stressKpa;
+};
+ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bending, const Positions& deformed);
+
+}  // namespace sim
+
+template <>
+struct sim::EnumNames<sim::ModelKind> {
+    static constexpr std::array<std::pair<sim::ModelKind, const char*>, 3> table{
+        {{sim::ModelKind::Thesis, "thesis"}, {sim::ModelKind::Membrane, "membrane"}, {sim::ModelKind::Shell, "shell"}}};
+};
+template <>
+struct sim::EnumNames<sim::MaterialLaw> {
+    static constexpr std::array<std::pair<sim::MaterialLaw, const char*>, 3> table{
+        {{sim::MaterialLaw::NeoHookean, "neo-hookean"}, {sim::MaterialLaw::MooneyRivlin, "mooney-rivlin"}, {sim::MaterialLaw::Yeoh, "yeoh"}}};
+};
+template <>
+struct sim::EnumNames<sim::MaterialPreset> {
+    static constexpr std::array<std::pair<sim::MaterialPreset, const char*>, 7> table{{
+        {sim::MaterialPreset::Ecoflex0030, "ecoflex-00-30"},
+        {sim::MaterialPreset::Ecoflex0050, "ecoflex-00-50"},
+        {sim::MaterialPreset::DragonSkin10, "dragon-skin-10"},
+        {sim::MaterialPreset::DragonSkin20, "dragon-skin-20"},
+        {sim::MaterialPreset::DragonSkin30, "dragon-skin-30"},
+        {sim::MaterialPreset::Elastosil4601, "elastosil-m4601"},
+        {sim::MaterialPreset::Custom, "custom"},
+    }};
+};
+template <>
+struct sim::EnumNames<sim::ShellLoad> {
+    static constexpr std::array<std::pair<sim::ShellLoad, const char*>, 5> table{{{sim::ShellLoad::Inflate, "inflate"},
+                                                                                   {sim::ShellLoad::Gas, "gas"},
+                                                                                   {sim::ShellLoad::Volume, "volume"},
+                                                                                   {sim::ShellLoad::Force, "force"},
+                                                                                   {sim::ShellLoad::Blocked, "blocked"}}};
+};
+template <>
+struct sim::EnumNames<sim::EndCondition> {
+    static constexpr std::array<std::pair<sim::EndCondition, const char*>, 2> table{
+        {{sim::EndCondition::Clamped, "clamped"}, {sim::EndCondition::Sliding, "sliding"}}};
+};

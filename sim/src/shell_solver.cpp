@@ -1,0 +1,474 @@
+// Static equilibrium of the shell models (SHELL.md section 6) and what an evaluation reports
+// (section 10).
+//
+// [SECTION] Factorisation: pattern analysed once per problem, a growing diagonal shift on failure
+// [SECTION] Newton: projected Hessian, backtracking line search on E, round-off guard
+// [SECTION] Loads: pressure steps with bisection, sealed gas, volume control, axial force
+// [SECTION] Evaluation: outputs, statuses
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "sim/batch.h"
+#include "sim/shell_problem.h"
+
+namespace sim {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Factorisation
+// ---------------------------------------------------------------------------------------------
+
+struct Counters {
+    int iterations = 0;
+    int factorizations = 0;
+};
+
+// An LDL^T factor whose symbolic analysis is done once for a pattern and reused.
+class Factor {
+public:
+    // Factorises H (+ shift I). False when a pivot is not positive (for a matrix that must be
+    // positive definite) or the factorisation failed.
+    bool Compute(const SparseMatrix& H, double shift, bool requirePositive, Counters& counters) {
+        if (!analysed_) {
+            ldlt_.analyzePattern(H);
+            analysed_ = true;
+        }
+        if (shift != 0) {
+            shifted_ = H;
+            for (int k = 0; k < shifted_.outerSize(); ++k) shifted_.coeffRef(k, k) += shift;
+            ldlt_.factorize(shifted_);
+        } else {
+            ldlt_.factorize(H);
+        }
+        ++counters.factorizations;
+        if (ldlt_.info() != Eigen::Success) return false;
+        if (!requirePositive) return true;
+        const auto& d = ldlt_.vectorD();
+        for (int k = 0; k < d.size(); ++k)
+            if (!(d[k] > 0)) return false;
+        return true;
+    }
+    Eigen::VectorXd Solve(const Eigen::VectorXd& b) const { return ldlt_.solve(b); }
+    // The most negative pivot (0 when none is negative).
+    double MostNegativePivot() const {
+        const auto& d = ldlt_.vectorD();
+        return d.size() ? std::min(0.0, d.minCoeff()) : 0.0;
+    }
+    // Negative pivots: by Sylvester's law of inertia, the number of negative eigenvalues.
+    int NegativePivots() const {
+        const auto& d = ldlt_.vectorD();
+        int count = 0;
+        for (int k = 0; k < d.size(); ++k) count += d[k] < 0;
+        return count;
+    }
+
+private:
+    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
+    SparseMatrix shifted_;
+    bool analysed_ = false;
+};
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Newton
+// ---------------------------------------------------------------------------------------------
+
+enum class NewtonEnd {
+    Converged,
+    NotConverged,
+    NonFinite,
+    Runaway,  // the volume passed its limit: no equilibrium nearby (past the pressure maximum)
+};
+
+struct Solver {
+    const ShellProblem& problem;
+    const SolverDef& def;
+    HessianPattern pattern;       // Newton's projected Hessian
+    Factor factor;
+    HessianPattern exactPattern;  // the exact Hessian (inertia, stiffness, volume control), factorised apart
+    Factor exactFactor;           // so that Newton's last factor stays for the predictor
+    Counters counters;
+    bool holdAxial = false;   // u is held at its current value (the blocked test)
+    double volumeLimit = std::numeric_limits<double>::infinity();  // Minimise stops as Runaway past it
+    double forceTolerance;    // N
+    EnergyTerms terms;
+
+    Solver(const ShellProblem& p, const SolverDef& d) : problem(p), def(d), pattern(p), exactPattern(p) {
+        forceTolerance = d.tolerance * MembraneMaterialShearModulus(p.material) * p.material.thicknessMm * p.meanEdgeMm;
+    }
+
+    // The largest force on a free vertex (and on the top clamp, unless held).
+    double LargestForce(const Eigen::VectorXd& g) const {
+        double largest = 0;
+        for (int v = 0; v < problem.vertexCount(); ++v) {
+            double sum = 0;
+            for (int c = 0; c < 3; ++c) {
+                const int d = problem.dofOf[3 * v + c];
+                if (d >= 0) sum += g[d] * g[d];
+            }
+            largest = std::max(largest, std::sqrt(sum));
+        }
+        if (problem.axial >= 0 && !holdAxial) largest = std::max(largest, std::fabs(g[problem.axial]));
+        return largest;
+    }
+
+    void ApplyHeld(Eigen::VectorXd& g, SparseMatrix* H) const {
+        if (!holdAxial || problem.axial < 0) return;
+        g[problem.axial] = 0;
+        if (!H) return;
+        // Dirichlet by elimination: the held unknown's row and column become the identity.
+        for (int col = 0; col < H->outerSize(); ++col)
+            for (SparseMatrix::InnerIterator it(*H, col); it; ++it)
+                if (it.row() == problem.axial || it.col() == problem.axial) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+    }
+
+    // Solves (H + c w w^T) x = b by Sherman-Morrison on the sparse factor (the sealed gas's term).
+    Eigen::VectorXd SolveWithRankOne(const Eigen::VectorXd& b, double c, const Eigen::VectorXd& w) const {
+        Eigen::VectorXd x = factor.Solve(b);
+        if (c == 0) return x;
+        const Eigen::VectorXd y = factor.Solve(w);
+        return x - (c * w.dot(x) / (1 + c * w.dot(y))) * y;
+    }
+
+    // Minimises the total energy at `load` from q (in place).
+    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load) {
+        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
+            EnergyResult r = AssembleEnergy(problem, q, load, terms, true, &pattern, HessianKind::Projected);
+            ++counters.iterations;
+            if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
+            if (r.volume > volumeLimit) return NewtonEnd::Runaway;
+            ApplyHeld(r.gradient, &pattern.matrix);
+            if (LargestForce(r.gradient) < forceTolerance) return NewtonEnd::Converged;
+            const double gasTerm = load.gasConstant > 0 ? load.gasConstant / (r.volume * r.volume) : 0;
+            Eigen::VectorXd w = r.volumeGradient;
+            if (holdAxial && problem.axial >= 0) w[problem.axial] = 0;
+            // A step that descends: the projected Hessian with the pressure's exact one (quadratic
+            // convergence near a stable equilibrium); when that is not definite (far from equilibrium,
+            // or near the pressure maximum), the pressure's part is left out, which is positive
+            // semi-definite by construction; a tiny growing shift takes care of what is singular.
+            Eigen::VectorXd step;
+            double shift = 0;
+            bool definite = false;
+            for (int attempt = 0; attempt < 12; ++attempt) {
+                if (factor.Compute(pattern.matrix, shift, true, counters)) {
+                    step = -SolveWithRankOne(r.gradient, gasTerm, w);
+                    if (step.allFinite() && step.dot(r.gradient) < 0) break;
+                }
+                step.resize(0);
+                if (!definite) {
+                    definite = true;
+                    AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Definite);
+                    ApplyHeld(r.gradient, &pattern.matrix);
+                    continue;
+                }
+                const double scale = pattern.matrix.diagonal().cwiseAbs().maxCoeff();
+                shift = shift == 0 ? 1e-10 * scale : 10 * shift;
+            }
+            if (step.size() == 0) return NewtonEnd::NotConverged;
+            // Backtracking on E. When the predicted decrease is below round-off, energy can no longer
+            // judge the step: take it whole (a clamped tube would otherwise stall near 5e-10).
+            const double slope = step.dot(r.gradient);
+            const bool roundOff = std::fabs(slope) < 1e-13 * std::max(1.0, std::fabs(r.energy));
+            double alpha = 1;
+            Eigen::VectorXd next;
+            bool accepted = false;
+            for (int halving = 0; halving < 40; ++halving) {
+                next = q + alpha * step;
+                if (roundOff) {
+                    accepted = true;
+                    break;
+                }
+                const double e = AssembleEnergy(problem, next, load, terms, false, nullptr, HessianKind::Projected).energy;
+                if (std::isfinite(e) && e <= r.energy + 1e-4 * alpha * slope) {
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if (!accepted) return NewtonEnd::NotConverged;
+            const double moved = (alpha * step).lpNorm<Eigen::Infinity>();
+            const double largest = (next - UnknownsOf(problem, problem.rest)).lpNorm<Eigen::Infinity>();
+            q = std::move(next);
+            if (moved < 1e-12 * std::max(largest, problem.meanEdgeMm)) return NewtonEnd::Converged;
+        }
+        return NewtonEnd::NotConverged;
+    }
+
+    // Bordered Newton on (q, p) for a prescribed volume: the gradient vanishes and V = target.
+    NewtonEnd AtVolume(Eigen::VectorXd& q, double& p, double target) {
+        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
+            LoadTerms l;
+            l.pressure = p;
+            EnergyResult r = AssembleEnergy(problem, q, l, terms, true, &exactPattern, HessianKind::Exact);
+            ++counters.iterations;
+            if (!r.gradient.allFinite() || !std::isfinite(r.volume)) return NewtonEnd::NonFinite;
+            ApplyHeld(r.gradient, &exactPattern.matrix);
+            const double volumeError = r.volume - target;
+            if (LargestForce(r.gradient) < forceTolerance && std::fabs(volumeError) < 1e-10 * problem.restVolume) return NewtonEnd::Converged;
+            if (!exactFactor.Compute(exactPattern.matrix, 0, false, counters)) return NewtonEnd::NotConverged;
+            Eigen::VectorXd w = r.volumeGradient;
+            if (holdAxial && problem.axial >= 0) w[problem.axial] = 0;
+            // [K -w; -w^T 0][dq; dp] = -[g; -(V - target)]: with a = K^-1 g, b = K^-1 w,
+            // dq = -a + dp b and w^T dq = -(V - target).
+            const Eigen::VectorXd a = exactFactor.Solve(r.gradient), b = exactFactor.Solve(w);
+            const double dp = (w.dot(a) - volumeError) / w.dot(b);
+            const Eigen::VectorXd dq = -a + dp * b;
+            if (!dq.allFinite() || !std::isfinite(dp)) return NewtonEnd::NonFinite;
+            q += dq;
+            p += dp;
+        }
+        return NewtonEnd::NotConverged;
+    }
+
+    // The exact Hessian at q, factorised (indefinite allowed); its negative pivots.
+    int ExactInertia(const Eigen::VectorXd& q, const LoadTerms& load, EnergyResult* r) {
+        *r = AssembleEnergy(problem, q, load, terms, true, &exactPattern, HessianKind::Exact);
+        ApplyHeld(r->gradient, &exactPattern.matrix);
+        if (!exactFactor.Compute(exactPattern.matrix, 0, false, counters)) return -1;
+        return exactFactor.NegativePivots();
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Evaluation
+// ---------------------------------------------------------------------------------------------
+
+double Contraction(const ShellProblem& p, const Eigen::VectorXd& q, double length) {
+    const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
+    return -100 * u / length;
+}
+
+void MaxStretchAndStress(const ShellProblem& p, const Positions& x, double* stretch, double* stress) {
+    *stretch = 0;
+    *stress = 0;
+    for (size_t t = 0; t < p.wall.size(); ++t) {
+        const PrincipalValues v = Principal(p.material, DeformationGradient(p, static_cast<int>(t), x));
+        *stretch = std::max(*stretch, v.stretch[0]);
+        *stress = std::max(*stress, v.stress[0]);
+    }
+}
+
+// One pressure-controlled (or gas, or force) load path in steps to the target, each step tried
+// whole from the previous state and halved on failure.
+struct PathEnd {
+    Status status = Status::Ok;
+    double reached = 0;  // the load parameter reached (pressure kPa, or force N)
+};
+
+}  // namespace
+
+Status SolveStatic(const ShellProblem& problem, const LoadTerms& load, const SolverDef& def, Eigen::VectorXd& q, bool holdAxial, int* iterations) {
+    Solver solver(problem, def);
+    solver.holdAxial = holdAxial;
+    const NewtonEnd end = solver.Minimise(q, load);
+    if (iterations) *iterations = solver.counters.iterations;
+    return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+}
+
+Status SolveVolume(const ShellProblem& problem, const SolverDef& def, double volume, Eigen::VectorXd& q, double& pressure, int* iterations) {
+    Solver solver(problem, def);
+    const NewtonEnd end = solver.AtVolume(q, pressure, volume);
+    if (iterations) *iterations = solver.counters.iterations;
+    return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+}
+
+SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
+    const auto started = std::chrono::steady_clock::now();
+    SimResult result;
+    ShellOutputs& out = result.shell;
+    const LoadDef& load = def.load;
+    out.stretchLimit = StretchLimit(def.material);
+    out.tensileStrengthKpa = def.material.tensileStrengthKpa;
+    auto finish = [&](Status status) {
+        result.status = status;
+        result.fitness = status == Status::Ok ? result.contractionPercent : std::nan("");
+        if (status != Status::Ok) result.contractionPercent = std::nan("");
+        result.elapsedMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+        return result;
+    };
+    std::string error;
+    const ShellProblem problem = BuildTubeProblem(def, shape, bending, &error);
+    if (!error.empty()) return finish(Status::InvalidGeometry);
+    result.initial = problem.rest;
+    result.final = problem.rest;
+    out.restVolumeMm3 = problem.restVolume;
+
+    Solver solver(problem, def.solver);
+    Eigen::VectorXd q = UnknownsOf(problem, problem.rest);
+    LoadTerms terms;
+    const double length = def.geometry.lengthMm;
+    solver.holdAxial = load.kind == ShellLoad::Blocked;
+
+    // The load parameter at fraction s of the target.
+    auto loadAt = [&](double s) {
+        LoadTerms l;
+        switch (load.kind) {
+            case ShellLoad::Inflate:
+            case ShellLoad::Blocked: l.pressure = s * load.pressureKpa * 1e-3; break;
+            case ShellLoad::Gas: l.gasConstant = (l.atmosphere + s * load.pressureKpa * 1e-3) * problem.restVolume; break;
+            case ShellLoad::Force: l.force = s * load.forceN; break;
+            case ShellLoad::Volume: break;
+        }
+        return l;
+    };
+    Positions x;
+    auto record = [&](double pressureKpa) {
+        PositionsOf(problem, q, x);
+        out.curvePressureKpa.push_back(pressureKpa);
+        out.curveContractionPercent.push_back(Contraction(problem, q, length));
+        out.curveVolumeMm3.push_back(EnclosedVolume(problem, x));
+        out.steps.push_back(x);
+    };
+    // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
+    // current state q); a prescribed one is s times the target, exactly the target at s = 1.
+    auto gaugeKpa = [&](double s) {
+        const LoadTerms l = loadAt(s);
+        if (l.gasConstant > 0) {
+            PositionsOf(problem, q, x);
+            return (l.gasConstant / EnclosedVolume(problem, x) - l.atmosphere) * 1e3;
+        }
+        return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
+    };
+
+    Status status = Status::Ok;
+    if (load.kind == ShellLoad::Volume) {
+        double p = 0;
+        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
+            const double target = problem.restVolume * (1 + (load.volumeRatio - 1) * k / load.steps);
+            const NewtonEnd end = solver.AtVolume(q, p, target);
+            if (end == NewtonEnd::Converged) record(p * 1e3);
+            else status = end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+        }
+        out.targetPressureKpa = p * 1e3;
+    } else {
+        // Steps to the target, each tried whole, halved on failure down to 1/2^maxBisections.
+        double reached = 0;
+        double lastVolume = problem.restVolume;
+        // The tangent dq/dp = K^-1 dV/dq at the last converged state predicts the next one (pressure
+        // loads): Newton then starts close and needs fewer iterations.
+        Eigen::VectorXd tangent;
+        const bool predict = load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Blocked;
+        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
+            const double goal = double(k) / load.steps;
+            double increment = goal - reached;
+            const double smallest = increment / std::pow(2.0, def.solver.maxBisections);
+            while (reached < goal - 1e-15 && status == Status::Ok) {
+                const double next = std::min(goal, reached + increment);
+                Eigen::VectorXd trial = q;
+                if (predict && tangent.size() == q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
+                solver.volumeLimit = load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : 3 * lastVolume;
+                const NewtonEnd end = solver.Minimise(trial, loadAt(next));
+                solver.volumeLimit = std::numeric_limits<double>::infinity();
+                if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
+                if (end == NewtonEnd::Runaway && increment <= smallest) {
+                    out.limitPressureKpa = gaugeKpa(reached);
+                    status = Status::LimitPoint;
+                    break;
+                }
+                if (end == NewtonEnd::Converged) {
+                    PositionsOf(problem, trial, x);
+                    const double volume = EnclosedVolume(problem, x);
+                    // A converged state far beyond the last one has snapped through to a distant branch:
+                    // past the pressure maximum. (An unstable state is caught at the end, by inertia.)
+                    if (load.kind != ShellLoad::Force && volume > 3 * lastVolume) {
+                        out.limitPressureKpa = gaugeKpa(reached);
+                        status = Status::LimitPoint;
+                        break;
+                    }
+                    q = std::move(trial);
+                    reached = next;
+                    lastVolume = volume;
+                    if (predict) {
+                        Eigen::VectorXd w = AssembleEnergy(problem, q, loadAt(reached), solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
+                        if (solver.holdAxial && problem.axial >= 0) w[problem.axial] = 0;
+                        tangent = solver.factor.Solve(w);  // the factor of Newton's last step
+                        if (!tangent.allFinite()) tangent.resize(0);
+                    }
+                    continue;
+                }
+                if (increment <= smallest) {
+                    // Newton runs away when no equilibrium exists: past the pressure maximum.
+                    PositionsOf(problem, trial, x);
+                    const double volume = EnclosedVolume(problem, x);
+                    if (load.kind != ShellLoad::Force && (end == NewtonEnd::Runaway || !std::isfinite(volume) || volume > 2 * lastVolume)) {
+                        out.limitPressureKpa = gaugeKpa(reached);
+                        status = Status::LimitPoint;
+                    } else if (status == Status::Ok) {
+                        status = Status::NotConverged;
+                    }
+                    break;
+                }
+                increment *= 0.5;
+            }
+            if (status == Status::Ok) record(gaugeKpa(reached));
+        }
+        out.targetPressureKpa = gaugeKpa(reached);
+    }
+
+    PositionsOf(problem, q, x);
+    result.final = x;
+    out.newtonIterations = solver.counters.iterations;
+    result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
+    out.displacementMm = problem.axial >= 0 ? q[problem.axial] : 0;
+    out.volumeMm3 = EnclosedVolume(problem, x);
+    MaxStretchAndStress(problem, x, &out.maxStretch, &out.maxStressKpa);
+    out.maxStressKpa *= 1e3;
+    result.contractionPercent = Contraction(problem, q, length);
+    if (status != Status::Ok) {
+        out.factorizations = solver.counters.factorizations;
+        return finish(status);
+    }
+    if (def.solver.selfContact && SelfIntersects(problem, x)) {
+        out.factorizations = solver.counters.factorizations;
+        return finish(Status::SelfIntersection);
+    }
+
+    // Stiffness at the free equilibrium: 1 / (K^-1)_uu of the exact Hessian (its Schur complement).
+    const LoadTerms finalLoad = load.kind == ShellLoad::Volume ? [&] {
+        LoadTerms l;
+        l.pressure = out.targetPressureKpa * 1e-3;
+        return l;
+    }() : loadAt(1.0);
+    // The exact Hessian's inertia tells a stable equilibrium from one past the pressure maximum.
+    {
+        EnergyResult exact;
+        const int negative = solver.ExactInertia(q, finalLoad, &exact);
+        if (negative > 0 && load.kind != ShellLoad::Volume) {
+            out.limitPressureKpa = out.targetPressureKpa;
+            out.factorizations = solver.counters.factorizations;
+            return finish(Status::LimitPoint);
+        }
+        if (negative >= 0 && problem.axial >= 0 && !solver.holdAxial) {
+            Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.unknowns);
+            unit[problem.axial] = 1;
+            out.axialStiffnessNPerMm = 1 / solver.exactFactor.Solve(unit)[problem.axial];
+        }
+    }
+    // Blocking force: the top clamp held at its rest place at the final load, from the free state.
+    if (load.kind == ShellLoad::Blocked) {
+        out.blockingForceN = AssembleEnergy(problem, q, finalLoad, solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+    } else if (load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Gas) {
+        Eigen::VectorXd held = q;
+        held[problem.axial] = 0;
+        solver.holdAxial = true;
+        if (solver.Minimise(held, finalLoad) == NewtonEnd::Converged)
+            out.blockingForceN = AssembleEnergy(problem, held, finalLoad, solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+        solver.holdAxial = false;
+    }
+    out.newtonIterations = solver.counters.iterations;
+    result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
+    out.factorizations = solver.counters.factorizations;
+    if (out.maxStretch > out.stretchLimit) return finish(Status::OverStretched);
+    return finish(Status::Ok);
+}
+
+}  // namespace sim
