@@ -1,19 +1,22 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages the workbench builds with, only those that are missing.
+# Installs the Debian 12 packages the workbench builds and tests with, only those that are missing.
 # Run as root (or with sudo). Everything comes from Debian: no downloads at build time.
 set -euo pipefail
 
 packages=(
-  g++ cmake make pkg-config
-  libeigen3-dev          # linear algebra (sim)
-  libosmesa6-dev         # offscreen OpenGL (render)
-  libpng-dev             # PNG files (render)
-  libimgui-dev           # Dear ImGui overlays (render)
-  fonts-dejavu-core      # the overlay font (render)
-  capnproto libcapnp-dev # archives and RPC (app)
+  g++ cmake make pkg-config git
+  libeigen3-dev              # linear algebra (sim)
+  libosmesa6-dev             # offscreen OpenGL, OSMesa backend (render)
+  libegl-dev libegl-mesa0 libopengl-dev  # offscreen OpenGL, EGL surfaceless backend (render)
+  libpng-dev zlib1g-dev      # PNG files (render), archive checksums (app)
+  libimgui-dev               # Dear ImGui overlays (render)
+  fonts-dejavu-core          # the overlay font (render)
+  capnproto libcapnp-dev     # archives and RPC (app)
+  libcli11-dev               # command-line options (app)
+  libfmt-dev                 # number formatting (app)
+  nlohmann-json3-dev         # JSON: experiment files, outputs, checkpoints (app)
   libgtest-dev libgmock-dev  # tests
-  libbenchmark-dev       # benchmarks
-  nlohmann-json3-dev     # JSON parsing (experiment files, tests)
+  libbenchmark-dev           # benchmarks
 )
 
 missing=()

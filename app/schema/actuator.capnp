@@ -9,9 +9,12 @@ $Cxx.namespace("actuator::schema");
 
 enum Load { inflate @0; stretch @1; none @2; }
 enum Precision { float @0; double @1; }
-# The CLI's ok, nan, diverged, limit-point, not-converged, non-finite, self-intersection, invalid-geometry.
-enum Status { ok @0; notANumber @1; diverged @2; limitPoint @3; notConverged @4; nonFinite @5; selfIntersection @6; invalidGeometry @7; }
+# The CLI's ok, nan, diverged, limit-point, not-converged, non-finite, self-intersection,
+# invalid-geometry, over-stretched.
+enum Status { ok @0; notANumber @1; diverged @2; limitPoint @3; notConverged @4; nonFinite @5; selfIntersection @6; invalidGeometry @7;
+              overStretched @8; }
 enum SplineRegion { entire @0; middle @1; }
+enum ModelKind { thesis @0; membrane @1; shell @2; }
 
 struct MeshSize {
   resolution @0 :UInt32 = 30;   # vertices per turn
@@ -68,12 +71,66 @@ struct SimParams {
   precision @7 :Precision;
 }
 
+# The membrane and shell models' settings (sim::ShellDef): millimetres, kPa, newtons. Named
+# choices are stored by their command-line names ("ecoflex-00-30", "neo-hookean", "inflate", ...).
+struct ShellDef {
+  radiusMm @0 :Float64;
+  lengthMm @1 :Float64;
+  thicknessMm @2 :Float64;
+  ringVertices @3 :UInt32;
+  rings @4 :UInt32;
+  clampRings @5 :UInt32;
+  ends @6 :Text;
+  preset @7 :Text;
+  law @8 :Text;
+  muKpa @9 :Float64;
+  c10Kpa @10 :Float64;
+  c01Kpa @11 :Float64;
+  c20Kpa @12 :Float64;
+  c30Kpa @13 :Float64;
+  tensileStrengthKpa @14 :Float64;
+  elongationAtBreak @15 :Float64;
+  stretchLimit @16 :Float64;
+  densityKgPerM3 @17 :Float64;
+  load @18 :Text;
+  pressureKpa @19 :Float64;
+  forceN @20 :Float64;
+  volumeRatio @21 :Float64;
+  steps @22 :UInt32;
+  tolerance @23 :Float64;
+  maxIterations @24 :UInt32;
+  maxBisections @25 :UInt32;
+  selfContact @26 :Bool;
+}
+
+# What a membrane or shell evaluation says beyond the common numbers (sim::ShellOutputs; the
+# positions at each load step are for pictures and are not stored).
+struct ShellOutputs {
+  curvePressureKpa @0 :List(Float64);
+  curveContractionPercent @1 :List(Float64);
+  curveVolumeMm3 @2 :List(Float64);
+  targetPressureKpa @3 :Float64;
+  limitPressureKpa @4 :Float64;
+  blockingForceN @5 :Float64;
+  axialStiffnessNPerMm @6 :Float64;
+  restVolumeMm3 @7 :Float64;
+  volumeMm3 @8 :Float64;
+  maxStretch @9 :Float64;
+  maxStressKpa @10 :Float64;
+  stretchLimit @11 :Float64;
+  tensileStrengthKpa @12 :Float64;
+  displacementMm @13 :Float64;
+  newtonIterations @14 :UInt32;
+  factorizations @15 :UInt32;
+}
+
 struct EvalResult {
   status @0 :Status;
   fitness @1 :Float64;              # NaN unless status is ok
   contractionPercent @2 :Float64;
   iterationsRun @3 :UInt32;
   elapsedMs @4 :Float64;
+  shell @5 :ShellOutputs;           # membrane and shell models only
 }
 
 # One simulated shape, as appended to DIR/evaluations.capnp by every experiment command.
@@ -91,6 +148,8 @@ struct Evaluation {
   final @9 :Mesh;
   result @10 :EvalResult;
   role @11 :Text;                   # grid, thesis-point, shape, individual, thesis-genome, figure
+  model @12 :ModelKind;             # archives before the shell models: thesis
+  shell @13 :ShellDef;              # membrane and shell models: their settings (params, meshSize unused)
 }
 
 struct LogbookRow {
@@ -116,6 +175,8 @@ struct EvalRequest {
   shape @0 :Shape;
   params @1 :SimParams;
   meshSize @2 :MeshSize;
+  model @3 :ModelKind;
+  shell @4 :ShellDef;
 }
 
 struct EvalResponse {
@@ -130,6 +191,7 @@ interface Evaluator {
   evaluate @0 (requests :List(EvalRequest)) -> (responses :List(EvalResponse));
   info @1 () -> (threads :UInt32, maxVertices :UInt32, maxIterations :UInt32, maxRequests :UInt32,
                  maxWork :UInt64, maxReplyWords :UInt64);
-  # maxWork bounds one call's sum of vertices x iterations; maxReplyWords the size of its reply.
+  # maxWork bounds one call's estimated work (thesis: vertices x iterations; membrane and shell:
+  # vertices x load steps x Newton iterations x 10000); maxReplyWords the size of its reply.
   # A client splits larger batches into calls within both.
 }

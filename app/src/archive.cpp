@@ -108,7 +108,7 @@ std::uint64_t ArchiveWriter::Append(ArchiveRecord& r) {
     SetJob(e, r.job);
     SetMesh(e.initInitial(), r.result.initial);
     SetMesh(e.initFinal(), r.result.final);
-    SetResultNumbers(e.initResult(), r.result);
+    SetResultNumbers(e.initResult(), r.result, r.job.model);
 
     // Frame in memory, then one write: a kill leaves the whole frame or a torn tail.
     kj::VectorOutputStream payload;

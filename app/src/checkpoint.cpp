@@ -33,12 +33,12 @@ void CheckGenome(const sim::Genome& genome, const Experiment& e) {
                 if (!(c >= g.controlMin && c <= g.controlMax) || c != std::floor(c)) throw std::runtime_error("a control point is outside the control range");
         }
     } else {
-        if (genome.size() != 1 || genome[0].size() != 2 * static_cast<size_t>(sim::VertexCount(e.mesh)))
+        if (genome.size() != 1 || genome[0].size() != 2 * static_cast<size_t>(sim::VertexCount(DesignMesh(e))))
             throw std::runtime_error("a free-xy genome has the wrong number of offsets");
         for (double v : genome[0])
             if (!(std::fabs(v) <= std::max(g.bound, g.initRange))) throw std::runtime_error("a free-xy offset is outside the bound");
     }
-    if (const std::string error = sim::ShapeError(sim::ShapeOfGenome(genome, g, e.mesh), e.mesh); !error.empty()) throw std::runtime_error(error);
+    if (const std::string error = sim::JobError(JobOf(e, sim::ShapeOfGenome(genome, g, DesignMesh(e)))); !error.empty()) throw std::runtime_error(error);
 }
 
 sim::Individual IndividualFrom(const Json& j, const Experiment& e) {

@@ -8,6 +8,7 @@
 #include <CLI/Config.hpp>
 #include <CLI/Formatter.hpp>
 #include <fmt/format.h>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,7 @@ public:
     }
     // The options of a def struct (see fields.h), in the current group.
     template <class Def>
-    void Fields(Def& def);
+    void Fields(Def& def, std::vector<std::string> except = {});
 
     // The fields of `from` whose options were given, copied into `to` (e.g. settings given on the
     // command line over those stored in an archive).
@@ -83,11 +84,17 @@ namespace detail {
 
 struct FieldBinder {
     Cli& cli;
-    void Integer(const char* key, int& v, const char* help, long long min, long long max) { cli.Integer(OptionName(key), v, help, min, max); }
-    void Number(const char* key, double& v, const char* help, double min, double max) { cli.Number(OptionName(key), v, help, min, max); }
+    std::vector<std::string> except;
+    bool Skip(const char* key) const { return std::find(except.begin(), except.end(), key) != except.end(); }
+    void Integer(const char* key, int& v, const char* help, long long min, long long max) {
+        if (!Skip(key)) cli.Integer(OptionName(key), v, help, min, max);
+    }
+    void Number(const char* key, double& v, const char* help, double min, double max) {
+        if (!Skip(key)) cli.Number(OptionName(key), v, help, min, max);
+    }
     template <class E>
     void Enum(const char* key, E& v, const char* help) {
-        cli.Enum(OptionName(key), v, help);
+        if (!Skip(key)) cli.Enum(OptionName(key), v, help);
     }
 };
 
@@ -128,8 +135,8 @@ struct FieldRefuser {
 }  // namespace detail
 
 template <class Def>
-void Cli::Fields(Def& def) {
-    VisitFields(def, detail::FieldBinder{*this});
+void Cli::Fields(Def& def, std::vector<std::string> except) {
+    VisitFields(def, detail::FieldBinder{*this, std::move(except)});
 }
 template <class Def>
 void Cli::CopyGivenFields(const Def& from, Def& to) const {

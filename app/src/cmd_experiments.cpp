@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "experiment_runner.h"
 #include "files.h"
+#include "report.h"
 #include "run_options.h"
 
 namespace app {
@@ -36,13 +37,13 @@ int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
     AddRunOptions(cli, o);
     cli.App().footer(evolve ? "Writes, per run, DIR/run_K/{logbook.csv, best_per_generation.csv, halloffame.csv, checkpoint.json} and\n"
                               "DIR/run_K/sheets/generation_NNN.png after every generation; then DIR/evolution.png, DIR/best_inflation.png,\n"
-                              "DIR/best_stretch.png and DIR/summary.json. Every evaluation is in DIR/evaluations.capnp, DIR/evaluations.csv\n"
+                              "DIR/best_stretch.png, DIR/report.md and DIR/summary.json. Every evaluation is in DIR/evaluations.capnp, DIR/evaluations.csv\n"
                               "and DIR/thumbnails/ under one id. An interrupted run continues with --resume and ends as if never stopped.\n\n"
                               "Examples:\n  actuator evolve assets/experiments/5.2_bspline_middle.json --out runs/5.2\n"
                               "  actuator evolve --resume runs/5.2\n"
                               "  actuator evolve assets/experiments/5.2_bspline_middle.json --out runs/quick --set evolve.generations=3 --set seed=7\n"
                             : "Writes DIR/results.csv (one row per grid point or shape), DIR/landscape.png, DIR/contact_sheet.png,\n"
-                              "DIR/best_inflation.png, DIR/best_stretch.png, DIR/summary.json, and every evaluation in DIR/evaluations.capnp,\n"
+                              "DIR/best_inflation.png, DIR/best_stretch.png, DIR/report.md, DIR/summary.json, and every evaluation in DIR/evaluations.capnp,\n"
                               "DIR/evaluations.csv and DIR/thumbnails/ under one id. An interrupted sweep continues with --resume.\n\n"
                               "Examples:\n  actuator sweep assets/experiments/4.1_amplitude_sweep.json --out runs/4.1\n"
                               "  actuator sweep assets/experiments/4.1_amplitude_sweep.json --out runs/4.1b --set sim.iterations=20000\n");
@@ -57,7 +58,9 @@ int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
     options.evaluator = evaluator.get();
     options.resume = folder.Mode() == FolderMode::Resume;
     options.folder = &folder;
-    std::cout << RunExperiment(e, dir, options).summaryJson << "\n";
+    ReportEntry entry{e, RunExperiment(e, dir, options), "."};
+    WriteFileAtomically((fs::path(dir) / "report.md").string(), ReportMarkdown({entry}, false, entry.outcome.seconds, evaluator->Describe()));
+    std::cout << entry.outcome.summaryJson << "\n";
     folder.FirstResultDone();
     return 0;
 }

@@ -97,7 +97,7 @@ int RunInspect(int argc, char** argv, int first) {
 
     if (cli.Given("--export-obj"))
         for (const ArchiveRecord* r : shown) {
-            const auto surface = sim::HelixSurface(r->job.mesh);
+            const auto surface = sim::SurfaceOf(r->job);
             for (const auto& [which, positions] : {std::pair{"initial", &r->result.initial}, std::pair{"final", &r->result.final}}) {
                 const fs::path path = fs::path(exportDir) / fmt::format("evaluation_{:06}_{}.obj", r->id, which);
                 WriteFileAtomically(path.string(), FormatObj(*positions, surface, fmt::format("actuator workbench evaluation {}, {} mesh", r->id, which)));
@@ -109,7 +109,7 @@ int RunInspect(int argc, char** argv, int first) {
         for (const ArchiveRecord* r : shown) {
             Json j{{"id", r->id}, {"experiment", r->experiment}, {"role", sim::Name(r->role)}, {"run", r->run}, {"generation", r->generation},
                    {"label", r->label}};
-            j.update(ResultNumbersJson(r->result, r->job.params));
+            j.update(ResultNumbersJson(r->result, r->job));
             j["design"] = DesignText(r->job.shape);
             j["shape"] = ShapeJson(r->job.shape);
             j["model"] = ModelJson(r->job);

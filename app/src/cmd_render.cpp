@@ -19,7 +19,9 @@
 #include "figures.h"
 #include "files.h"
 #include "json_out.h"
+#include "progress.h"
 #include "render/backend.h"
+#include "model_options.h"
 #include "shape_options.h"
 
 namespace app {
@@ -44,12 +46,6 @@ void EncodeVideo(const fs::path& frames, const fs::path& output) {
     if (std::system(command.c_str()) != 0) std::cerr << "note: ffmpeg failed to make " << output.string() << "\n";
 }
 
-void FrameProgress(const char* what, int done, int total) {
-    if (!isatty(STDERR_FILENO)) return;
-    std::fprintf(stderr, "\r%s: frame %d/%d", what, done, total);
-    if (done == total) std::fprintf(stderr, "\n");
-}
-
 // A folder for frames: refused early when something that is not a folder is in the way.
 void CheckFolder(const fs::path& folder, const std::string& what) {
     std::error_code ec;
@@ -59,7 +55,7 @@ void CheckFolder(const fs::path& folder, const std::string& what) {
 
 struct PictureOptions {
     std::string out;
-    std::string size = "1024x768";
+    std::string size;  // WxH; the default is the RenderDef's
     int turntable = 0;
     int timelapse = 0;
     bool video = false;
@@ -68,37 +64,102 @@ struct PictureOptions {
     render::RenderDef def = render::DefaultRenderDef();
 };
 
+
+// One camera and one colour scale over a sequence's scenes, so that only the mesh moves.
+void FixFramingAndScale(std::vector<render::Scene>& scenes) {
+    std::vector<const sim::Positions*> all;
+    double low = INFINITY, high = -INFINITY;
+    for (const auto& scene : scenes)
+        for (const auto& panel : scene.panels) {
+            all.push_back(&panel.positions);
+            const render::ColorBy colorBy = scene.colorBy.value_or(render::ColorBy::Displacement);
+            for (double v : render::VertexValues(colorBy, *scene.surface, panel))
+                if (std::isfinite(v)) {
+                    low = std::min(low, v);
+                    high = std::max(high, v);
+                }
+        }
+    const render::Framing framing = render::FrameMeshes(all);
+    for (auto& scene : scenes) {
+        scene.framing = framing;
+        if (std::isfinite(high)) {
+            scene.colorMax = high;
+            if (!scene.colorMin) scene.colorMin = scene.colorBy == render::ColorBy::Values ? low : 0.0;
+        }
+    }
+}
+
+// The thesis model's inflation watched: the first state, every `interval` iterations, the last.
+template <class Sequence>
+void WriteThesisTimelapse(const sim::EvalJob& job, const std::string& title, Colouring colouring, const PictureOptions& p, Sequence&& sequence) {
+    std::vector<std::pair<int, sim::Positions>> snapshots;
+    sim::SimObserver observer;
+    sim::SimParams watched = job.params;
+    watched.load = sim::Load::Inflate;
+    observer.interval = std::max(1, watched.iterations / (p.timelapse - 1));
+    observer.onSnapshot = [&](int iteration, const sim::Positions& positions) {
+        if (static_cast<int>(snapshots.size()) < p.timelapse - 1) snapshots.emplace_back(iteration, positions);
+        return true;
+    };
+    const sim::SimResult watchedResult = sim::Simulate(sim::BuildInitialPositions(job.shape, job.mesh), job.mesh, watched, &observer);
+    snapshots.emplace_back(watchedResult.iterationsRun, watchedResult.final);
+    std::vector<render::Scene> scenes;
+    for (const auto& [iteration, positions] : snapshots) {
+        sim::SimResult at = watchedResult;
+        at.final = positions;
+        render::Scene scene = TurntableScene(title + "  -  inflating", at, job, 0, colouring);
+        const double fitness = sim::Fitness(watchedResult.initial, positions, job.mesh);
+        scene.lines = {fmt::format("iteration {} of {},  fitness {:.4f},  contraction {:.2f} %", iteration, watched.iterations, fitness,
+                                   100 * fitness / job.mesh.turns)};
+        scene.panels.front().caption = "iteration " + std::to_string(iteration);
+        scenes.push_back(std::move(scene));
+    }
+    FixFramingAndScale(scenes);
+    sequence("timelapse", static_cast<int>(scenes.size()), [&](int k) { return scenes[k]; });
+}
+
 }  // namespace
 
 int RunRender(int argc, char** argv, int first) {
-    Cli cli("render", "Evaluates one design under inflation and under the stretch load and writes DIR/inflation.png and DIR/stretch.png: before "
-                      "and after, side by side, one camera and scale; on request DIR/turntable/frame_NNNN.png (the inflated mesh turning), "
-                      "DIR/timelapse/frame_NNNN.png (the mesh while it inflates) and MP4s of both. Prints a JSON summary.");
+    Cli cli("render", "Pictures of one design. Under --model thesis: evaluated under inflation and under the stretch load, written as "
+                      "DIR/inflation.png and DIR/stretch.png (before and after, side by side, one camera and scale). Under --model membrane or "
+                      "shell: DIR/inflation.png at the target pressure, coloured by principal stretch (or stress) with the material's limit "
+                      "on the colour bar, and DIR/pressure_curve.png, the contraction-pressure curve. On request DIR/turntable/frame_NNNN.png "
+                      "(the inflated mesh turning), DIR/timelapse/frame_NNNN.png (the inflation: iterations of the thesis model, load steps "
+                      "of the others) and MP4s of both. Prints a JSON summary.");
     ShapeOptions shape;
-    sim::SimParams params = sim::DefaultSimParams();
+    ModelOptions model;
     std::string from;
     int index = 0;
     PictureOptions p;
+    Colouring colouring = Colouring::Auto;
+    p.size = fmt::format("{}x{}", p.def.width, p.def.height);
     AddShapeOptions(cli, shape);
-    cli.Group("Model options (thesis; both loads)");
-    cli.Fields(params);
+    AddModelOptions(cli, model);
     cli.Group("Design from an archive");
     cli.Text("--from", from, "draw a stored evaluation (DIR/evaluations.capnp) with --index, without simulating; no shape or model options")
         ->type_name("ARCHIVE");
-    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40);
+    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
     cli.Group("Picture options");
     cli.Text("--out", p.out, "folder for the images (created if missing); required")->type_name("DIR");
     cli.Text("--size", p.size, "image size in pixels")->type_name("WxH");
-    std::string turntable;
+    std::string turntable, timelapse;
     cli.Text("--turntable", turntable, "also write N frames of the inflated mesh turning a full circle to DIR/turntable/ (60 when N is left out)")
         ->expected(0, 1)
         ->type_name("[N]")
         ->default_str("60");
-    cli.Integer("--timelapse", p.timelapse, "also write N frames of the inflation to DIR/timelapse/: the first, evenly spaced ones, and the last", 2, 100000);
+    cli.Text("--timelapse", timelapse,
+             "also write the inflation to DIR/timelapse/: thesis model, N frames (the first, evenly spaced iterations, the last; 30 when N is "
+             "left out); membrane and shell, one frame per load step (N, when given, sets the number of load steps)")
+        ->expected(0, 1)
+        ->type_name("[N]")
+        ->default_str("30");
     cli.Flag("--video", p.video, "also encode the frame sequences as MP4 with ffmpeg (skipped with a note if ffmpeg is missing)");
     cli.Enum("--background", p.def.background, "image background");
-    cli.Enum("--color-by", p.def.colorBy, "surface colour: distance moved, spring strain, or plain");
-    cli.Flag("--wireframe", p.def.wireframe, "draw the springs over the surface");
+    cli.Enum("--color-by", colouring,
+             "surface colour: auto (displacement for the thesis model, stretch for the others), displacement, spring or edge strain, "
+             "largest principal stretch or true stress (membrane and shell), or none");
+    cli.Flag("--wireframe", p.def.wireframe, "draw the edges (springs) over the surface");
     bool noOverlay = false;
     cli.Flag("--no-overlay", noOverlay, "leave out the title, numbers, captions and colour bar");
     cli.Integer("--supersample", p.def.supersample, "render at N times the size and average down (anti-aliasing; 1 = off)", 1, 4);
@@ -108,9 +169,12 @@ int RunRender(int argc, char** argv, int first) {
     cli.Text("--gl-backend", p.backend, "OpenGL backend module: osmesa or egl (default: $ACTUATOR_GL_BACKEND, else osmesa)")->type_name("NAME");
     cli.Examples(
         "  actuator render --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n"
+        "  actuator render --model shell --shape sine --amplitude 1.3 --pressure-kpa 4 --timelapse 8 --out figures/shell\n"
+        "  actuator render --model shell --shape cylinder --color-by stress --out figures/tube\n"
         "  actuator render --from runs/5.2/evaluations.capnp --index 17 --out figures/ --turntable 36   (no simulation)\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     if (cli.Given("--turntable")) p.turntable = static_cast<int>(ParseInteger(turntable.empty() ? "60" : turntable, "--turntable", 1, 100000));
+    if (cli.Given("--timelapse")) p.timelapse = static_cast<int>(ParseInteger(timelapse.empty() ? "30" : timelapse, "--timelapse", 2, 100000));
     p.def.overlay = !noOverlay;
     if (!cli.Given("--out")) throw UsageError("--out DIR is required (where the images go)");
     {
@@ -134,24 +198,43 @@ int RunRender(int argc, char** argv, int first) {
     if (cli.Given("--from")) {
         for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
         cli.RefuseIfGiven("--timelapse", "needs a simulation; --from draws the stored meshes (re-simulate with actuator simulate --from)");
-        cli.RefuseFields(params, "does not go with --from: the settings come from the archive");
+        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
+        cli.RefuseIfGiven("--load", "does not go with --from: the settings come from the archive");
+        cli.RefuseIfGiven("--material", "does not go with --from: the settings come from the archive");
+        for (auto* fields : {&model.shell.geometry}) cli.RefuseFields(*fields, "does not go with --from: the settings come from the archive");
+        cli.RefuseFields(model.thesis, "does not go with --from: the settings come from the archive");
+        cli.RefuseFields(model.materialFields, "does not go with --from: the settings come from the archive");
+        cli.RefuseFields(model.shell.load, "does not go with --from: the settings come from the archive");
+        cli.RefuseFields(model.shell.solver, "does not go with --from: the settings come from the archive");
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         stored = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
         job = stored->job;
-        if (stored->result.initial.Size() != sim::VertexCount(job.mesh) || stored->result.final.Size() != stored->result.initial.Size())
+        const int vertices = SharedSurface(job)->vertexCount;
+        if (stored->result.initial.Size() != vertices || stored->result.final.Size() != vertices)
             throw UsageError("evaluation " + std::to_string(index) + " of " + Quote(from) + " has no usable meshes");
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
-        cli.RefuseIfGiven("--load", "does not apply: render shows both loads (inflation and stretch)");
-        job = {BuildShape(cli, shape), shape.mesh, params};
+        job = BuildJob(cli, shape, model);
+        if (job.model == sim::ModelKind::Thesis)
+            cli.RefuseIfGiven("--load", "does not apply to --model thesis here: render shows both of its loads (inflation and stretch)");
     }
-    if (p.timelapse > std::max(1, job.params.iterations) + 1)
+    const bool thesis = job.model == sim::ModelKind::Thesis;
+    if (const std::string error = ColouringError(colouring, job); !error.empty()) throw UsageError("--color-by: " + error);
+    if (thesis && p.timelapse > std::max(1, job.params.iterations) + 1)
         throw UsageError(fmt::format("--timelapse: {} frames but only {} iterations", p.timelapse, job.params.iterations));
-    const double snapshotBytes = double(p.timelapse) * sim::VertexCount(job.mesh) * 3 * sizeof(double);
+    if (!thesis && p.timelapse && !stored) {
+        // One frame per load step: N sets the steps, unless --steps says otherwise.
+        if (cli.Given("--steps") && cli.Given("--timelapse") && !timelapse.empty() && p.timelapse != job.shell.load.steps)
+            throw UsageError(fmt::format("--timelapse {} and --steps {}: under --model {} the time-lapse has one frame per load step; give one of them",
+                                         p.timelapse, job.shell.load.steps, sim::Name(job.model)));
+        if (!cli.Given("--steps") && !timelapse.empty()) job.shell.load.steps = p.timelapse;
+        p.timelapse = job.shell.load.steps;
+    }
+    const double snapshotBytes = double(p.timelapse) * SharedSurface(job)->vertexCount * 3 * sizeof(double);
     if (snapshotBytes > kMaxSnapshotBytes)
         throw UsageError(fmt::format("--timelapse: {} frames of {} vertices would hold {:.1f} GB of snapshots, more than {:.0f} GB; use fewer frames or a "
                                      "smaller mesh",
-                                     p.timelapse, sim::VertexCount(job.mesh), snapshotBytes / 1e9, kMaxSnapshotBytes / 1e9));
+                                     p.timelapse, SharedSurface(job)->vertexCount, snapshotBytes / 1e9, kMaxSnapshotBytes / 1e9));
 
     // Every output checked before any work: nothing is half-written on bad input.
     const fs::path out = p.out;
@@ -161,7 +244,8 @@ int RunRender(int argc, char** argv, int first) {
     const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
     std::vector<std::string> files;
     if (stored) files.push_back(fmt::format("evaluation_{:06}.png", index));
-    else files.insert(files.end(), {"inflation.png", "stretch.png"});
+    else if (thesis) files.insert(files.end(), {"inflation.png", "stretch.png"});
+    else files.insert(files.end(), {"inflation.png", "pressure_curve.png"});
     if (p.turntable) CheckFolder(out / "turntable", "--turntable");
     if (p.timelapse) CheckFolder(out / "timelapse", "--timelapse");
     if (p.video && p.turntable) files.push_back("turntable.mp4");
@@ -178,27 +262,35 @@ int RunRender(int argc, char** argv, int first) {
     sim::SimResult inflated, stretched;
     if (stored) {
         inflated = stored->result;
-    } else {
+    } else if (thesis) {
         sim::EvalJob inflate = job, stretch = job;
         inflate.params.load = sim::Load::Inflate;
         stretch.params.load = sim::Load::Stretch;
         auto results = MakeLocalEvaluator(2)->EvaluateAll({inflate, stretch});
         inflated = std::move(results[0]);
         stretched = std::move(results[1]);
+    } else {
+        inflated = MakeLocalEvaluator(1)->EvaluateAll({job}).front();
     }
     const double simulateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
 
     std::vector<std::string> written;
     const auto renderStarted = std::chrono::steady_clock::now();
+    const std::string loadName = thesis ? sim::Name(job.params.load) : sim::Name(job.shell.load.kind);
     const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
-                                                   ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", sim::Name(job.params.load))
-                                     : ShapeTitle(job.shape);
+                                                   ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", loadName)
+                                     : ShapeTitle(job.shape) + (thesis ? "" : fmt::format("  -  {} model", sim::Name(job.model)));
     if (stored) {
         const fs::path path = out / files.front();
-        WritePng(path.string(), renderer->Render(BeforeAfterScene(title, inflated, job.mesh)), p.pngLevel);
+        WritePng(path.string(), renderer->Render(BeforeAfterScene(title, inflated, job, colouring)), p.pngLevel);
         written.push_back(path.string());
     } else {
-        DesignFigures figures{title, &inflated, &stretched, job.mesh, 0, ""};
+        DesignFigures figures;
+        figures.title = title;
+        figures.inflated = &inflated;
+        figures.stretched = thesis ? &stretched : nullptr;
+        figures.job = job;
+        figures.colouring = colouring;
         for (const auto& name : WriteDesignFigures(*renderer, out, figures, p.pngLevel, frameLevel)) written.push_back((out / name).string());
     }
 
@@ -208,9 +300,10 @@ int RunRender(int argc, char** argv, int first) {
         fs::create_directories(folder, ec);
         if (!fs::is_directory(folder, ec)) throw UsageError("cannot create folder " + Quote(folder.string()));
         FrameWriter writer(frameLevel);
+        Progress progress(folderName, isatty(STDERR_FILENO), "frames");
         for (int k = 0; k < frames; ++k) {
             writer.Write((folder / fmt::format("frame_{:04}.png", k)).string(), renderer->Render(sceneOf(k)));
-            FrameProgress(folderName, k + 1, frames);
+            progress.Update(k + 1, frames, k + 1, "");
         }
         writer.Wait();
         written.push_back((folder / "frame_%04d.png").string() + " x " + std::to_string(frames));
@@ -222,48 +315,26 @@ int RunRender(int argc, char** argv, int first) {
     };
     if (p.turntable > 0)
         sequence("turntable", p.turntable,
-                 [&](int k) { return TurntableScene(title + "  -  inflated", inflated, job.mesh, 360.0 * k / p.turntable); });
-    if (p.timelapse > 0) {
-        // A re-run of the inflation that watches: the first state, every `interval` iterations, the last.
-        std::vector<std::pair<int, sim::Positions>> snapshots;
-        sim::SimObserver observer;
-        sim::SimParams watched = job.params;
-        watched.load = sim::Load::Inflate;
-        observer.interval = std::max(1, watched.iterations / (p.timelapse - 1));
-        observer.onSnapshot = [&](int iteration, const sim::Positions& positions) {
-            if (static_cast<int>(snapshots.size()) < p.timelapse - 1) snapshots.emplace_back(iteration, positions);
-            return true;
-        };
-        const sim::SimResult watchedResult = sim::Simulate(sim::BuildInitialPositions(job.shape, job.mesh), job.mesh, watched, &observer);
-        snapshots.emplace_back(watchedResult.iterationsRun, watchedResult.final);
-        std::vector<const sim::Positions*> all;
-        for (const auto& s : snapshots) all.push_back(&s.second);
-        const render::Framing framing = render::FrameMeshes(all);
-        const auto surface = SurfaceOf(job.mesh);
-        double colorMax = 0;
-        for (const auto& s : snapshots)
-            for (double v : render::VertexValues(p.def.colorBy, *surface, render::Panel{s.second, watchedResult.initial, "", 0, {}, {}}))
-                if (std::isfinite(v)) colorMax = std::max(colorMax, v);
-        sequence("timelapse", static_cast<int>(snapshots.size()), [&](int k) {
-            render::Scene scene;
-            scene.surface = surface;
-            scene.title = title + "  -  inflating";
-            const sim::Positions& positions = snapshots[k].second;
-            const double fitness = sim::Fitness(watchedResult.initial, positions, job.mesh);
-            scene.lines = {fmt::format("iteration {} of {},  fitness {:.4f},  contraction {:.2f} %", snapshots[k].first, watched.iterations, fitness,
-                                       100 * fitness / job.mesh.turns)};
-            scene.panels = {{positions, watchedResult.initial, "iteration " + std::to_string(snapshots[k].first), 0, {}, {}}};
-            scene.framing = framing;
-            scene.colorMax = colorMax;
-            return scene;
-        });
+                 [&](int k) { return TurntableScene(title + "  -  inflated", inflated, job, 360.0 * k / p.turntable, colouring); });
+    if (p.timelapse > 0 && thesis) WriteThesisTimelapse(job, title, colouring, p, sequence);
+    if (p.timelapse > 0 && !thesis) {
+        // One frame per converged load step; a run that stopped early shows the steps it reached.
+        std::vector<render::Scene> scenes;
+        for (int k = 0; k < static_cast<int>(inflated.shell.steps.size()); ++k)
+            scenes.push_back(LoadStepScene(title + "  -  inflating", inflated, job, k, colouring));
+        if (scenes.empty()) std::cerr << "note: no load step converged (" << sim::Name(inflated.status) << "), so no time-lapse is written\n";
+        else {
+            FixFramingAndScale(scenes);
+            sequence("timelapse", static_cast<int>(scenes.size()), [&](int k) { return scenes[k]; });
+        }
     }
     const double renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStarted).count();
 
     Json summary;
-    summary["inflation"] = Json{{"status", sim::Name(inflated.status)}, {"fitness", NumberJson(inflated.status == sim::Status::Ok ? inflated.fitness : NAN)}};
-    if (!stored)
+    summary["inflation"] = ResultNumbersJson(inflated, job);
+    if (!stored && thesis)
         summary["stretch"] = Json{{"status", sim::Name(stretched.status)}, {"fitness", NumberJson(stretched.status == sim::Status::Ok ? stretched.fitness : NAN)}};
+    summary["model"] = sim::Name(job.model);
     summary["files"] = written;
     summary["simulated"] = !stored;
     summary["simulate_ms"] = simulateMs;

@@ -29,9 +29,10 @@ int RunReproduce(int argc, char** argv, int first) {
     if (!cli.Parse(argc, argv, first)) return 0;
     const std::string dir = ResultsDir(cli, o);
 
+    // The thesis's files: the source tree this was built from, else where `cmake --install` put them.
     fs::path folder = cli.Given("--experiments") ? fs::path(experiments) : fs::path(ACTUATOR_ASSETS_DIR) / "experiments";
     std::error_code ec;
-    if (!cli.Given("--experiments") && !fs::is_directory(folder, ec)) folder = "assets/experiments";  // a moved build tree
+    if (!cli.Given("--experiments") && !fs::is_directory(folder, ec)) folder = fs::path(ACTUATOR_INSTALLED_ASSETS_DIR) / "experiments";
     if (!fs::is_directory(folder, ec)) throw UsageError("--experiments: no folder " + Quote(folder.string()));
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(folder))

@@ -10,6 +10,7 @@
 #include "evaluator.h"
 #include "files.h"
 #include "json_out.h"
+#include "model_options.h"
 #include "obj_io.h"
 #include "shape_options.h"
 
@@ -26,20 +27,20 @@ void CheckObjPath(const Cli& cli, const std::string& option, const std::string& 
 }  // namespace
 
 int RunSimulate(int argc, char** argv, int first) {
-    Cli cli("simulate", "Evaluates one actuator design with the thesis model (shared/MODEL.md) and prints one JSON object: status (ok, nan, "
-                        "diverged), fitness (contraction in mesh units; null unless ok), contraction_percent, iterations, the design and the "
-                        "model's settings. Exit code 0 when it ran (whatever the status), 2 on bad input.");
+    Cli cli("simulate", "Evaluates one actuator design and prints one JSON object: status, fitness, contraction_percent (positive = shorter), "
+                        "the model's outputs, the design and the model's settings. --model thesis is the 2019 mass-spring model (fitness in mesh "
+                        "units); membrane and shell are silicone at equilibrium in mm, kPa and N (fitness = contraction in percent at the "
+                        "target pressure). Exit code 0 when it ran (whatever the status), 2 on bad input.");
     ShapeOptions shape;
-    sim::SimParams params = sim::DefaultSimParams();
+    ModelOptions model;
     std::string from, saveMesh, saveInitial;
     int index = 0;
     AddShapeOptions(cli, shape);
-    cli.Group("Model options (thesis)");
-    cli.Fields(params);
+    AddModelOptions(cli, model);
     cli.Group("Design from an archive");
     cli.Text("--from", from, "re-simulate a stored design: an archive (DIR/evaluations.capnp) with --index; model options given here override the stored ones")
         ->type_name("ARCHIVE");
-    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40);
+    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
     cli.Group("Output");
     cli.Text("--save-mesh", saveMesh, "write the final positions as OBJ (full precision; reads back with --mesh)")->type_name("FILE.obj");
     cli.Text("--save-initial", saveInitial, "write the initial (shaped) mesh as OBJ")->type_name("FILE.obj");
@@ -49,7 +50,10 @@ int RunSimulate(int argc, char** argv, int first) {
         "  actuator simulate --shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"\n"
         "  actuator simulate --shape sine --load stretch --save-mesh stretched.obj\n"
         "  actuator simulate --mesh stretched.obj --iterations 5000\n"
-        "  actuator simulate --from runs/5.2/evaluations.capnp --index 17 --iterations 20000\n");
+        "  actuator simulate --from runs/5.2/evaluations.capnp --index 17 --iterations 20000\n"
+        "  actuator simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 \\\n"
+        "                    --ring-vertices 30 --rings 30 --pressure-kpa 1.8\n"
+        "  actuator simulate --model shell --shape sine --amplitude 1.3 --material dragon-skin-10 --pressure-kpa 10\n");
     if (!cli.Parse(argc, argv, first)) return 0;
 
     sim::EvalJob job;
@@ -58,13 +62,22 @@ int RunSimulate(int argc, char** argv, int first) {
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         const ArchiveRecord record = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
         job = record.job;
-        // Model options given on this command line override the stored ones.
-        cli.CopyGivenFields(params, job.params);
+        // Thesis settings given on this command line override the stored ones.
+        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
+        if (job.model == sim::ModelKind::Thesis) {
+            cli.CopyGivenFields(model.thesis, job.params);
+            if (cli.Given("--load")) job.params.load = ThesisLoad(model.load, "--load");
+        } else {
+            cli.CopyGivenFields(model.shell.geometry, job.shell.geometry);
+            cli.CopyGivenFields(model.shell.load, job.shell.load);
+            cli.CopyGivenFields(model.shell.solver, job.shell.solver);
+            cli.CopyGivenFields(model.materialFields, job.shell.material);
+            if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(model.load, "--load");
+        }
+        if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
-        job.shape = BuildShape(cli, shape);
-        job.mesh = shape.mesh;
-        job.params = params;
+        job = BuildJob(cli, shape, model);
     }
     CheckObjPath(cli, "--save-mesh", saveMesh);
     CheckObjPath(cli, "--save-initial", saveInitial);
@@ -76,11 +89,14 @@ int RunSimulate(int argc, char** argv, int first) {
 
     const sim::SimResult result = MakeLocalEvaluator(1)->EvaluateAll({job}).front();
 
-    const auto surface = sim::HelixSurface(job.mesh);
-    const std::string size = fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.mesh.resolution, job.mesh.turns);
+    const auto surface = sim::SurfaceOf(job);
+    const std::string size = job.model == sim::ModelKind::Thesis
+                                 ? fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.mesh.resolution, job.mesh.turns)
+                                 : fmt::format("{} vertices per ring x {} rings and two cap centres, millimetres", job.shell.geometry.ringVertices,
+                                               sim::RingCount(job.shell.geometry));
     if (cli.Given("--save-initial")) WriteFileAtomically(saveInitial, FormatObj(result.initial, surface, "actuator workbench initial mesh: " + size));
     if (cli.Given("--save-mesh")) WriteFileAtomically(saveMesh, FormatObj(result.final, surface, "actuator workbench final mesh: " + size));
-    Json out = ResultNumbersJson(result, job.params);
+    Json out = ResultNumbersJson(result, job);
     out["final_positions_hash"] = fmt::format("{:016x}", sim::PositionsHash(result.final));
     out["shape"] = ShapeJson(job.shape);
     out["model"] = ModelJson(job);

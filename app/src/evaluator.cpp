@@ -53,7 +53,7 @@ void EvaluateInOrder(const std::vector<sim::EvalJob>& jobs, size_t begin, size_t
                 if (stop || next >= end) return;
                 j = next++;
             }
-            sim::SimResult result = sim::Evaluate(jobs[j].shape, jobs[j].mesh, jobs[j].params);
+            sim::SimResult result = sim::Evaluate(jobs[j]);
             {
                 std::lock_guard lock(mutex);
                 ready.emplace(j, std::move(result));

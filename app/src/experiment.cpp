@@ -349,6 +349,48 @@ LabelledShape ParseListedShape(ObjectReader shape, size_t k, const sim::MeshDef&
     return labelled;
 }
 
+// "model": {"name": "shell", "geometry": {...}, "material": {"preset": ..., "mu_kpa": ...},
+// "load": {"kind": ..., "pressure_kpa": ...}, "solver": {...}}. The thesis model takes only its name
+// (its settings are the "sim" and "mesh" blocks).
+void ParseModel(ObjectReader model, Experiment& e) {
+    if (!model.Has("name")) model.Fail("missing (required): " + sim::Choices<sim::ModelKind>(), "name");
+    model.Enum("name", e.model);
+    if (e.model == sim::ModelKind::Thesis) {
+        for (const char* key : {"geometry", "material", "load", "solver"})
+            if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
+        model.Finish();
+        return;
+    }
+    sim::ShellDef& shell = e.shell;
+    if (model.Has("geometry")) {
+        ObjectReader geometry = model.Object("geometry");
+        geometry.Fields(shell.geometry);
+        geometry.Finish();
+    }
+    if (model.Has("material")) {
+        ObjectReader material = model.Object("material");
+        sim::MaterialPreset preset = shell.material.preset;
+        material.Enum("preset", preset);
+        sim::MaterialDef given = shell.material;
+        material.Fields(given);
+        shell.material = MaterialWithOverrides(preset, given, [&](const char* key) { return material.Has(key); });
+        material.Finish();
+    }
+    if (model.Has("load")) {
+        ObjectReader load = model.Object("load");
+        load.Enum("kind", shell.load.kind);
+        load.Fields(shell.load);
+        load.Finish();
+    }
+    if (model.Has("solver")) {
+        ObjectReader solver = model.Object("solver");
+        solver.Fields(shell.solver);
+        solver.Finish();
+    }
+    model.Finish();
+    if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
+}
+
 void ParseGa(ObjectReader evolve, Experiment& e) {
     sim::GaDef& ga = e.ga;
     evolve.Integer("runs", e.runs, 1, 100);
@@ -383,7 +425,7 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
     }
     genome.Finish();
     evolve.Finish();
-    if (const std::string error = sim::GaDefError(ga, e.mesh); !error.empty()) evolve.Fail(error);
+    if (const std::string error = sim::GaDefError(ga, DesignMesh(e)); !error.empty()) evolve.Fail(error);
 }
 
 void ParseThesisResult(ObjectReader result, ThesisResult& t) {
@@ -452,6 +494,11 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
     if (top.Has("thesis_result")) ParseThesisResult(top.Object("thesis_result"), e.thesisResult);
     top.Integer("seed", e.seed, 0, (1ll << 53));
     for (const char* moved : {"iterations", "load", "precision"}) top.Moved(moved, std::string("\"sim\": {\"") + moved + "\": ...}");
+    if (top.Has("model")) ParseModel(top.Object("model"), e);
+    const bool thesisModel = e.model == sim::ModelKind::Thesis;
+    for (const char* thesisOnly : {"sim", "mesh"})
+        if (!thesisModel && top.Has(thesisOnly))
+            top.Fail(std::string("applies to the thesis model only; the ") + sim::Name(e.model) + " model's settings go in the 'model' block", thesisOnly);
     if (top.Has("sim")) {
         ObjectReader sim = top.Object("sim");
         sim.Fields(e.params);
@@ -476,6 +523,9 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             const Json& shapes = evaluate.Array("shapes", 1, 1000, "a list of 1 to 1000 shapes");
             for (size_t k = 0; k < shapes.size(); ++k)
                 e.shapes.push_back(ParseListedShape(ObjectReader(shapes[k], evaluate.Child("shapes") + "[" + std::to_string(k) + "]", source), k, e.mesh));
+            if (!thesisModel)
+                for (const auto& shape : e.shapes)
+                    if (const std::string error = sim::JobError(JobOf(e, shape.shape)); !error.empty()) evaluate.Fail(error);
             evaluate.Finish();
             break;
         }
@@ -483,8 +533,12 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             ObjectReader sweep = top.Object("sweep");
             e.sweep.base = ParseSineBase(sweep.Object("shape"));
             const Json& axes = sweep.Array("axes", 1, 2, "a list of one or two axes");
-            for (size_t k = 0; k < axes.size(); ++k)
+            for (size_t k = 0; k < axes.size(); ++k) {
                 e.sweep.axes.push_back(ParseAxis(ObjectReader(axes[k], sweep.Child("axes") + "[" + std::to_string(k) + "]", source)));
+                if (thesisModel && e.sweep.axes.back().parameter == sim::SweepParameter::PressureKpa)
+                    sweep.Fail("a pressure_kpa axis needs a membrane or shell model (\"model\": {\"name\": \"shell\"}); the thesis model has no pressure in kPa", "axes");
+            }
+            if (e.sweep.axes.size() == 2 && e.sweep.axes[0].parameter == e.sweep.axes[1].parameter) sweep.Fail("the two axes vary the same parameter", "axes");
             sweep.Finish();
             size_t points = 1;
             for (const auto& axis : e.sweep.axes) points *= axis.values.size();
@@ -551,10 +605,26 @@ std::string ExperimentTitle(const Experiment& e) {
     return title;
 }
 
+sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {
+    sim::EvalJob job;
+    job.shape = shape;
+    job.mesh = e.mesh;
+    job.params = e.params;
+    job.model = e.model;
+    job.shell = e.shell;
+    return job;
+}
+
+sim::MeshDef DesignMesh(const Experiment& e) {
+    if (e.model == sim::ModelKind::Thesis) return e.mesh;
+    return {e.shell.geometry.ringVertices, sim::RingCount(e.shell.geometry)};
+}
+
 Experiment QuickVersion(const Experiment& experiment) {
     // Shrunk through the document, so that the saved experiment re-reads as what ran (a resume).
     Json document = experiment.document;
-    document["sim"]["iterations"] = std::min(experiment.params.iterations, 2000);
+    if (experiment.model == sim::ModelKind::Thesis) document["sim"]["iterations"] = std::min(experiment.params.iterations, 2000);
+    else document["model"]["load"]["steps"] = std::min(experiment.shell.load.steps, 2);
     for (size_t k = 0; k < experiment.sweep.axes.size(); ++k) {
         const auto& values = experiment.sweep.axes[k].values;
         if (values.size() <= 3) continue;

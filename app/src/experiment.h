@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/batch.h"
 #include "sim/search.h"
 #include "sim/solver.h"
 
@@ -58,8 +59,10 @@ struct Experiment {
     std::string note;         // choices made where the thesis is silent, and why
     std::string explanation;  // why our numbers may differ from the thesis's (shown when they do)
     ThesisResult thesisResult;
-    sim::MeshDef mesh;
-    sim::SimParams params;
+    sim::ModelKind model = sim::ModelKind::Thesis;  // the "model" block's name
+    sim::MeshDef mesh;                              // thesis model: the "mesh" block
+    sim::SimParams params;                          // thesis model: the "sim" block
+    sim::ShellDef shell = sim::DefaultShellDef();   // membrane and shell models: the "model" block
     std::uint64_t seed = 1;
     ExperimentKind kind = ExperimentKind::Sweep;
     sim::SweepDef sweep;
@@ -91,6 +94,12 @@ std::string ExperimentHash(const Experiment& e);
 std::string ExperimentDifference(const nlohmann::ordered_json& before, const nlohmann::ordered_json& after);
 
 std::string ExperimentTitle(const Experiment& e);  // "4.1  Variable amplitude search"
+
+// The job that evaluates `shape` under the experiment's model.
+sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape);
+// The mesh a design's per-vertex offsets (free-xy genomes) live on: the thesis helix, or the
+// membrane and shell models' rings.
+sim::MeshDef DesignMesh(const Experiment& e);  // "4.1  Variable amplitude search"
 
 // The experiment shrunk for a smoke test: at most 3 values per sweep axis, one GA run of 2
 // generations of 6, 2000 iterations. Same files and figures, in seconds.

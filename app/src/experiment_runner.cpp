@@ -66,23 +66,29 @@ ExperimentOutcome RunExperiment(const Experiment& e, const fs::path& out, const 
         case ExperimentKind::Evolve: RunEvolution(context); break;
     }
     outcome.simulations = recorder.Simulated();
+    outcome.evaluations = static_cast<long long>(recorder.Count());
     outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     outcome.summaryJson = SummaryJson(e, outcome);
     WriteFileAtomically((out / "summary.json").string(), outcome.summaryJson + "\n");
     return outcome;
 }
 
-void WriteBestFigures(RunContext& c, const fs::path& folder, const sim::Shape& shape, const sim::SimResult& inflated, const std::string& title,
+void WriteBestFigures(RunContext& c, const fs::path& folder, const sim::EvalJob& job, const sim::SimResult& inflated, const std::string& title,
                       int turntableFrames, bool listInOutcome) {
-    sim::SimParams stretch = c.e.params;
-    stretch.load = sim::Load::Stretch;
-    const sim::SimResult stretched = c.recorder.EvaluateOne({shape, c.e.mesh, stretch}, {Role::Figure, 0, -1, "stretch test of: " + title});
+    // The thesis's stretch test (chapter 6) belongs to its model; the membrane and shell models show
+    // their contraction-pressure curve instead (in the inflated result).
+    std::optional<sim::SimResult> stretched;
+    if (job.model == sim::ModelKind::Thesis) {
+        sim::EvalJob stretch = job;
+        stretch.params.load = sim::Load::Stretch;
+        stretched = c.recorder.EvaluateOne(stretch, {Role::Figure, 0, -1, "stretch test of: " + title});
+    }
     auto renderer = MakeRenderer(1024, 768);
     DesignFigures figures;
     figures.title = title;
     figures.inflated = &inflated;
-    figures.stretched = &stretched;
-    figures.mesh = c.e.mesh;
+    figures.stretched = stretched ? &*stretched : nullptr;
+    figures.job = job;
     figures.turntableFrames = turntableFrames;
     figures.prefix = "best_";
     const auto written = WriteDesignFigures(*renderer, folder, figures);

@@ -25,6 +25,7 @@ struct ExperimentOutcome {
     std::filesystem::path dir;
     double seconds = 0;
     long long simulations = 0;          // this session's
+    long long evaluations = 0;          // in the archive, earlier sessions of a resumed run included
     std::vector<std::string> figures;   // files in dir worth showing, in reading order
     std::vector<ComparisonRow> rows;
     std::vector<std::string> details;   // lines such as the best genome of each run
@@ -54,9 +55,10 @@ void RunSweep(RunContext& c);
 void RunList(RunContext& c);
 void RunEvolution(RunContext& c);
 
-// The best design's figures under both loads (its inflation result is given; the stretch test is
-// evaluated and archived as a figure evaluation), with a turntable when the experiment asks.
-void WriteBestFigures(RunContext& c, const std::filesystem::path& folder, const sim::Shape& shape, const sim::SimResult& inflated,
+// The best design's figures (its inflation result is given). Under the thesis model also the stretch
+// test, evaluated and archived as a figure evaluation; under the membrane and shell models the
+// contraction-pressure curve. A turntable when the experiment asks.
+void WriteBestFigures(RunContext& c, const std::filesystem::path& folder, const sim::EvalJob& job, const sim::SimResult& inflated,
                       const std::string& title, int turntableFrames, bool listInOutcome);
 
 }  // namespace app

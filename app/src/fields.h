@@ -10,9 +10,13 @@
 // Visiting a const def hands out const references (for writing).
 #pragma once
 
+#include <functional>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "sim/mesh.h"
+#include "sim/shell.h"
 #include "sim/solver.h"
 
 namespace app {
@@ -37,6 +41,89 @@ void VisitFields(Def& p, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("step_scale", p.stepScale, "displacement per unit force per iteration (c_step)", 0, kUnbounded);
     v.Number("divergence_limit", p.divergenceLimit, "a coordinate beyond this (mesh units) ends the run as 'diverged'", 1e-300, kUnbounded);
     v.Enum("precision", p.precision, "solver arithmetic; float is about twice as fast and within 0.005 of double in fitness");
+}
+
+// The membrane and shell models (SHELL.md). Option names: --radius-mm, --length-mm, ...
+template <class Def, class Visitor>
+void VisitFields(Def& g, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::GeometryDef> {
+    v.Number("radius_mm", g.radiusMm, "base radius, mm: one thesis radius unit", 1e-3, 1e4);
+    v.Number("length_mm", g.lengthMm, "length between the ends, clamped rings included, mm", 1e-3, 1e5);
+    v.Number("thickness_mm", g.thicknessMm, "wall thickness, mm", 1e-4, 1e3);
+    v.Integer("ring_vertices", g.ringVertices, "vertices per ring", 6, 4096);
+    v.Integer("rings", g.rings, "rings along the length (0: near-equilateral triangles)", 0, 100000);
+    v.Integer("clamp_rings", g.clampRings, "rings held by each end clamp", 1, 1000);
+    v.Enum("ends", g.ends, "rigid clamps, or end plates the end rings slide on (closed-form checks)");
+}
+
+// The material's constants; a preset (--material) sets them all first, these override.
+template <class Def, class Visitor>
+void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::MaterialDef> {
+    v.Enum("law", m.law, "hyperelastic law");
+    v.Number("mu_kpa", m.muKpa, "neo-Hookean shear modulus, kPa (overrides the preset)", 0, kUnbounded);
+    v.Number("c10_kpa", m.c10Kpa, "Mooney-Rivlin and Yeoh C10, kPa", 0, kUnbounded);
+    v.Number("c01_kpa", m.c01Kpa, "Mooney-Rivlin C01, kPa", 0, kUnbounded);
+    v.Number("c20_kpa", m.c20Kpa, "Yeoh C20, kPa", 0, kUnbounded);
+    v.Number("c30_kpa", m.c30Kpa, "Yeoh C30, kPa", 0, kUnbounded);
+    v.Number("tensile_strength_kpa", m.tensileStrengthKpa, "tensile strength to compare stresses with, kPa", 0, kUnbounded);
+    v.Number("elongation_at_break", m.elongationAtBreak, "elongation at break as a fraction (9 = 900 %)", 0, kUnbounded);
+    v.Number("stretch_limit", m.stretchLimit, "largest allowed principal stretch (0: 1 + elongation / 2)", 0, kUnbounded);
+    v.Number("density_kg_per_m3", m.densityKgPerM3, "density, kg/m^3 (silicone mass of exports)", 0, kUnbounded);
+}
+
+template <class Def, class Visitor>
+void VisitFields(Def& l, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::LoadDef> {
+    v.Number("pressure_kpa", l.pressureKpa, "target gauge pressure, kPa (inflate, gas, blocked); negative is vacuum", -1e6, 1e6);
+    v.Number("force_n", l.forceN, "axial force on the top clamp, N, + pulls it up (load force)", -1e6, 1e6);
+    v.Number("volume_ratio", l.volumeRatio, "target enclosed volume over the rest volume (load volume)", 1e-3, 1e3);
+    v.Integer("steps", l.steps, "load steps: points of the contraction-pressure curve", 1, 1000);
+}
+
+template <class Def, class Visitor>
+void VisitFields(Def& s, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::SolverDef> {
+    v.Number("tolerance", s.tolerance, "converged when the largest free-node force is below this x mu h l", 1e-16, 1e-2);
+    v.Integer("max_iterations", s.maxIterations, "Newton iterations per load step", 1, 10000);
+    v.Integer("max_bisections", s.maxBisections, "times a failed load step may be halved", 0, 30);
+}
+
+namespace detail {
+// The given material's values by key (enums by their index), then set over a preset's.
+struct MaterialCollector {
+    std::map<std::string, double>& values;
+    void Integer(const char* key, const int& v, const char*, long long, long long) { values[key] = v; }
+    void Number(const char* key, const double& v, const char*, double, double) { values[key] = v; }
+    template <class E>
+    void Enum(const char* key, const E& v, const char*) {
+        values[key] = static_cast<double>(static_cast<int>(v));
+    }
+};
+struct MaterialSetter {
+    const std::map<std::string, double>& values;
+    const std::function<bool(const char*)>& isGiven;
+    void Integer(const char* key, int& v, const char*, long long, long long) {
+        if (isGiven(key)) v = static_cast<int>(values.at(key));
+    }
+    void Number(const char* key, double& v, const char*, double, double) {
+        if (isGiven(key)) v = values.at(key);
+    }
+    template <class E>
+    void Enum(const char* key, E& v, const char*) {
+        if (isGiven(key)) v = static_cast<E>(static_cast<int>(values.at(key)));
+    }
+};
+}  // namespace detail
+
+// A preset's material with the fields `isGiven` names taken from `given` (an option or experiment
+// key given by the user overrides the preset's value). A neo-Hookean modulus given over a preset of
+// another law switches to neo-Hookean, unless the law is given too.
+inline sim::MaterialDef MaterialWithOverrides(sim::MaterialPreset preset, const sim::MaterialDef& given,
+                                              const std::function<bool(const char* key)>& isGiven) {
+    std::map<std::string, double> values;
+    VisitFields(given, detail::MaterialCollector{values});
+    sim::MaterialDef material = preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(preset);
+    VisitFields(material, detail::MaterialSetter{values, isGiven});
+    if (isGiven("mu_kpa") && !isGiven("law")) material.law = sim::MaterialLaw::NeoHookean;
+    material.preset = preset;  // named after the preset it started from; the fields say what changed
+    return material;
 }
 
 // "spring_constant" -> "--spring-constant".

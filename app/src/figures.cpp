@@ -8,6 +8,8 @@
 
 #include "errors.h"
 #include "files.h"
+#include "number_expression.h"
+#include "plots.h"
 #include "render/backend.h"
 #include "sim/surface.h"
 
@@ -16,24 +18,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "2.642", or "pi-0.5" style when the value is a simple multiple of pi plus a small offset.
-std::string Phase(double value) {
-    for (int n = 0; n <= 16; ++n)
-        for (double offset : {0.0, 0.5, -0.5}) {
-            if (std::fabs(value - (n * std::numbers::pi + offset)) > 1e-9) continue;
-            if (n == 0) return fmt::format("{:g}", offset);
-            const std::string pis = n == 1 ? "pi" : std::to_string(n) + "pi";
-            return offset == 0 ? pis : pis + (offset > 0 ? "+0.5" : "-0.5");
-        }
-    return fmt::format("{:.4g}", value);
-}
-
 }  // namespace
 
 std::string ShapeTitle(const sim::Shape& shape) {
     std::string title = sim::ShapeName(shape);
     auto sine = [&](double amplitude, double a, double b) {
-        title += fmt::format("  A = {:.4g}, phase {} to {}", amplitude, Phase(a), Phase(b));
+        title += fmt::format("  A = {:.4g}, phase {} to {}", amplitude, FormatRadians(a), FormatRadians(b));
     };
     if (const auto* s = std::get_if<sim::SineShape>(&shape)) sine(s->amplitude, s->phaseStart, s->phaseEnd);
     else if (const auto* a = std::get_if<sim::AbsSineShape>(&shape)) sine(a->amplitude, a->phaseStart, a->phaseEnd);
@@ -47,39 +37,109 @@ std::string ShapeTitle(const sim::Shape& shape) {
     return title;
 }
 
-std::string ResultLine(const sim::SimResult& r, const sim::MeshDef& mesh) {
+std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
-    if (r.status == sim::Status::Ok) line += fmt::format("fitness {:.4f},  contraction {:.2f} %,  ", r.fitness, r.contractionPercent);
-    return line + fmt::format("{} iterations,  {} x {} mesh", r.iterationsRun, mesh.resolution, mesh.turns);
+    if (job.model == sim::ModelKind::Thesis) {
+        if (r.status == sim::Status::Ok) line += fmt::format("fitness {:.4f},  contraction {:.2f} %,  ", r.fitness, r.contractionPercent);
+        return line + fmt::format("{} iterations,  {} x {} mesh", r.iterationsRun, job.mesh.resolution, job.mesh.turns);
+    }
+    const sim::ShellOutputs& o = r.shell;
+    if (std::isfinite(r.contractionPercent)) line += fmt::format("contraction {:.2f} % at {:.3g} kPa,  ", r.contractionPercent, o.targetPressureKpa);
+    if (std::isfinite(o.limitPressureKpa)) line += fmt::format("limit point {:.3g} kPa,  ", o.limitPressureKpa);
+    if (std::isfinite(o.maxStretch)) line += fmt::format("stretch {:.2f} (limit {:.2f}),  ", o.maxStretch, o.stretchLimit);
+    return line + fmt::format("{} Newton iterations,  {} x {} mesh,  {}", o.newtonIterations, job.shell.geometry.ringVertices,
+                              sim::RingCount(job.shell.geometry), sim::Name(job.shell.material.preset));
 }
 
 std::string FitnessCaption(const sim::SimResult& r) { return r.status == sim::Status::Ok ? fmt::format("{:.3f}", r.fitness) : sim::Name(r.status); }
 
-std::shared_ptr<const sim::Surface> SurfaceOf(const sim::MeshDef& mesh) {
+std::string ColouringError(Colouring colouring, const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis && (colouring == Colouring::Stretch || colouring == Colouring::Stress))
+        return std::string("colouring by ") + sim::Name(colouring) + " needs --model membrane or shell (the thesis model has no material)";
+    return "";
+}
+
+std::shared_ptr<const sim::Surface> SharedSurface(const sim::EvalJob& job) {
     // Surfaces are shared: a sweep draws thousands of meshes of one size.
     static std::mutex mutex;
-    static std::map<std::pair<int, int>, std::shared_ptr<const sim::Surface>> cache;
+    static std::map<std::tuple<bool, int, int>, std::shared_ptr<const sim::Surface>> cache;
+    const bool thesis = job.model == sim::ModelKind::Thesis;
+    const std::tuple<bool, int, int> key = thesis ? std::tuple{true, job.mesh.resolution, job.mesh.turns}
+                                                  : std::tuple{false, job.shell.geometry.ringVertices, sim::RingCount(job.shell.geometry)};
     std::lock_guard lock(mutex);
-    auto& surface = cache[{mesh.resolution, mesh.turns}];
-    if (!surface) surface = std::make_shared<const sim::Surface>(sim::HelixSurface(mesh));
+    auto& surface = cache[key];
+    if (!surface) surface = std::make_shared<const sim::Surface>(sim::SurfaceOf(job));
     return surface;
 }
 
-render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r, const sim::MeshDef& mesh) {
+namespace {
+
+// A panel of a deformed mesh coloured as asked; sets the scene's mode, label and marks.
+render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed, const sim::SimResult& r, const sim::EvalJob& job,
+                            Colouring colouring, std::string caption, double rotationDegrees = 0) {
+    render::Panel panel{deformed, r.initial, std::move(caption), rotationDegrees, {}, {}};
+    const bool thesis = job.model == sim::ModelKind::Thesis;
+    if (colouring == Colouring::Auto) colouring = thesis ? Colouring::Displacement : Colouring::Stretch;
+    switch (colouring) {
+        case Colouring::Auto:
+        case Colouring::Displacement:
+            scene.colorBy = render::ColorBy::Displacement;
+            if (!thesis) scene.colorLabel = "displacement\n(mm)";
+            break;
+        case Colouring::Strain: scene.colorBy = render::ColorBy::Strain; break;
+        case Colouring::None: scene.colorBy = render::ColorBy::Shading; break;
+        case Colouring::Stretch:
+        case Colouring::Stress: {
+            if (thesis) break;  // refused earlier (ColouringError)
+            const sim::ShellFields fields = sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed);
+            const bool stretch = colouring == Colouring::Stretch;
+            panel.values = stretch ? fields.stretch : fields.stressKpa;
+            scene.colorBy = render::ColorBy::Values;
+            scene.colorLabel = stretch ? "principal\nstretch" : "principal true\nstress (kPa)";
+            const double limit = stretch ? sim::StretchLimit(job.shell.material) : job.shell.material.tensileStrengthKpa;
+            if (limit > 0) scene.scaleMarks = {{limit, stretch ? "stretch limit" : "tensile strength"}};
+            if (stretch) scene.colorMin = 1.0;
+            break;
+        }
+    }
+    return panel;
+}
+
+std::string AfterCaption(const sim::SimResult& r, const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis) return "after " + std::to_string(r.iterationsRun) + " iterations";
+    return fmt::format("at {:.3g} kPa", r.shell.targetPressureKpa);
+}
+
+}  // namespace
+
+render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, Colouring colouring) {
     render::Scene scene;
-    scene.surface = SurfaceOf(mesh);
+    scene.surface = SharedSurface(job);
     scene.title = title;
-    scene.lines = {ResultLine(r, mesh)};
-    scene.panels = {{r.initial, {}, "before", 0, {}, {}}, {r.final, r.initial, "after " + std::to_string(r.iterationsRun) + " iterations", 0, {}, {}}};
+    scene.lines = {ResultLine(r, job)};
+    scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
+    scene.panels.push_back(ColouredPanel(scene, r.final, r, job, colouring, AfterCaption(r, job)));
     return scene;
 }
 
-render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, const sim::MeshDef& mesh, double angleDegrees) {
+render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, double angleDegrees, Colouring colouring) {
     render::Scene scene;
-    scene.surface = SurfaceOf(mesh);
+    scene.surface = SharedSurface(job);
     scene.title = title;
-    scene.lines = {ResultLine(r, mesh)};
-    scene.panels = {{r.final, r.initial, fmt::format("turned {:.0f} degrees", angleDegrees), angleDegrees, {}, {}}};
+    scene.lines = {ResultLine(r, job)};
+    scene.panels = {ColouredPanel(scene, r.final, r, job, colouring, fmt::format("turned {:.0f} degrees", angleDegrees), angleDegrees)};
+    return scene;
+}
+
+render::Scene LoadStepScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, int step, Colouring colouring) {
+    const sim::ShellOutputs& o = r.shell;
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    const double pressure = step < static_cast<int>(o.curvePressureKpa.size()) ? o.curvePressureKpa[step] : NAN;
+    const double contraction = step < static_cast<int>(o.curveContractionPercent.size()) ? o.curveContractionPercent[step] : NAN;
+    scene.lines = {fmt::format("load step {} of {}:  {:.3g} kPa,  contraction {:.2f} %", step + 1, o.steps.size(), pressure, contraction)};
+    scene.panels = {ColouredPanel(scene, o.steps.at(step), r, job, colouring, fmt::format("{:.3g} kPa", pressure))};
     return scene;
 }
 
@@ -124,7 +184,12 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
     for (const auto& [load, result] : loads) {
         if (!result) continue;
         const std::string name = f.prefix + load + ".png";
-        WritePng((folder / name).string(), renderer.Render(BeforeAfterScene(f.title + "  -  " + load, *result, f.mesh)), figureLevel);
+        WritePng((folder / name).string(), renderer.Render(BeforeAfterScene(f.title + "  -  " + load, *result, f.job, f.colouring)), figureLevel);
+        written.push_back(name);
+    }
+    if (f.job.model != sim::ModelKind::Thesis && f.inflated && !f.inflated->shell.curvePressureKpa.empty()) {
+        const std::string name = f.prefix + "pressure_curve.png";
+        WritePng((folder / name).string(), PressureCurveImage(f.title, *f.inflated), figureLevel);
         written.push_back(name);
     }
     if (f.turntableFrames > 0 && f.inflated) {
@@ -135,14 +200,14 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
         FrameWriter writer(frameLevel);
         for (int k = 0; k < f.turntableFrames; ++k)
             writer.Write((folder / sub / fmt::format("frame_{:04}.png", k)).string(),
-                         renderer.Render(TurntableScene(f.title + "  -  inflated", *f.inflated, f.mesh, 360.0 * k / f.turntableFrames)));
+                         renderer.Render(TurntableScene(f.title + "  -  inflated", *f.inflated, f.job, 360.0 * k / f.turntableFrames, f.colouring)));
         writer.Wait();
         written.push_back(sub + "/frame_%04d.png x " + std::to_string(f.turntableFrames));
     }
     return written;
 }
 
-void WriteContactSheet(const fs::path& path, const std::string& title, const std::vector<SheetEntry>& entries, const sim::MeshDef& mesh,
+void WriteContactSheet(const fs::path& path, const std::string& title, const std::vector<SheetEntry>& entries, const sim::EvalJob& job,
                        std::unique_ptr<render::MeshRenderer>& renderer) {
     if (entries.empty()) return;
     // Actuators are about ten times taller than wide: many narrow columns, cells about 1:2.
@@ -151,9 +216,10 @@ void WriteContactSheet(const fs::path& path, const std::string& title, const std
     const int width = std::clamp(columns * 125 + 110, 800, 2600), height = std::clamp(rows * 250 + 110, 450, 2400);
     if (!renderer || renderer->Def().width != width || renderer->Def().height != height) renderer = MakeRenderer(width, height, 1, 0.72);
     render::Scene scene;
-    scene.surface = SurfaceOf(mesh);
+    scene.surface = SharedSurface(job);
     scene.title = title;
     scene.columns = columns;
+    if (job.model != sim::ModelKind::Thesis) scene.colorLabel = "displacement\n(mm)";
     std::vector<const sim::Positions*> all;
     for (const auto& entry : entries) {
         scene.panels.push_back({entry.result->final, entry.result->initial, entry.caption, 0, {}, {}});
@@ -177,9 +243,9 @@ ThumbnailWriter::ThumbnailWriter(fs::path folder) : folder_(std::move(folder)) {
 
 std::string ThumbnailWriter::Name(std::uint64_t id) { return fmt::format("evaluation_{:06}.png", id); }
 
-void ThumbnailWriter::Write(std::uint64_t id, const sim::SimResult& result, const sim::MeshDef& mesh) {
+void ThumbnailWriter::Write(std::uint64_t id, const sim::SimResult& result, const sim::EvalJob& job) {
     render::Scene scene;
-    scene.surface = SurfaceOf(mesh);
+    scene.surface = SharedSurface(job);
     scene.panels = {{result.initial, {}, "", 0, {}, {}}, {result.final, result.initial, "", 0, {}, {}}};
     WritePng((folder_ / Name(id)).string(), renderer_->Render(scene), 1);
 }

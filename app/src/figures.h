@@ -12,21 +12,36 @@
 #include "render/image.h"
 #include "render/mesh_renderer.h"
 #include "sim/batch.h"
+#include "sim/names.h"
 
 namespace app {
 
 std::string ShapeTitle(const sim::Shape& shape);  // "sine  A = 4.1, phase 0.5 to pi-0.5"
-std::string ResultLine(const sim::SimResult& result, const sim::MeshDef& mesh);  // status, fitness, contraction
-std::string FitnessCaption(const sim::SimResult& result);                         // "0.582" or the status
+// Status and the model's numbers: fitness and contraction (thesis), contraction at the pressure,
+// stretch against its limit and Newton iterations (membrane, shell); and the mesh size.
+std::string ResultLine(const sim::SimResult& result, const sim::EvalJob& job);
+std::string FitnessCaption(const sim::SimResult& result);  // "0.582" or the status
 
-// The surface a job's meshes are drawn on.
-std::shared_ptr<const sim::Surface> SurfaceOf(const sim::MeshDef& mesh);
+// What colours the deformed mesh. `Auto` is displacement under the thesis model and the largest
+// principal stretch under the membrane and shell models.
+enum class Colouring { Auto, Displacement, Strain, Stretch, Stress, None };
+// Empty when the colouring suits the job's model; otherwise why not.
+std::string ColouringError(Colouring colouring, const sim::EvalJob& job);
 
-// The mesh before (plain material) and after (coloured by the renderer's mode), one camera and scale.
-render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& result, const sim::MeshDef& mesh);
+// The surface a job's meshes are drawn on (shared between pictures of one mesh size).
+std::shared_ptr<const sim::Surface> SharedSurface(const sim::EvalJob& job);
+
+// The mesh before (plain material) and after (coloured), one camera and scale. Under the membrane
+// and shell models, "after" is the equilibrium at the target pressure, and stretch and stress
+// colourings mark the material's limits on the colour bar.
+render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& result, const sim::EvalJob& job, Colouring colouring = Colouring::Auto);
 // One turntable frame: the final mesh turned `angleDegrees` about its axis. The default framing (a
 // cylinder about the axis) and colour scale do not change with the angle: frames hold still.
-render::Scene TurntableScene(const std::string& title, const sim::SimResult& result, const sim::MeshDef& mesh, double angleDegrees);
+render::Scene TurntableScene(const std::string& title, const sim::SimResult& result, const sim::EvalJob& job, double angleDegrees,
+                             Colouring colouring = Colouring::Auto);
+// A membrane or shell result's deformed mesh at load step `step` (0 .. steps-1) coloured like
+// BeforeAfterScene, on a fixed framing and scale given by the caller.
+render::Scene LoadStepScene(const std::string& title, const sim::SimResult& result, const sim::EvalJob& job, int step, Colouring colouring);
 
 // Throws UsageError when no renderer can be made.
 std::unique_ptr<render::MeshRenderer> MakeRenderer(int width, int height, int supersample = 2, double textScale = 0);
@@ -48,15 +63,17 @@ private:
 };
 
 // A design's figures: `inflation.png`-style before/after under each load, and a turntable of the
-// inflated mesh when `turntableFrames` > 0. Names are `prefix` + "inflation.png", ... Returns the
-// files written, relative to `folder`.
+// inflated mesh when `turntableFrames` > 0; under the membrane and shell models also the
+// contraction-pressure curve, `pressure_curve.png`. Names are `prefix` + "inflation.png", ...
+// Returns the files written, relative to `folder`.
 struct DesignFigures {
     std::string title;
     const sim::SimResult* inflated = nullptr;
-    const sim::SimResult* stretched = nullptr;  // may be null
-    sim::MeshDef mesh;
+    const sim::SimResult* stretched = nullptr;  // may be null (always under the membrane and shell models)
+    sim::EvalJob job;                           // the inflated design's job (model, mesh, units)
     int turntableFrames = 0;
     std::string prefix;  // "" for render, "best_" for experiments
+    Colouring colouring = Colouring::Auto;
 };
 std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, const std::filesystem::path& folder, const DesignFigures& figures,
                                             int figureLevel = 6, int frameLevel = 1);
@@ -69,13 +86,13 @@ struct SheetEntry {
 };
 // `renderer` is kept between calls and made anew only when the sheet's size changes.
 void WriteContactSheet(const std::filesystem::path& path, const std::string& title, const std::vector<SheetEntry>& entries,
-                       const sim::MeshDef& mesh, std::unique_ptr<render::MeshRenderer>& renderer);
+                       const sim::EvalJob& job, std::unique_ptr<render::MeshRenderer>& renderer);
 
 // Small before/after pictures of single evaluations, named by evaluation id.
 class ThumbnailWriter {
 public:
     explicit ThumbnailWriter(std::filesystem::path folder);
-    void Write(std::uint64_t id, const sim::SimResult& result, const sim::MeshDef& mesh);
+    void Write(std::uint64_t id, const sim::SimResult& result, const sim::EvalJob& job);
     static std::string Name(std::uint64_t id);  // "evaluation_000017.png"
     const std::filesystem::path& Folder() const { return folder_; }
 
@@ -85,3 +102,13 @@ private:
 };
 
 }  // namespace app
+
+template <>
+struct sim::EnumNames<app::Colouring> {
+    static constexpr std::array<std::pair<app::Colouring, const char*>, 6> table{{{app::Colouring::Auto, "auto"},
+                                                                                  {app::Colouring::Displacement, "displacement"},
+                                                                                  {app::Colouring::Strain, "strain"},
+                                                                                  {app::Colouring::Stretch, "stretch"},
+                                                                                  {app::Colouring::Stress, "stress"},
+                                                                                  {app::Colouring::None, "none"}}};
+};

@@ -71,6 +71,11 @@ std::string ReadInputFile(const std::string& path, std::uintmax_t maxBytes) {
         ::close(fd);
         throw UsageError("cannot read " + Quote(path) + ": it is a folder");
     }
+    if (S_ISCHR(info.st_mode) || S_ISBLK(info.st_mode)) {
+        // /dev/zero would fill memory: a device is not an input file.
+        ::close(fd);
+        throw UsageError("cannot read " + Quote(path) + ": it is a device, not a file");
+    }
     auto tooLarge = [&] {
         ::close(fd);
         return UsageError(Quote(path) + " is larger than " + std::to_string(maxBytes >> 20) + " MiB, the limit for an input file");

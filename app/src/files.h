@@ -14,8 +14,8 @@ namespace app {
 // about 60 MB).
 constexpr std::uintmax_t kMaxInputBytes = 256ull << 20;
 
-// The whole file. Refuses a folder, a missing file and a file over `maxBytes` (devices and pipes
-// are read up to the limit), naming the file. Throws UsageError.
+// The whole file. Refuses a folder, a device, a missing file and a file over `maxBytes` (pipes are
+// read up to the limit), naming the file. Throws UsageError.
 std::string ReadInputFile(const std::string& path, std::uintmax_t maxBytes = kMaxInputBytes);
 
 // Whitespace-separated numbers (comments after '#'): a free-xy offset file holds "dx dy" per vertex.

@@ -42,21 +42,58 @@ struct Writer {
 }  // namespace
 
 Json ModelJson(const sim::EvalJob& job) {
-    Json j{{"name", "thesis"}};
-    VisitFields(job.params, Writer{j});
-    VisitFields(job.mesh, Writer{j});
-    j["vertices"] = sim::VertexCount(job.mesh);
-    j["springs"] = sim::SpringCount(job.mesh);
+    Json j{{"name", sim::Name(job.model)}};
+    if (job.model == sim::ModelKind::Thesis) {
+        VisitFields(job.params, Writer{j});
+        VisitFields(job.mesh, Writer{j});
+        j["vertices"] = sim::VertexCount(job.mesh);
+        j["springs"] = sim::SpringCount(job.mesh);
+        return j;
+    }
+    const sim::ShellDef& s = job.shell;
+    VisitFields(s.geometry, Writer{j});
+    j["rings_used"] = sim::RingCount(s.geometry);
+    j["material"] = sim::Name(s.material.preset);
+    VisitFields(s.material, Writer{j});
+    j["shear_modulus_kpa"] = sim::ShearModulusKpa(s.material);
+    j["load"] = sim::Name(s.load.kind);
+    VisitFields(s.load, Writer{j});
+    VisitFields(s.solver, Writer{j});
     return j;
 }
 
-Json ResultNumbersJson(const sim::SimResult& r, const sim::SimParams& params) {
-    return Json{{"status", sim::Name(r.status)},
-                {"fitness", NumberJson(r.status == sim::Status::Ok ? r.fitness : NAN)},
-                {"contraction_percent", NumberJson(r.status == sim::Status::Ok ? r.contractionPercent : NAN)},
-                {"iterations", r.iterationsRun},
-                {"iterations_requested", params.iterations},
-                {"elapsed_ms", r.elapsedMs}};
+Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
+    const bool ok = r.status == sim::Status::Ok;
+    Json j{{"status", sim::Name(r.status)},
+           {"fitness", NumberJson(ok ? r.fitness : NAN)},
+           {"contraction_percent", NumberJson(ok ? r.contractionPercent : NAN)}};
+    if (job.model == sim::ModelKind::Thesis) {
+        j["iterations"] = r.iterationsRun;
+        j["iterations_requested"] = job.params.iterations;
+    } else {
+        const sim::ShellOutputs& s = r.shell;
+        j["pressure_kpa"] = NumberJson(s.targetPressureKpa);
+        j["limit_pressure_kpa"] = NumberJson(s.limitPressureKpa);
+        j["blocking_force_n"] = NumberJson(s.blockingForceN);
+        j["axial_stiffness_n_per_mm"] = NumberJson(s.axialStiffnessNPerMm);
+        j["displacement_mm"] = NumberJson(s.displacementMm);
+        j["rest_volume_mm3"] = NumberJson(s.restVolumeMm3);
+        j["volume_mm3"] = NumberJson(s.volumeMm3);
+        j["max_stretch"] = NumberJson(s.maxStretch);
+        j["stretch_limit"] = NumberJson(s.stretchLimit);
+        j["max_stress_kpa"] = NumberJson(s.maxStressKpa);
+        j["tensile_strength_kpa"] = NumberJson(s.tensileStrengthKpa);
+        j["newton_iterations"] = s.newtonIterations;
+        j["factorizations"] = s.factorizations;
+        Json curve = Json::array();
+        for (size_t k = 0; k < s.curvePressureKpa.size(); ++k)
+            curve.push_back(Json{{"pressure_kpa", s.curvePressureKpa[k]},
+                                 {"contraction_percent", NumberJson(s.curveContractionPercent[k])},
+                                 {"volume_mm3", NumberJson(s.curveVolumeMm3[k])}});
+        j["curve"] = curve;
+    }
+    j["elapsed_ms"] = r.elapsedMs;
+    return j;
 }
 
 }  // namespace app

@@ -17,9 +17,12 @@ Json NumberJson(double value);  // null when not finite
 // The design with every parameter: sine amplitude and phase; B-spline region and each spline's
 // control points; free-xy offsets; a mesh's vertex count.
 Json ShapeJson(const sim::Shape& shape);
-// The model's settings (thesis: every SimParams field and the mesh size).
+// The model's settings: the thesis model's every SimParams field and helix size, or the membrane
+// and shell models' geometry, material, load and solver.
 Json ModelJson(const sim::EvalJob& job);
-// Status, fitness, contraction, iterations, time.
-Json ResultNumbersJson(const sim::SimResult& result, const sim::SimParams& params);
+// Status, fitness, contraction; the thesis model's iterations, or the shell models' outputs
+// (pressure, limit pressure, blocking force, stiffness, volume, stretch and stress beside the
+// material's limits, Newton iterations, the contraction-pressure curve); time.
+Json ResultNumbersJson(const sim::SimResult& result, const sim::EvalJob& job);
 
 }  // namespace app

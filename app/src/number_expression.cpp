@@ -1,6 +1,7 @@
 #include "number_expression.h"
 
 #include <cctype>
+#include <cstdio>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -140,6 +141,19 @@ private:
 };
 
 }  // namespace
+
+std::string FormatRadians(double value) {
+    for (int n = 0; n <= 16; ++n)
+        for (double offset : {0.0, 0.5, -0.5}) {
+            if (std::fabs(value - (n * std::numbers::pi + offset)) > 1e-9) continue;
+            if (n == 0) return offset == 0 ? "0" : offset > 0 ? "0.5" : "-0.5";
+            const std::string pis = n == 1 ? "pi" : std::to_string(n) + "pi";
+            return offset == 0 ? pis : pis + (offset > 0 ? "+0.5" : "-0.5");
+        }
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+}
 
 bool TryParseNumber(std::string_view text, double* value) {
     NumberExpression expression(text);

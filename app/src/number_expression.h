@@ -19,6 +19,10 @@ double ParseNumber(std::string_view text, const std::string& what);
 long long ParseInteger(std::string_view text, const std::string& what, long long min, long long max);
 std::vector<double> ParseNumberList(std::string_view text, const std::string& what, char separator = ',');
 
+// An angle as people write it: "pi-0.5", "4pi", "0" for simple multiples of pi (with 0 or +-0.5),
+// else up to 4 significant digits.
+std::string FormatRadians(double value);
+
 // The same without throwing: false on anything that is not a finite number.
 bool TryParseNumber(std::string_view text, double* value);
 

@@ -32,10 +32,11 @@ std::string FormatObj(const sim::Positions& p, const sim::Surface& surface, cons
     return out;
 }
 
-sim::Positions ReadObjVertices(const std::string& path) {
+ObjMesh ReadObj(const std::string& path) {
     const std::string text = ReadInputFile(path);
     if (text.find('\0') != std::string::npos) throw UsageError(Quote(path) + " is not a text OBJ file (binary data)");
-    sim::Positions p;
+    ObjMesh mesh;
+    sim::Positions& p = mesh.positions;
     std::istringstream lines(text);
     std::string line;
     for (int lineNumber = 1; std::getline(lines, line); ++lineNumber) {
@@ -58,13 +59,29 @@ sim::Positions ReadObjVertices(const std::string& path) {
             p.x.push_back(xyz[0]);
             p.y.push_back(xyz[1]);
             p.z.push_back(xyz[2]);
-        } else if (keyword != "f" && keyword != "vn" && keyword != "vt" && keyword != "o" && keyword != "g" && keyword != "s" &&
+        } else if (keyword == "f") {
+            // "f a b c", each corner "v", "v/vt", "v//vn" or "v/vt/vn"; 1-based, or negative from the end.
+            std::array<int, 3> t{};
+            std::string corner;
+            int corners = 0;
+            while (tokens >> corner) {
+                long long index = 0;
+                const auto [end, error] = std::from_chars(corner.data(), corner.data() + corner.size(), index);
+                if (error != std::errc() || (end != corner.data() + corner.size() && *end != '/') || index == 0)
+                    throw UsageError(where + ": " + Quote(corner) + " is not a vertex index");
+                index = index < 0 ? static_cast<long long>(p.Size()) + index : index - 1;
+                if (index < 0 || index >= p.Size()) throw UsageError(where + ": vertex " + corner + " comes before it is defined");
+                if (corners < 3) t[static_cast<size_t>(corners)] = static_cast<int>(index);
+                ++corners;
+            }
+            if (corners != 3) throw UsageError(where + ": a face of " + std::to_string(corners) + " corners; the actuator's surfaces are triangles");
+            mesh.triangles.push_back(t);
+        } else if (keyword != "vn" && keyword != "vt" && keyword != "o" && keyword != "g" && keyword != "s" &&
                    keyword != "l" && keyword != "usemtl" && keyword != "mtllib") {
-            // Faces and the rest are ignored: the model makes its own springs and triangles.
             throw UsageError(where + ": not an OBJ line (starts with " + Quote(keyword) + ")");
         }
     }
-    return p;
+    return mesh;
 }
 
 }  // namespace app

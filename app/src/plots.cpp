@@ -12,11 +12,17 @@ std::string AxisLabel(sim::SweepParameter parameter) {
         case sim::SweepParameter::Amplitude: return "amplitude A";
         case sim::SweepParameter::Cycles: return "cycles n (phase 0 to n pi)";
         case sim::SweepParameter::PhaseEnd: return "phase end (radians)";
+        case sim::SweepParameter::PressureKpa: return "gauge pressure (kPa)";
     }
     return "";
 }
 
 namespace {
+
+// The fitness's meaning and unit under the experiment's model.
+std::string FitnessLabel(const Experiment& e) {
+    return e.model == sim::ModelKind::Thesis ? "fitness (contraction, mesh units)" : "fitness: contraction (percent, positive = shorter)";
+}
 
 std::unique_ptr<render::PlotRenderer> MakePlots(int width, int height) {
     std::string error;
@@ -34,9 +40,11 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
     if (axes.size() == 1) {
         render::LinePlot plot;
         plot.xLabel = AxisLabel(axes[0].parameter);
-        plot.yLabel = "fitness (contraction, mesh units)";
+        plot.yLabel = FitnessLabel(e);
         plot.zeroLine = true;
-        render::LineSeries series{"fitness after " + std::to_string(e.params.iterations) + " iterations", axes[0].values, fitness, {0.13f, 0.35f, 0.75f}, true};
+        const std::string what = e.model == sim::ModelKind::Thesis ? "fitness after " + std::to_string(e.params.iterations) + " iterations"
+                                                                   : std::string("contraction at equilibrium, ") + sim::Name(e.model) + " model";
+        render::LineSeries series{what, axes[0].values, fitness, {0.13f, 0.35f, 0.75f}, true};
         plot.series.push_back(series);
         if (best >= 0) {
             plot.highlight = std::pair{axes[0].values[static_cast<size_t>(best)], fitness[static_cast<size_t>(best)]};
@@ -47,7 +55,7 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
     render::Heatmap heatmap;
     heatmap.xLabel = AxisLabel(axes[1].parameter);
     heatmap.yLabel = AxisLabel(axes[0].parameter);
-    heatmap.valueLabel = "fitness";
+    heatmap.valueLabel = e.model == sim::ModelKind::Thesis ? "fitness" : "contraction (%)";
     heatmap.xValues = axes[1].values;
     heatmap.yValues = axes[0].values;
     heatmap.values = fitness;
@@ -66,7 +74,7 @@ render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& r
         render::LinePlot plot;
         plot.title = run.title;
         plot.xLabel = "generation";
-        plot.yLabel = "fitness";
+        plot.yLabel = FitnessLabel(e);
         render::LineSeries bestLine{"best", {}, {}, {0.10f, 0.55f, 0.20f}}, worstLine{"worst", {}, {}, {0.80f, 0.20f, 0.15f}},
             meanLine{"mean", {}, {}, {0.13f, 0.35f, 0.75f}};
         render::Band band{"mean +/- std", {}, {}, {}, {0.13f, 0.35f, 0.75f}};
@@ -92,6 +100,36 @@ render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& r
         panels.push_back(plot);
     }
     return plots->RenderLines(ExperimentTitle(e) + "  -  evolution", panels);
+}
+
+render::Image PressureCurveImage(const std::string& title, const sim::SimResult& r) {
+    const sim::ShellOutputs& o = r.shell;
+    auto plots = MakePlots(1024, 640);
+    render::LinePlot plot;
+    plot.xLabel = "gauge pressure (kPa)";
+    plot.yLabel = "contraction (percent, positive = shorter)";
+    plot.zeroLine = true;
+    // The curve starts at rest: zero pressure, zero contraction.
+    render::LineSeries curve{"equilibrium at each load step", {0.0}, {0.0}, {0.13f, 0.35f, 0.75f}, true};
+    for (size_t k = 0; k < o.curvePressureKpa.size() && k < o.curveContractionPercent.size(); ++k) {
+        curve.x.push_back(o.curvePressureKpa[k]);
+        curve.y.push_back(o.curveContractionPercent[k]);
+    }
+    plot.series.push_back(curve);
+    if (std::isfinite(o.limitPressureKpa)) {
+        // The limit point: the step at the pressure maximum.
+        size_t top = 0;
+        for (size_t k = 1; k < curve.x.size(); ++k)
+            if (curve.x[k] > curve.x[top]) top = k;
+        plot.highlight = std::pair{curve.x[top], curve.y[top]};
+        plot.highlightLabel = fmt::format("limit point: pressure maximum {:.3g} kPa", o.limitPressureKpa);
+    } else if (curve.x.size() > 1) {
+        plot.highlight = std::pair{curve.x.back(), curve.y.back()};
+        plot.highlightLabel = std::isfinite(r.contractionPercent)
+                                  ? fmt::format("{:.2f} % at {:.3g} kPa ({})", r.contractionPercent, o.targetPressureKpa, sim::Name(r.status))
+                                  : std::string("last converged step (") + sim::Name(r.status) + ")";
+    }
+    return plots->RenderLines(title + "  -  contraction against pressure", {plot});
 }
 
 }  // namespace app

@@ -19,6 +19,10 @@ struct RunCurve {
 };
 render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
 
+// A membrane or shell result's contraction-pressure curve at its load steps, the target pressure
+// and the limit point (the pressure maximum) marked when met.
+render::Image PressureCurveImage(const std::string& title, const sim::SimResult& result);
+
 // How a sweep axis is named on plots, e.g. "amplitude A".
 std::string AxisLabel(sim::SweepParameter parameter);
 

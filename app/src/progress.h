@@ -9,12 +9,13 @@ namespace app {
 
 class Progress {
 public:
-    Progress(std::string what, bool enabled);
-    // `evaluations`: simulations so far (for the rate); `detail` is shown as it is.
-    void Update(long long done, long long total, long long evaluations, const std::string& detail);
+    // `unit` names what the rate counts: "evaluations", "frames".
+    Progress(std::string what, bool enabled, std::string unit = "evaluations");
+    // `count`: units done so far this session (for the rate); `detail` is shown as it is.
+    void Update(long long done, long long total, long long count, const std::string& detail);
 
 private:
-    std::string what_;
+    std::string what_, unit_;
     std::chrono::steady_clock::time_point start_;
     bool tty_, enabled_;
     int lastDecile_ = -1;

@@ -1,5 +1,6 @@
 #include "recorder.h"
 
+#include <cmath>
 #include <fmt/format.h>
 #include <map>
 #include <set>
@@ -14,8 +15,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kLogHeader{"evaluation", "role", "run", "generation", "label", "shape", "status",
-                                          "fitness", "contraction_percent", "iterations", "thumbnail", "design"};
+// The membrane and shell models' outputs follow the common columns; empty under the thesis model.
+const std::vector<std::string> kLogHeader{"evaluation",       "role",         "run",         "generation",         "label",
+                                          "shape",            "model",        "status",      "fitness",            "contraction_percent",
+                                          "iterations",       "thumbnail",    "design",      "pressure_kpa",       "limit_pressure_kpa",
+                                          "blocking_force_n", "axial_stiffness_n_per_mm", "volume_mm3", "max_stretch", "max_stress_kpa"};
+
+std::string Optional(double value) { return std::isfinite(value) ? CsvNumber(value) : ""; }
 
 }  // namespace
 
@@ -48,7 +54,9 @@ void Recorder::Open() {
 }
 
 void Recorder::RollBack(std::uint64_t keep) {
-    keep = std::min<std::uint64_t>(keep, existing_.size());
+    if (keep > existing_.size())
+        throw UsageError(Quote((dir_ / "evaluations.capnp").string()) + " holds " + std::to_string(existing_.size()) +
+                         " evaluations, fewer than its checkpoint's " + std::to_string(keep) + "; it cannot be resumed");
     const fs::path archive = dir_ / "evaluations.capnp";
     std::error_code ec;
     if (fs::exists(archive, ec)) TruncateArchive(archive.string(), keep);
@@ -67,10 +75,18 @@ void Recorder::RollBack(std::uint64_t keep) {
 
 void Recorder::Log(const ArchiveRecord& r) {
     const bool ok = r.result.status == sim::Status::Ok;
-    log_.Append({std::to_string(r.id), sim::Name(r.role), std::to_string(r.run), std::to_string(r.generation), CsvField(r.label),
-                 sim::ShapeName(r.job.shape), sim::Name(r.result.status), ok ? CsvNumber(r.result.fitness) : "",
-                 ok ? CsvNumber(r.result.contractionPercent) : "", std::to_string(r.result.iterationsRun),
-                 thumbnails_ ? ThumbnailWriter::Name(r.id) : "", CsvField(DesignText(r.job.shape))});
+    const bool thesis = r.job.model == sim::ModelKind::Thesis;
+    const sim::ShellOutputs& o = r.result.shell;
+    // Iterations: relaxation steps (thesis) or Newton iterations over all load steps.
+    std::vector<std::string> row{std::to_string(r.id), sim::Name(r.role), std::to_string(r.run), std::to_string(r.generation), CsvField(r.label),
+                                 sim::ShapeName(r.job.shape), sim::Name(r.job.model), sim::Name(r.result.status), ok ? CsvNumber(r.result.fitness) : "",
+                                 ok ? CsvNumber(r.result.contractionPercent) : "", std::to_string(thesis ? r.result.iterationsRun : o.newtonIterations),
+                                 thumbnails_ ? ThumbnailWriter::Name(r.id) : "", CsvField(DesignText(r.job.shape))};
+    if (thesis) row.resize(kLogHeader.size());
+    else
+        for (double v : {r.job.shell.load.pressureKpa, o.limitPressureKpa, o.blockingForceN, o.axialStiffnessNPerMm, o.volumeMm3, o.maxStretch, o.maxStressKpa})
+            row.push_back(Optional(v));
+    log_.Append(row);
 }
 
 void Recorder::Evaluate(const std::vector<sim::EvalJob>& jobs, const std::vector<EvaluationTag>& tags, const Each& each) {
@@ -84,7 +100,7 @@ void Recorder::Evaluate(const std::vector<sim::EvalJob>& jobs, const std::vector
         record.label = tags[index].label;
         record.job = jobs[index];
         record.result = std::move(result);
-        if (thumbnailWriter_) thumbnailWriter_->Write(count_, record.result, record.job.mesh);
+        if (thumbnailWriter_) thumbnailWriter_->Write(count_, record.result, record.job);
         const std::uint64_t id = archive_->Append(record);
         Log(record);
         ++count_;

@@ -22,9 +22,30 @@
 
 namespace app {
 
-std::uint64_t ReplyWords(const sim::EvalJob& job) { return 6ull * static_cast<std::uint64_t>(sim::VertexCount(job.mesh)) + 64; }
+namespace {
+
+// Vertices of a job's meshes.
+std::uint64_t Vertices(const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis) return static_cast<std::uint64_t>(std::max(0, sim::VertexCount(job.mesh)));
+    const sim::GeometryDef& g = job.shell.geometry;
+    return static_cast<std::uint64_t>(std::max(0, g.ringVertices)) * static_cast<std::uint64_t>(std::max(0, sim::RingCount(g))) + 2;
+}
+
+// A Newton iteration of the shell models (assembly and a sparse factorisation) costs about as much
+// per vertex as ten thousand relaxation steps of the thesis model (measured at 30 x 30).
+constexpr std::uint64_t kNewtonIterationWork = 10000;
+
+}  // namespace
+
+std::uint64_t ReplyWords(const sim::EvalJob& job) {
+    const std::uint64_t curve = job.model == sim::ModelKind::Thesis ? 0 : 3ull * static_cast<std::uint64_t>(std::max(0, job.shell.load.steps));
+    return 6ull * Vertices(job) + curve + 96;
+}
 std::uint64_t Work(const sim::EvalJob& job) {
-    return static_cast<std::uint64_t>(sim::VertexCount(job.mesh)) * static_cast<std::uint64_t>(std::max(1, job.params.iterations));
+    if (job.model == sim::ModelKind::Thesis) return Vertices(job) * static_cast<std::uint64_t>(std::max(1, job.params.iterations));
+    const sim::LoadDef& l = job.shell.load;
+    const sim::SolverDef& s = job.shell.solver;
+    return Vertices(job) * static_cast<std::uint64_t>(std::max(1, l.steps)) * static_cast<std::uint64_t>(std::max(1, s.maxIterations)) * kNewtonIterationWork;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -82,15 +103,18 @@ capnp::ReaderOptions MessageLimits() {
 // Checks one request against the server's bounds; the message names what is wrong.
 sim::EvalJob CheckedJob(schema::EvalRequest::Reader request, unsigned index, const ServerLimits& limits) {
     const std::string which = "request " + std::to_string(index) + ": ";
-    const auto size = request.getMeshSize();
-    const std::uint64_t vertices = std::uint64_t(size.getResolution()) * size.getTurns();
-    if (size.getResolution() < sim::kMinResolution || size.getTurns() < sim::kMinTurns || vertices > limits.maxVertices)
-        throw std::runtime_error(which + "mesh size out of bounds (at least 3 x 5, at most " + std::to_string(limits.maxVertices) + " vertices)");
-    if (request.getParams().getIterations() > limits.maxIterations)
-        throw std::runtime_error(which + "more than " + std::to_string(limits.maxIterations) + " iterations");
+    if (request.getModel() == schema::ModelKind::THESIS) {
+        const auto size = request.getMeshSize();
+        const std::uint64_t vertices = std::uint64_t(size.getResolution()) * size.getTurns();
+        if (size.getResolution() < sim::kMinResolution || size.getTurns() < sim::kMinTurns || vertices > limits.maxVertices)
+            throw std::runtime_error(which + "mesh size out of bounds (at least 3 x 5, at most " + std::to_string(limits.maxVertices) + " vertices)");
+        if (request.getParams().getIterations() > limits.maxIterations)
+            throw std::runtime_error(which + "more than " + std::to_string(limits.maxIterations) + " iterations");
+    }
     sim::EvalJob job = GetJob(request);
-    if (const std::string error = sim::SimParamsError(job.params); !error.empty()) throw std::runtime_error(which + error);
-    if (const std::string error = sim::ShapeError(job.shape, job.mesh); !error.empty()) throw std::runtime_error(which + error);
+    // ShellDefError bounds the ring mesh before anything is built from it.
+    if (const std::string error = sim::JobError(job); !error.empty()) throw std::runtime_error(which + error);
+    if (Vertices(job) > limits.maxVertices) throw std::runtime_error(which + "more than " + std::to_string(limits.maxVertices) + " vertices");
     return job;
 }
 
@@ -121,6 +145,8 @@ public:
         } catch (const std::exception& error) {
             KJ_FAIL_REQUIRE("bad evaluation request", error.what());
         }
+        std::vector<sim::ModelKind> models;
+        for (const auto& job : jobs) models.push_back(job.model);
         // The batch runs on its own threads; the event loop keeps serving other clients meanwhile.
         auto paf = kj::newPromiseAndCrossThreadFulfiller<std::vector<sim::SimResult>>();
         // shared_ptr: kj::Own's destructor may throw, which std::thread's callable must not.
@@ -131,10 +157,10 @@ public:
                             [&](size_t k, sim::SimResult&& r) { results[k] = std::move(r); });
             (*fulfiller)->fulfill(std::move(results));
         }).detach();
-        return paf.promise.then([context](std::vector<sim::SimResult> results) mutable {
+        return paf.promise.then([context, models = std::move(models)](std::vector<sim::SimResult> results) mutable {
             auto responses = context.getResults().initResponses(static_cast<unsigned>(results.size()));
             for (unsigned k = 0; k < results.size(); ++k) {
-                SetResultNumbers(responses[k].initResult(), results[k]);
+                SetResultNumbers(responses[k].initResult(), results[k], models[k]);
                 SetExactMesh(responses[k].initInitial(), results[k].initial);
                 SetExactMesh(responses[k].initFinal(), results[k].final);
                 results[k] = sim::SimResult{};
@@ -336,8 +362,9 @@ private:
         ++running_;
         if (w.local) return RunLocally(w, std::move(chunk));
         const sim::EvalJob& first = (*jobs_)[chunk.front()];
-        if (static_cast<std::uint64_t>(sim::VertexCount(first.mesh)) > w.limits.maxVertices ||
-            static_cast<std::uint64_t>(first.params.iterations) > w.limits.maxIterations || Work(first) > w.limits.maxWork ||
+        if (Vertices(first) > w.limits.maxVertices ||
+            (first.model == sim::ModelKind::Thesis && static_cast<std::uint64_t>(first.params.iterations) > w.limits.maxIterations) ||
+            Work(first) > w.limits.maxWork ||
             ReplyWords(first) > w.limits.maxReplyWords) {
             --running_;
             Lost(w, "a shape is larger than it accepts", chunk);

@@ -16,22 +16,47 @@ namespace {
 
 std::string Cell(double value) { return std::isfinite(value) ? fmt::format("{:.4g}", value) : "-"; }
 
+const char* kThesisModel =
+    "the `thesis` model of `shared/MODEL.md` (helical 30 x 30 mass-spring mesh, cross-product inflation, clamped ends; fitness in mesh units)";
+
+}  // namespace
+
+std::string ModelDescription(const Experiment& e) {
+    if (e.model == sim::ModelKind::Thesis) return kThesisModel;
+    const sim::ShellDef& s = e.shell;
+    const sim::GeometryDef& g = s.geometry;
+    return fmt::format("the `{}` model of `shared/SHELL.md` ({} at equilibrium): a tube of R = {:g} mm, L = {:g} mm, wall {:g} mm, {} ({}, "
+                       "shear modulus {:g} kPa), {} x {} ring mesh, {} to {:g} kPa in {} steps; fitness = contraction in percent at that pressure",
+                       sim::Name(e.model), e.model == sim::ModelKind::Shell ? "membrane and bending" : "membrane only", g.radiusMm, g.lengthMm,
+                       g.thicknessMm, sim::Name(s.material.preset), sim::Name(s.material.law), sim::ShearModulusKpa(s.material), g.ringVertices,
+                       sim::RingCount(g), sim::Name(s.load.kind), s.load.pressureKpa, s.load.steps);
+}
+
+namespace {
+
 }  // namespace
 
 std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator) {
-    long long simulations = 0;
-    for (const auto& entry : entries) simulations += entry.outcome.simulations;
-    std::string md = "# Reproducing the 2019 thesis with Actuator Workbench\n\n";
+    long long simulations = 0, evaluations = 0;
+    for (const auto& entry : entries) {
+        simulations += entry.outcome.simulations;
+        evaluations += entry.outcome.evaluations;
+    }
+    std::string md = entries.size() == 1 ? "# " + ExperimentTitle(entries[0].experiment) + "\n\n" : "# Reproducing the 2019 thesis with Actuator Workbench\n\n";
     if (quick)
         md += "**Quick run** (`--quick`): at most 3 values per sweep axis, one GA run of 2 generations of 6 individuals, 2,000 "
               "iterations. The numbers below check that everything runs; they are not the thesis's experiments.\n\n";
-    md += "Model: the `thesis` model of `shared/MODEL.md` (helical 30 x 30 mass-spring mesh, cross-product inflation, clamped ends). "
-          "Every experiment file is in `assets/experiments/`; its settings are copied beside its results.\n\n";
+    bool allThesis = true;
+    for (const auto& entry : entries) allThesis = allThesis && entry.experiment.model == sim::ModelKind::Thesis;
+    md += allThesis ? std::string("Model: ") + kThesisModel + ". " : std::string("Models: as stated in each section. ");
+    md += "Every experiment file is in `assets/experiments/`; its settings are copied beside its results.\n\n";
     md += "| | |\n|---|---|\n";
     md += "| experiments | " + std::to_string(entries.size()) + " |\n";
-    md += "| simulations | " + std::to_string(simulations) + " |\n";
-    md += fmt::format("| wall time | {:.1f} s ({:.1f} min) |\n", seconds, seconds / 60);
-    md += fmt::format("| throughput | {:.1f} evaluations/s on {}, figures included |\n\n", seconds > 0 ? simulations / seconds : 0, evaluator);
+    md += "| evaluations | " + std::to_string(evaluations) + " (archived) |\n";
+    // Timing lines: this session's, so a resumed run states what it did (tests skip them).
+    md += fmt::format("| wall time | {:.1f} s ({:.1f} min), this session |\n", seconds, seconds / 60);
+    md += fmt::format("| throughput | {} simulations, {:.1f} evaluations/s on {}, figures included, this session |\n\n", simulations,
+                      seconds > 0 ? simulations / seconds : 0, evaluator);
     md += "## Contents\n\n";
     for (const auto& entry : entries)
         md += "- [" + entry.experiment.id + " " + entry.experiment.title + "](#" + entry.folder + ")\n";
@@ -42,8 +67,10 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
         const ExperimentOutcome& o = entry.outcome;
         md += "<a id=\"" + entry.folder + "\"></a>\n\n## " + e.id + " " + e.title + "\n\n";
         if (!e.thesis.empty()) md += "Thesis: " + e.thesis + ".\n\n";
+        if (!allThesis) md += "Model: " + ModelDescription(e) + ".\n\n";
         if (!e.note.empty()) md += "Settings: " + e.note + "\n\n";
-        md += fmt::format("Results in [`{0}/`]({0}/): {1} simulations in {2:.1f} s.\n\n", entry.folder, o.simulations, o.seconds);
+        md += fmt::format("Results in [`{0}/`]({0}/): {1} evaluations.\n", entry.folder, o.evaluations);
+        md += fmt::format("This session: {} simulations in {:.1f} s.\n\n", o.simulations, o.seconds);
         if (!o.rows.empty()) {
             md += "| | ours | thesis | difference |\n|---|---:|---:|---:|\n";
             for (const auto& row : o.rows)

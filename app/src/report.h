@@ -1,5 +1,6 @@
-// report.md for `actuator reproduce`: one section per thesis experiment with its figures and a
-// table of our numbers beside the thesis's, explained where they differ markedly.
+// report.md: one section per experiment with its figures and a table of our numbers beside the
+// thesis's, explained where they differ markedly. `reproduce` writes one for every thesis
+// experiment; `sweep` and `evolve` one for their experiment (folder ".").
 #pragma once
 
 #include <string>
@@ -16,6 +17,9 @@ struct ReportEntry {
 };
 
 std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator);
+
+// One sentence on the experiment's model and its settings (units included).
+std::string ModelDescription(const Experiment& e);
 
 // A difference worth explaining: more than 10% of the thesis's value and more than 0.05 apart.
 bool MarkedlyDifferent(double ours, double thesis);

@@ -58,7 +58,7 @@ public:
                 slots.push_back(j);
                 continue;
             }
-            jobs.push_back({sim::ShapeOfGenome(*genomes[j], c_.e.ga.genome, c_.e.mesh), c_.e.mesh, c_.e.params});
+            jobs.push_back(JobOf(c_.e, sim::ShapeOfGenome(*genomes[j], c_.e.ga.genome, DesignMesh(c_.e))));
             tags.push_back({Role::Individual, run_, generation_, fmt::format("run {} generation {}", run_, generation_)});
             slots.push_back(j);
             keys.push_back(std::move(key));
@@ -121,7 +121,7 @@ void WriteGenerationSheet(RunContext& c, const fs::path& runDir, int run, Genome
     std::vector<SheetEntry> entries;
     for (const sim::SimResult* mesh : meshes) entries.push_back({mesh, FitnessCaption(*mesh)});
     WriteContactSheet(runDir / SheetName(state.generation),
-                      fmt::format("{}  -  run {}, generation {}", ExperimentTitle(c.e), run, state.generation), entries, c.e.mesh, renderer);
+                      fmt::format("{}  -  run {}, generation {}", ExperimentTitle(c.e), run, state.generation), entries, JobOf(c.e, c.e.sweep.base), renderer);
 }
 
 std::string GenomeSummary(const Experiment& e, const sim::Genome& genome) {
@@ -171,16 +171,20 @@ void RunEvolution(RunContext& c) {
             checkpoint.experimentHash = ExperimentHash(e);
             checkpoint.experiment = e.document;
             cache.SetGeneration(0);
-            checkpoint.state = sim::StartEvolution(e.ga, e.mesh, checkpoint.seed, evaluator);
+            checkpoint.state = sim::StartEvolution(e.ga, DesignMesh(e), checkpoint.seed, evaluator);
             WriteGenerationSheet(c, dir, r, cache, checkpoint.state, sheetRenderer);
             checkpoint.archiveCount = c.recorder.Count();
             WriteRunFiles(dir, checkpoint);
         }
         while (checkpoint.state.generation < e.ga.generations) {
             cache.SetGeneration(checkpoint.state.generation + 1);
-            if (!sim::EvolveOneGeneration(e.ga, e.mesh, checkpoint.state, evaluator)) {
-                std::cerr << "run " << r << ": every individual of generation " << checkpoint.state.generation
-                          << " failed (nan or diverged); the run stops here\n";
+            if (!sim::EvolveOneGeneration(e.ga, DesignMesh(e), checkpoint.state, evaluator)) {
+                std::map<std::string, int> statuses;
+                for (const sim::SimResult* result : cache.MeshesOf(checkpoint.state.population)) ++statuses[sim::Name(result->status)];
+                std::string tally;
+                for (const auto& [status, count] : statuses) tally += (tally.empty() ? "" : ", ") + std::to_string(count) + " " + status;
+                std::cerr << "run " << r << ": every individual of generation " << checkpoint.state.generation << " failed (" << tally
+                          << "); the run stops here. The status column of evaluations.csv says why for each.\n";
                 break;
             }
             WriteGenerationSheet(c, dir, r, cache, checkpoint.state, sheetRenderer);
@@ -222,7 +226,7 @@ void RunEvolution(RunContext& c) {
                 std::error_code ec;
                 fs::create_directories(folder, ec);
                 const ArchiveRecord record = c.recorder.ReadBack({caches[r]->IdOf(population[k].genome)}).at(0);
-                WriteBestFigures(c, folder, record.job.shape, record.result, fmt::format("run {}, individual {}", r + 1, k + 1), e.render.turntableFrames,
+                WriteBestFigures(c, folder, record.job, record.result, fmt::format("run {}, individual {}", r + 1, k + 1), e.render.turntableFrames,
                                  false);
             }
         }
@@ -232,7 +236,7 @@ void RunEvolution(RunContext& c) {
         const ArchiveRecord record = c.recorder.ReadBack({caches[bestRun]->IdOf(best.genome)}).at(0);
         const std::string title = fmt::format("best of run {}: {}", bestRun + 1,
                                               e.ga.genome.kind == sim::GenomeKind::BSpline ? ShapeTitle(record.job.shape) : std::string("free-xy offsets"));
-        WriteBestFigures(c, c.dir, record.job.shape, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
+        WriteBestFigures(c, c.dir, record.job, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
     }
 }
 

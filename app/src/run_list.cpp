@@ -24,7 +24,7 @@ void RunList(RunContext& c) {
     std::vector<sim::EvalJob> jobs;
     std::vector<EvaluationTag> tags;
     for (size_t j = done; j < n; ++j) {
-        jobs.push_back({e.shapes[j].shape, e.mesh, e.params});
+        jobs.push_back(JobOf(e, e.shapes[j].shape));
         tags.push_back({Role::Shape, 0, -1, e.shapes[j].label});
     }
     c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&&) {
@@ -34,7 +34,7 @@ void RunList(RunContext& c) {
     // Table and figures from the archive: the same whether the run was resumed or not.
     std::string csv = CsvRow({"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
     std::unique_ptr<render::MeshRenderer> renderer;
-    const char* load = sim::Name(e.params.load);
+    const std::string load = e.model == sim::ModelKind::Thesis ? sim::Name(e.params.load) : sim::Name(e.shell.load.kind);
     c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) {
         const LabelledShape& shape = e.shapes[r.id];
         const bool ok = r.result.status == sim::Status::Ok;
@@ -44,7 +44,7 @@ void RunList(RunContext& c) {
         if (!e.render.figures) return;
         if (!renderer) renderer = MakeRenderer(1024, 768);
         const std::string name = fmt::format("shape_{:02}.png", r.id);
-        WritePng((c.dir / name).string(), renderer->Render(BeforeAfterScene(shape.label + "  -  " + load, r.result, e.mesh)), 6);
+        WritePng((c.dir / name).string(), renderer->Render(BeforeAfterScene(shape.label + "  -  " + load, r.result, r.job)), 6);
         c.outcome.figures.push_back(name);
     });
     WriteFileAtomically((c.dir / "results.csv").string(), csv);

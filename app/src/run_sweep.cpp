@@ -16,12 +16,20 @@ namespace {
 namespace fs = std::filesystem;
 
 // A grid point's parameters, e.g. "amplitude=3.48 cycles=6" (names) or "3.48 6" (values only).
-std::string PointLabel(const sim::Shape& shape, const std::vector<sim::SweepAxis>& axes, bool withNames) {
+std::string PointLabel(const sim::EvalJob& job, const std::vector<sim::SweepAxis>& axes, bool withNames) {
     std::string label;
     for (const auto& axis : axes)
         label += (label.empty() ? "" : " ") + (withNames ? std::string(sim::Name(axis.parameter)) + "=" : std::string()) +
-                 fmt::format("{:.4g}", sim::SweepParameterValue(shape, axis.parameter));
+                 fmt::format("{:.4g}", sim::SweepValue(job, axis.parameter));
     return label;
+}
+
+// The design's title, with the pressure when the sweep varies it.
+std::string PointTitle(const sim::EvalJob& job, const std::vector<sim::SweepAxis>& axes) {
+    std::string title = ShapeTitle(job.shape);
+    for (const auto& axis : axes)
+        if (axis.parameter == sim::SweepParameter::PressureKpa) title += fmt::format(",  {:.4g} kPa", job.shell.load.pressureKpa);
+    return title;
 }
 
 // At most this many cells on a contact sheet: a 100,000-point sweep shows an even subsample.
@@ -31,8 +39,8 @@ constexpr size_t kMaxSheetCells = 400;
 
 void RunSweep(RunContext& c) {
     const Experiment& e = c.e;
-    const auto shapes = sim::SweepShapes(e.sweep);
-    const size_t n = shapes.size();
+    const std::vector<sim::EvalJob> grid = sim::SweepJobs(e.sweep, JobOf(e, e.sweep.base));
+    const size_t n = grid.size();
     const auto& axes = e.sweep.axes;
 
     // Resume after the grid points already archived; what follows the grid is redone.
@@ -57,8 +65,8 @@ void RunSweep(RunContext& c) {
     std::vector<sim::EvalJob> jobs;
     std::vector<EvaluationTag> tags;
     for (size_t j = done; j < n; ++j) {
-        jobs.push_back({shapes[j], e.mesh, e.params});
-        tags.push_back({Role::Grid, 0, -1, PointLabel(shapes[j], axes, true)});
+        jobs.push_back(grid[j]);
+        tags.push_back({Role::Grid, 0, -1, PointLabel(grid[j], axes, true)});
     }
     c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&& r) {
         const size_t j = done + k;
@@ -78,7 +86,7 @@ void RunSweep(RunContext& c) {
     int best = -1;
     for (size_t j = 0; j < n; ++j) {
         std::vector<std::string> row{std::to_string(j)};
-        for (const auto& axis : axes) row.push_back(CsvNumber(sim::SweepParameterValue(shapes[j], axis.parameter)));
+        for (const auto& axis : axes) row.push_back(CsvNumber(sim::SweepValue(grid[j], axis.parameter)));
         const bool ok = status[j] == sim::Status::Ok;
         row.insert(row.end(), {ok ? CsvNumber(fitness[j]) : "", ok ? CsvNumber(contraction[j]) : "", sim::Name(status[j]), std::to_string(iterations[j])});
         csv += CsvRow(row);
@@ -90,14 +98,14 @@ void RunSweep(RunContext& c) {
     if (best >= 0) {
         bestText = "best: ";
         for (size_t a = 0; a < axes.size(); ++a)
-            bestText += fmt::format("{}{} {:.4g}", a ? ", " : "", sim::Name(axes[a].parameter), sim::SweepParameterValue(shapes[best], axes[a].parameter));
+            bestText += fmt::format("{}{} {:.4g}", a ? ", " : "", sim::Name(axes[a].parameter), sim::SweepValue(grid[best], axes[a].parameter));
         bestText += fmt::format(",  fitness {:.4f}", fitness[static_cast<size_t>(best)]);
         c.outcome.rows.push_back({"best fitness", fitness[static_cast<size_t>(best)], e.thesisResult.bestFitness});
         for (const auto& axis : axes) {
             double thesis = NAN;
             for (const auto& [parameter, value] : e.thesisResult.best)
                 if (parameter == axis.parameter) thesis = value;
-            c.outcome.rows.push_back({std::string("best ") + sim::Name(axis.parameter), sim::SweepParameterValue(shapes[best], axis.parameter), thesis});
+            c.outcome.rows.push_back({std::string("best ") + sim::Name(axis.parameter), sim::SweepValue(grid[best], axis.parameter), thesis});
         }
     }
 
@@ -106,13 +114,13 @@ void RunSweep(RunContext& c) {
         std::vector<sim::EvalJob> pointJobs;
         std::vector<EvaluationTag> pointTags;
         for (const auto& point : e.thesisResult.points) {
-            sim::Shape shape = e.sweep.base;
+            sim::EvalJob job = JobOf(e, e.sweep.base);
             std::string name;
             for (const auto& [parameter, value] : point.at) {
-                shape = sim::WithSweepParameter(shape, parameter, value);
+                job = sim::WithSweepValue(job, parameter, value);
                 name += fmt::format("{}{} {:g}", name.empty() ? "" : ", ", sim::Name(parameter), value);
             }
-            pointJobs.push_back({shape, e.mesh, e.params});
+            pointJobs.push_back(job);
             pointTags.push_back({Role::ThesisPoint, 0, -1, "thesis table: " + name});
         }
         c.recorder.Evaluate(pointJobs, pointTags, [&](std::uint64_t, size_t k, sim::SimResult&& r) {
@@ -132,27 +140,28 @@ void RunSweep(RunContext& c) {
     const std::vector<ArchiveRecord> records = c.recorder.ReadBack(ids);
     std::vector<SheetEntry> entries;
     for (const ArchiveRecord& r : records)
-        entries.push_back({&r.result, PointLabel(shapes[r.id], axes, false) + ": " + FitnessCaption(r.result)});
+        entries.push_back({&r.result, PointLabel(grid[r.id], axes, false) + ": " + FitnessCaption(r.result)});
     std::unique_ptr<render::MeshRenderer> sheetRenderer;
     WriteContactSheet(c.dir / "contact_sheet.png",
                       ExperimentTitle(e) + (step > 1 ? fmt::format("  -  every {}th grid point, inflated", step) : std::string("  -  every grid point, inflated")),
-                      entries, e.mesh, sheetRenderer);
+                      entries, grid.front(), sheetRenderer);
     c.outcome.figures.push_back("contact_sheet.png");
 
     if (best >= 0) {
         const int frames = e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames;
         const ArchiveRecord bestRecord = c.recorder.ReadBack({static_cast<std::uint64_t>(best)}).at(0);
-        WriteBestFigures(c, c.dir, shapes[best], bestRecord.result, ShapeTitle(shapes[best]), frames, true);
+        WriteBestFigures(c, c.dir, grid[best], bestRecord.result, PointTitle(grid[best], axes), frames, true);
     }
     if (e.render.turntable == TurntablePlan::All) {
-        // Every grid point turning: heavy, so only on request. One at a time from the archive.
-        std::vector<ArchiveRecord> grid;
-        c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) { grid.push_back(std::move(r)); });
-        for (const ArchiveRecord& r : grid) {
+        // Every grid point turning: heavy, so only on request. Read back first: the figures append
+        // stretch tests to the archive being read.
+        std::vector<ArchiveRecord> records;
+        c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) { records.push_back(std::move(r)); });
+        for (const ArchiveRecord& r : records) {
             const fs::path folder = c.dir / fmt::format("point_{:06}", r.id);
             std::error_code ec;
             fs::create_directories(folder, ec);
-            WriteBestFigures(c, folder, shapes[r.id], r.result, ShapeTitle(shapes[r.id]), e.render.turntableFrames, false);
+            WriteBestFigures(c, folder, grid[r.id], r.result, PointTitle(grid[r.id], axes), e.render.turntableFrames, false);
         }
     }
 }

@@ -22,10 +22,11 @@ template <class Schema, class Sim>
 Schema EnumToSchema(Sim value) {
     return static_cast<Schema>(static_cast<std::uint16_t>(value));
 }
-static_assert(static_cast<int>(schema::Status::INVALID_GEOMETRY) == static_cast<int>(sim::Status::InvalidGeometry));
+static_assert(static_cast<int>(schema::Status::OVER_STRETCHED) == static_cast<int>(sim::Status::OverStretched));
 static_assert(static_cast<int>(schema::Load::NONE) == static_cast<int>(sim::Load::None));
 static_assert(static_cast<int>(schema::Precision::DOUBLE) == static_cast<int>(sim::Precision::Double));
 static_assert(static_cast<int>(schema::SplineRegion::MIDDLE) == static_cast<int>(sim::SplineRegion::Middle));
+static_assert(static_cast<int>(schema::ModelKind::SHELL) == static_cast<int>(sim::ModelKind::Shell));
 
 template <class Value, class List>
 void Fill(List list, const std::vector<double>& values) {
@@ -159,12 +160,114 @@ sim::SimParams GetParams(schema::SimParams::Reader p) {
     return params;
 }
 
-void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& result) {
+namespace {
+
+template <class E>
+E NamedEnum(const std::string& name, const char* what) {
+    if (auto value = sim::FromName<E>(name)) return *value;
+    throw std::runtime_error(std::string("unknown ") + what + " \"" + name + "\" (written by a newer version?)");
+}
+
+std::uint32_t Count(int n) { return static_cast<std::uint32_t>(std::max(0, n)); }
+int Count(std::uint32_t n) { return static_cast<int>(std::min<std::uint32_t>(n, 1u << 30)); }
+
+}  // namespace
+
+void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
+    const sim::GeometryDef& g = def.geometry;
+    s.setRadiusMm(g.radiusMm);
+    s.setLengthMm(g.lengthMm);
+    s.setThicknessMm(g.thicknessMm);
+    s.setRingVertices(Count(g.ringVertices));
+    s.setRings(Count(g.rings));
+    s.setClampRings(Count(g.clampRings));
+    s.setEnds(sim::Name(g.ends));
+    const sim::MaterialDef& m = def.material;
+    s.setPreset(sim::Name(m.preset));
+    s.setLaw(sim::Name(m.law));
+    s.setMuKpa(m.muKpa);
+    s.setC10Kpa(m.c10Kpa);
+    s.setC01Kpa(m.c01Kpa);
+    s.setC20Kpa(m.c20Kpa);
+    s.setC30Kpa(m.c30Kpa);
+    s.setTensileStrengthKpa(m.tensileStrengthKpa);
+    s.setElongationAtBreak(m.elongationAtBreak);
+    s.setStretchLimit(m.stretchLimit);
+    s.setDensityKgPerM3(m.densityKgPerM3);
+    const sim::LoadDef& l = def.load;
+    s.setLoad(sim::Name(l.kind));
+    s.setPressureKpa(l.pressureKpa);
+    s.setForceN(l.forceN);
+    s.setVolumeRatio(l.volumeRatio);
+    s.setSteps(Count(l.steps));
+    const sim::SolverDef& v = def.solver;
+    s.setTolerance(v.tolerance);
+    s.setMaxIterations(Count(v.maxIterations));
+    s.setMaxBisections(Count(v.maxBisections));
+    s.setSelfContact(v.selfContact);
+}
+
+sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
+    sim::ShellDef def;
+    sim::GeometryDef& g = def.geometry;
+    g.radiusMm = s.getRadiusMm();
+    g.lengthMm = s.getLengthMm();
+    g.thicknessMm = s.getThicknessMm();
+    g.ringVertices = Count(s.getRingVertices());
+    g.rings = Count(s.getRings());
+    g.clampRings = Count(s.getClampRings());
+    g.ends = NamedEnum<sim::EndCondition>(s.getEnds(), "end condition");
+    sim::MaterialDef& m = def.material;
+    m.preset = NamedEnum<sim::MaterialPreset>(s.getPreset(), "material");
+    m.law = NamedEnum<sim::MaterialLaw>(s.getLaw(), "material law");
+    m.muKpa = s.getMuKpa();
+    m.c10Kpa = s.getC10Kpa();
+    m.c01Kpa = s.getC01Kpa();
+    m.c20Kpa = s.getC20Kpa();
+    m.c30Kpa = s.getC30Kpa();
+    m.tensileStrengthKpa = s.getTensileStrengthKpa();
+    m.elongationAtBreak = s.getElongationAtBreak();
+    m.stretchLimit = s.getStretchLimit();
+    m.densityKgPerM3 = s.getDensityKgPerM3();
+    sim::LoadDef& l = def.load;
+    l.kind = NamedEnum<sim::ShellLoad>(s.getLoad(), "load");
+    l.pressureKpa = s.getPressureKpa();
+    l.forceN = s.getForceN();
+    l.volumeRatio = s.getVolumeRatio();
+    l.steps = Count(s.getSteps());
+    sim::SolverDef& v = def.solver;
+    v.tolerance = s.getTolerance();
+    v.maxIterations = Count(s.getMaxIterations());
+    v.maxBisections = Count(s.getMaxBisections());
+    v.selfContact = s.getSelfContact();
+    return def;
+}
+
+void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& result, sim::ModelKind model) {
     r.setStatus(EnumToSchema<schema::Status>(result.status));
     r.setFitness(result.fitness);
     r.setContractionPercent(result.contractionPercent);
     r.setIterationsRun(static_cast<std::uint32_t>(result.iterationsRun));
     r.setElapsedMs(result.elapsedMs);
+    const sim::ShellOutputs& o = result.shell;
+    if (model == sim::ModelKind::Thesis) return;
+    auto s = r.initShell();
+    Fill<double>(s.initCurvePressureKpa(static_cast<unsigned>(o.curvePressureKpa.size())), o.curvePressureKpa);
+    Fill<double>(s.initCurveContractionPercent(static_cast<unsigned>(o.curveContractionPercent.size())), o.curveContractionPercent);
+    Fill<double>(s.initCurveVolumeMm3(static_cast<unsigned>(o.curveVolumeMm3.size())), o.curveVolumeMm3);
+    s.setTargetPressureKpa(o.targetPressureKpa);
+    s.setLimitPressureKpa(o.limitPressureKpa);
+    s.setBlockingForceN(o.blockingForceN);
+    s.setAxialStiffnessNPerMm(o.axialStiffnessNPerMm);
+    s.setRestVolumeMm3(o.restVolumeMm3);
+    s.setVolumeMm3(o.volumeMm3);
+    s.setMaxStretch(o.maxStretch);
+    s.setMaxStressKpa(o.maxStressKpa);
+    s.setStretchLimit(o.stretchLimit);
+    s.setTensileStrengthKpa(o.tensileStrengthKpa);
+    s.setDisplacementMm(o.displacementMm);
+    s.setNewtonIterations(Count(o.newtonIterations));
+    s.setFactorizations(Count(o.factorizations));
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -173,6 +276,25 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     result.contractionPercent = r.getContractionPercent();
     result.iterationsRun = static_cast<int>(std::min<std::uint32_t>(r.getIterationsRun(), 2'000'000'000u));
     result.elapsedMs = r.getElapsedMs();
+    if (!r.hasShell()) return;
+    auto s = r.getShell();
+    sim::ShellOutputs& o = result.shell;
+    o.curvePressureKpa = Copy(s.getCurvePressureKpa());
+    o.curveContractionPercent = Copy(s.getCurveContractionPercent());
+    o.curveVolumeMm3 = Copy(s.getCurveVolumeMm3());
+    o.targetPressureKpa = s.getTargetPressureKpa();
+    o.limitPressureKpa = s.getLimitPressureKpa();
+    o.blockingForceN = s.getBlockingForceN();
+    o.axialStiffnessNPerMm = s.getAxialStiffnessNPerMm();
+    o.restVolumeMm3 = s.getRestVolumeMm3();
+    o.volumeMm3 = s.getVolumeMm3();
+    o.maxStretch = s.getMaxStretch();
+    o.maxStressKpa = s.getMaxStressKpa();
+    o.stretchLimit = s.getStretchLimit();
+    o.tensileStrengthKpa = s.getTensileStrengthKpa();
+    o.displacementMm = s.getDisplacementMm();
+    o.newtonIterations = Count(s.getNewtonIterations());
+    o.factorizations = Count(s.getFactorizations());
 }
 
 }  // namespace app

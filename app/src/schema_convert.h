@@ -3,6 +3,9 @@
 // schema's enums list their values in sim's order, so enums convert by value (checked below).
 #pragma once
 
+#include <stdexcept>
+#include <string>
+
 #include "actuator.capnp.h"
 #include "sim/batch.h"
 #include "sim/search.h"
@@ -23,15 +26,24 @@ sim::Shape GetShape(schema::Shape::Reader in);
 void SetParams(schema::SimParams::Builder out, const sim::SimParams& params);
 sim::SimParams GetParams(schema::SimParams::Reader in);  // throws on an enum value this build does not know
 
-// The numbers of a result (status, fitness, ...), without its meshes.
-void SetResultNumbers(schema::EvalResult::Builder out, const sim::SimResult& result);
+void SetShellDef(schema::ShellDef::Builder out, const sim::ShellDef& def);
+sim::ShellDef GetShellDef(schema::ShellDef::Reader in);  // throws std::runtime_error on a name this build does not know
+
+// The numbers of a result (status, fitness, ..., the shell models' outputs), without its meshes.
+void SetResultNumbers(schema::EvalResult::Builder out, const sim::SimResult& result, sim::ModelKind model);
 void GetResultNumbers(schema::EvalResult::Reader in, sim::SimResult& result);
 
-// A job's shape, parameters and mesh size into any struct that has those three fields
-// (EvalRequest on the wire, Evaluation in archives).
+// A job into any struct that has its fields (EvalRequest on the wire, Evaluation in archives): the
+// shape, the model, and the model's settings (the thesis model's parameters and mesh size, or the
+// shell def). Records from before the shell models read as thesis jobs.
 template <class Builder>
 void SetJob(Builder out, const sim::EvalJob& job) {
     SetShape(out.initShape(), job.shape);
+    out.setModel(static_cast<schema::ModelKind>(static_cast<int>(job.model)));
+    if (job.model != sim::ModelKind::Thesis) {
+        SetShellDef(out.initShell(), job.shell);
+        return;
+    }
     SetParams(out.initParams(), job.params);
     auto size = out.initMeshSize();
     size.setResolution(static_cast<std::uint32_t>(job.mesh.resolution));
@@ -41,6 +53,13 @@ template <class Reader>
 sim::EvalJob GetJob(Reader in) {
     sim::EvalJob job;
     job.shape = GetShape(in.getShape());
+    const int model = static_cast<int>(in.getModel());
+    if (model > static_cast<int>(sim::ModelKind::Shell)) throw std::runtime_error("unknown model " + std::to_string(model) + " (written by a newer version?)");
+    job.model = static_cast<sim::ModelKind>(model);
+    if (job.model != sim::ModelKind::Thesis) {
+        job.shell = GetShellDef(in.getShell());
+        return job;
+    }
     job.params = GetParams(in.getParams());
     job.mesh = sim::MeshDef{static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getResolution(), 1u << 30)),
                             static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getTurns(), 1u << 30))};

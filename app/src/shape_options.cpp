@@ -1,8 +1,10 @@
 #include "shape_options.h"
 
 #include <filesystem>
+#include <set>
 
 #include "files.h"
+#include "model_options.h"
 #include "obj_io.h"
 
 namespace app {
@@ -74,8 +76,8 @@ void AddShapeOptions(Cli& cli, ShapeOptions& o) {
         ->default_str(fmt::format("{} for sine, {} for abs-sine", sim::SineShape{}.amplitude, sim::AbsSineShape{}.amplitude));
     cli.Text("--phase", o.phase, "phase range in radians from bottom to top vertex; numbers may use pi and + - * /, e.g. 0,4pi")
         ->type_name("START,END")
-        ->default_str(fmt::format("{},{} for sine; {},{} for abs-sine", sim::SineShape{}.phaseStart, sim::SineShape{}.phaseEnd,
-                                  sim::AbsSineShape{}.phaseStart, sim::AbsSineShape{}.phaseEnd));
+        ->default_str(fmt::format("{},{} for sine; {},{} for abs-sine", FormatRadians(sim::SineShape{}.phaseStart), FormatRadians(sim::SineShape{}.phaseEnd),
+                                  FormatRadians(sim::AbsSineShape{}.phaseStart), FormatRadians(sim::AbsSineShape{}.phaseEnd)));
     cli.Enum("--region", o.region, "bspline: span all vertices, or leave the two clamped turns at each end at radius 1");
     cli.Text("--control-points", o.controlPoints,
              "bspline control points (radius multipliers), ',' between points and ';' between the 1, 2 or 4 sector splines, at least 4 "
@@ -87,7 +89,41 @@ void AddShapeOptions(Cli& cli, ShapeOptions& o) {
     cli.Fields(o.mesh);
 }
 
-sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o) {
+namespace {
+
+// A triangle with its smallest index first, orientation kept: the same face however it was listed.
+std::array<int, 3> Canonical(std::array<int, 3> t) {
+    while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+    return t;
+}
+
+// The mesh an OBJ file gives, checked against the model's surface: its vertex count (with or without
+// the shell models' cap centres, which the model places itself) and, when it has faces, its triangles.
+sim::MeshShape MeshOfObj(const std::string& path, const sim::Surface& surface, int designVertices) {
+    ObjMesh obj = ReadObj(path);
+    const int n = obj.positions.Size();
+    if (n != designVertices && n != surface.vertexCount)
+        throw UsageError("--mesh " + Quote(path) + ": " + std::to_string(n) + " vertices; the model's mesh has " + std::to_string(designVertices) +
+                         (surface.vertexCount != designVertices ? " (or " + std::to_string(surface.vertexCount) + " with the cap centres)" : std::string()) +
+                         "; set its size with --resolution and --turns (thesis) or --ring-vertices and --rings");
+    if (!obj.triangles.empty()) {
+        std::set<std::array<int, 3>> expected, given;
+        for (const auto& t : surface.triangles)
+            if (std::max({t[0], t[1], t[2]}) < n) expected.insert(Canonical(t));
+        for (const auto& t : obj.triangles) given.insert(Canonical(t));
+        if (given != expected)
+            throw UsageError("--mesh " + Quote(path) + ": its triangles are not the model's (" + std::to_string(obj.triangles.size()) + " given, " +
+                             std::to_string(expected.size()) + " expected): not a surface of the expected topology, or in another vertex order");
+    }
+    obj.positions.x.resize(static_cast<size_t>(designVertices));
+    obj.positions.y.resize(static_cast<size_t>(designVertices));
+    obj.positions.z.resize(static_cast<size_t>(designVertices));
+    return sim::MeshShape{std::move(obj.positions)};
+}
+
+}  // namespace
+
+sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o, const sim::Surface& surface, int vertices) {
     sim::ShapeKind kind = o.kind;
     if (cli.Given("--mesh")) {
         if (cli.Given("--shape") && kind != sim::ShapeKind::Mesh) throw UsageError("--mesh gives the shape itself; drop --shape " + std::string(sim::Name(kind)));
@@ -127,7 +163,7 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o) {
         case sim::ShapeKind::FreeXY: {
             if (!cli.Given("--offsets")) throw UsageError("--shape free-xy needs --offsets FILE ('dx dy' per vertex)");
             const auto numbers = ReadOffsets(o.offsets);
-            const size_t n = static_cast<size_t>(sim::VertexCount(o.mesh));
+            const size_t n = static_cast<size_t>(vertices);
             if (numbers.size() != 2 * n)
                 throw UsageError("--offsets: " + Quote(o.offsets) + " has " + std::to_string(numbers.size()) + " numbers, expected " +
                                  std::to_string(2 * n) + " (dx dy for each of " + std::to_string(n) + " vertices)");
@@ -141,14 +177,31 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o) {
         }
         case sim::ShapeKind::Mesh:
             if (!cli.Given("--mesh")) throw UsageError("--shape mesh needs --mesh FILE");
-            shape = sim::MeshShape{ReadObjVertices(o.meshFile)};
+            shape = MeshOfObj(o.meshFile, surface, vertices);
             break;
     }
-    if (static_cast<long long>(o.mesh.resolution) * o.mesh.turns > sim::kMaxVertices)
-        throw UsageError("--resolution x --turns: more than " + std::to_string(sim::kMaxVertices) + " vertices");
-    if (const std::string error = sim::ShapeError(shape, o.mesh); !error.empty())
-        throw UsageError((kind == sim::ShapeKind::Mesh ? "--mesh " + Quote(o.meshFile) : "--shape " + std::string(sim::Name(kind))) + ": " + error);
     return shape;
+}
+
+sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shapeOptions, const ModelOptions& model) {
+    sim::EvalJob job;
+    ApplyModelOptions(cli, model, job);
+    job.mesh = shapeOptions.mesh;
+    int vertices = sim::VertexCount(job.mesh);
+    if (job.model == sim::ModelKind::Thesis) {
+        if (static_cast<long long>(job.mesh.resolution) * job.mesh.turns > sim::kMaxVertices)
+            throw UsageError("--resolution x --turns: more than " + std::to_string(sim::kMaxVertices) + " vertices");
+    } else {
+        for (const char* option : {"--resolution", "--turns"})
+            cli.RefuseIfGiven(option, std::string("is the thesis helix's; the ") + sim::Name(job.model) + " model's mesh is --ring-vertices and --rings");
+        vertices = job.shell.geometry.ringVertices * sim::RingCount(job.shell.geometry);
+    }
+    job.shape = BuildShape(cli, shapeOptions, sim::SurfaceOf(job), vertices);
+    if (const std::string error = sim::JobError(job); !error.empty()) {
+        const bool mesh = std::holds_alternative<sim::MeshShape>(job.shape);
+        throw UsageError((mesh ? "--mesh " + Quote(shapeOptions.meshFile) : "--shape " + std::string(sim::ShapeName(job.shape))) + ": " + error);
+    }
+    return job;
 }
 
 }  // namespace app

@@ -6,7 +6,9 @@
 #include <string>
 
 #include "cli.h"
+#include "sim/batch.h"
 #include "sim/shape.h"
+#include "sim/surface.h"
 
 namespace app {
 
@@ -25,9 +27,15 @@ struct ShapeOptions {
 // and --turns under "Shape options".
 void AddShapeOptions(Cli& cli, ShapeOptions& options);
 
-// The design the options describe. Refuses options that do not apply to the chosen shape, and a
-// shape that cannot be built on the mesh. Throws UsageError.
-sim::Shape BuildShape(const Cli& cli, const ShapeOptions& options);
+// The design the options describe on a model's mesh of `vertices` (free-xy offsets number 2 x
+// vertices; an OBJ file must be of `surface`, cap centres allowed). Refuses options that do not apply
+// to the chosen shape. Throws UsageError. (Check the job with sim::JobError after.)
+sim::Shape BuildShape(const Cli& cli, const ShapeOptions& options, const sim::Surface& surface, int vertices);
+
+// The job's shape and model from the options, checked as a whole: refuses the helix's --resolution
+// and --turns under the shell models, and a design the model cannot evaluate. Throws UsageError.
+struct ModelOptions;
+sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shape, const ModelOptions& model);
 
 // The shape options' names, to refuse them where a design comes from elsewhere (--from ARCHIVE).
 const std::vector<std::string>& ShapeOptionNames();

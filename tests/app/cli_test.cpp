@@ -104,7 +104,7 @@ TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
     ExpectRefused("frobnicate", "frobnicate");
 
     Write("short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-    ExpectRefused("simulate --mesh " + Path("short.obj"), "3 vertices, expected 900");
+    ExpectRefused("simulate --mesh " + Path("short.obj"), "3 vertices; the model's mesh has 900");
     Write("garbage.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0garbage", 18));
     ExpectRefused("simulate --mesh " + Path("garbage.obj"), "garbage.obj");
     Write("text.obj", "hello world\n");

@@ -75,6 +75,7 @@ struct Scene {
     std::string title;
     std::vector<std::string> lines;      // overlay text under the title
     std::optional<Framing> framing;      // default: frame every panel
+    std::optional<ColorBy> colorBy;      // default: the renderer's mode (RenderDef::colorBy)
     std::optional<double> colorMin;      // bottom of the colour scale; default 0
     std::optional<double> colorMax;      // top of the colour scale; default: the largest value shown
                                          // (for strain, the 98th percentile: see RobustColorMax)

@@ -28,6 +28,7 @@ public:
 
     bool MakeCurrent(int width, int height) override {
         if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) return false;
+        RememberDescription();
         if (!framebuffer_) {
             glGenFramebuffers(1, &framebuffer_);
             glGenRenderbuffers(2, renderbuffers_);
@@ -55,10 +56,7 @@ public:
         return buffer_;
     }
 
-    std::string Description() const override {
-        return std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) + ", " +
-               reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + " (egl surfaceless)";
-    }
+    const char* BackendLabel() const override { return "egl surfaceless"; }
 
 private:
     EGLDisplay display_;

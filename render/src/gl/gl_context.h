@@ -3,6 +3,8 @@
 // Private to the backend modules.
 #pragma once
 
+#include <GL/gl.h>
+
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -18,7 +20,24 @@ public:
     // The buffer's pixels after the frame: RGBA8, bottom row first (OpenGL's order). Valid until
     // the next MakeCurrent with another size.
     virtual const std::vector<std::uint8_t>& FinishAndGetPixels() = 0;
-    virtual std::string Description() const = 0;  // e.g. "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (osmesa)"
+    // E.g. "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (osmesa)". Read when the context was first made
+    // current: later another context (a plot's) may be current on this thread, or none.
+    std::string Description() const { return description_.empty() ? std::string("not yet made current (") + BackendLabel() + ")" : description_; }
+
+protected:
+    virtual const char* BackendLabel() const = 0;
+    // Call right after the context has been made current.
+    void RememberDescription() {
+        if (!description_.empty()) return;
+        auto text = [](GLenum name) {
+            const GLubyte* value = glGetString(name);
+            return value ? std::string(reinterpret_cast<const char*>(value)) : std::string("unknown");
+        };
+        description_ = text(GL_VERSION) + ", " + text(GL_RENDERER) + " (" + BackendLabel() + ")";
+    }
+
+private:
+    std::string description_;
 };
 
 // Defined once per module (osmesa_context.cpp or egl_context.cpp). Null with *error set on failure.

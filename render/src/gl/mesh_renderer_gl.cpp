@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "colour_bar.h"
 #include "gl_context.h"
 #include "overlay_context.h"
 #include "render/colormap.h"
@@ -247,45 +248,6 @@ std::vector<Vec3> OutwardNormals(const sim::Surface& surface, const std::vector<
 // ---------------------------------------------------------------------------------------------
 namespace {
 
-std::string FormatTick(double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
-}
-
-// Values above the top of the scale take its colour; the top label then reads "> max". Marks (e.g.
-// a material's stretch limit) are lines across the bar with their label beside it.
-void DrawColourBar(ImDrawList* draw, ImFont* font, float fontSize, const Rect& strip, double minValue, double maxValue, bool clipped,
-                   const std::string& label, const std::vector<ScaleMark>& marks) {
-    const float barWidth = strip.Width() * 0.22f;
-    const float x0 = strip.x0 + strip.Width() * 0.12f, x1 = x0 + barWidth;
-    const float y0 = strip.y0 + fontSize * 3.2f, y1 = strip.y1 - fontSize * 1.2f;
-    const int steps = 64;
-    for (int s = 0; s < steps; ++s) {
-        const float ya = y1 - (y1 - y0) * s / steps, yb = y1 - (y1 - y0) * (s + 1) / steps;
-        const Vec3 ca = Viridis(double(s) / steps), cb = Viridis(double(s + 1) / steps);
-        const ImU32 bottom = ImGui::ColorConvertFloat4ToU32(ImVec4(ca.x(), ca.y(), ca.z(), 1));
-        const ImU32 top = ImGui::ColorConvertFloat4ToU32(ImVec4(cb.x(), cb.y(), cb.z(), 1));
-        draw->AddRectFilledMultiColor(ImVec2(x0, yb), ImVec2(x1, ya + 0.5f), top, top, bottom, bottom);
-    }
-    const ImU32 ink = IM_COL32(30, 30, 30, 255);
-    draw->AddRect(ImVec2(x0, y0), ImVec2(x1, y1), ink, 0, 0, fontSize * 0.06f);
-    for (int k = 0; k <= 4; ++k) {
-        const float y = y1 - (y1 - y0) * k / 4;
-        draw->AddLine(ImVec2(x1, y), ImVec2(x1 + barWidth * 0.25f, y), ink, fontSize * 0.06f);
-        const std::string tick = (k == 4 && clipped ? "> " : "") + FormatTick(minValue + (maxValue - minValue) * k / 4);
-        draw->AddText(font, fontSize * 0.85f, ImVec2(x1 + barWidth * 0.35f, y - fontSize * 0.45f), ink, tick.c_str());
-    }
-    for (const ScaleMark& mark : marks) {
-        const double t = (mark.value - minValue) / (maxValue - minValue);
-        if (!(t >= 0 && t <= 1)) continue;
-        const float y = y1 - (y1 - y0) * float(t);
-        const ImU32 red = IM_COL32(200, 30, 30, 255);
-        draw->AddLine(ImVec2(x0 - barWidth * 0.15f, y), ImVec2(x1, y), red, fontSize * 0.14f);
-        draw->AddText(font, fontSize * 0.75f, ImVec2(x1 + barWidth * 0.35f, y + fontSize * 0.3f), red, mark.label.c_str());
-    }
-    draw->AddText(font, fontSize * 0.85f, ImVec2(strip.x0 + strip.Width() * 0.02f, strip.y0 + fontSize * 0.8f), ink, label.c_str());
-}
 
 }  // namespace
 
@@ -299,9 +261,10 @@ Image MeshRendererGl::Render(const Scene& scene) {
     static const sim::Surface kNoSurface;
     const sim::Surface& surface = scene.surface ? *scene.surface : kNoSurface;
     EnsureIndexBuffers(surface);
+    const ColorBy colorBy = scene.colorBy.value_or(def.colorBy);
 
     // Layout: text band on top, captions below, colour bar strip on the right.
-    const bool coloured = def.colorBy != ColorBy::Shading;
+    const bool coloured = colorBy != ColorBy::Shading;
     const float fontSize = overlay.FontSize();
     const float top = def.overlay ? fontSize * (2.2f + 1.25f * scene.lines.size()) : 0.0f;
     const float bottom = def.overlay ? fontSize * 1.8f : 0.0f;
@@ -324,7 +287,7 @@ Image MeshRendererGl::Render(const Scene& scene) {
     double largestValue = -INFINITY, smallestValue = INFINITY;
     std::vector<std::vector<Vec3>> rotated;
     for (const Panel& panel : scene.panels) {
-        values.push_back(VertexValues(def.colorBy, surface, panel));
+        values.push_back(VertexValues(colorBy, surface, panel));
         for (double v : values.back())
             if (std::isfinite(v)) {
                 largestValue = std::max(largestValue, v);
@@ -337,10 +300,10 @@ Image MeshRendererGl::Render(const Scene& scene) {
             points[i] = rotation * Vec3(float(panel.positions.x[i]), float(panel.positions.y[i]), float(panel.positions.z[i]));
         rotated.push_back(std::move(points));
     }
-    double minValue = scene.colorMin ? *scene.colorMin : def.colorBy == ColorBy::Values && std::isfinite(smallestValue) ? smallestValue : 0.0;
+    double minValue = scene.colorMin ? *scene.colorMin : colorBy == ColorBy::Values && std::isfinite(smallestValue) ? smallestValue : 0.0;
     double maxValue = largestValue;
     if (scene.colorMax) maxValue = *scene.colorMax;
-    else if (def.colorBy == ColorBy::Strain) maxValue = RobustColorMax(values);
+    else if (colorBy == ColorBy::Strain) maxValue = RobustColorMax(values);
     if (!(maxValue > minValue) || !std::isfinite(maxValue)) maxValue = minValue + 1;
     const bool clipped = std::isfinite(largestValue) && largestValue > maxValue + 1e-9 * std::fabs(maxValue);
     std::vector<const sim::Positions*> all;
@@ -376,7 +339,7 @@ Image MeshRendererGl::Render(const Scene& scene) {
         const auto normals = OutwardNormals(surface, rotated[k]);
         // A panel at rest (no reference mesh and no values) has nothing to colour: it gets the plain
         // material, which shows its shape better than the colour map's darkest end.
-        const bool atRest = def.colorBy == ColorBy::Values ? panel.values.empty() : panel.reference.Size() == 0;
+        const bool atRest = colorBy == ColorBy::Values ? panel.values.empty() : panel.reference.Size() == 0;
         std::vector<SurfaceVertex> vertices(n);
         for (int i = 0; i < n; ++i) {
             const Vec3 c = coloured && !atRest && std::isfinite(values[k][i]) ? colourOf(values[k][i]) : kNeutralMaterial;
@@ -478,9 +441,23 @@ Image MeshRendererGl::Render(const Scene& scene) {
         if (coloured) {
             std::string label = scene.colorLabel;
             if (label.empty())
-                label = def.colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : def.colorBy == ColorBy::Strain ? "spring strain\n(percent)" : "value";
-            DrawColourBar(draw, overlay.TextFont(), fontSize, Rect{panelArea.x1, top, float(width), panelArea.y1}, minValue, maxValue, clipped, label,
-                          scene.scaleMarks);
+                label = colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : colorBy == ColorBy::Strain ? "spring strain\n(percent)" : "value";
+            const Rect strip{panelArea.x1, top, float(width), panelArea.y1};
+            ColourBar bar;
+            bar.x0 = strip.x0 + strip.Width() * 0.12f;
+            bar.x1 = bar.x0 + strip.Width() * 0.22f;
+            bar.y0 = strip.y0 + fontSize * 3.2f;
+            // Room under the bar for the marks off its scale, two lines each.
+            int offScale = 0;
+            for (const ScaleMark& mark : scene.scaleMarks) offScale += !(mark.value >= minValue && mark.value <= maxValue);
+            bar.y1 = strip.y1 - fontSize * (1.2f + 1.6f * offScale);
+            bar.min = minValue;
+            bar.max = maxValue;
+            bar.clippedTop = clipped;
+            bar.label = label;
+            bar.labelX = strip.x0 + strip.Width() * 0.02f;
+            bar.marks = scene.scaleMarks;
+            DrawColourBar(draw, overlay, bar);
         }
         overlay.End();
     }

@@ -21,7 +21,9 @@ public:
             width_ = width;
             height_ = height;
         }
-        return OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height);
+        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) return false;
+        RememberDescription();
+        return true;
     }
 
     const std::vector<std::uint8_t>& FinishAndGetPixels() override {
@@ -29,10 +31,7 @@ public:
         return buffer_;
     }
 
-    std::string Description() const override {
-        return std::string(reinterpret_cast<const char*>(glGetString(GL_VERSION))) + ", " +
-               reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + " (osmesa)";
-    }
+    const char* BackendLabel() const override { return "osmesa"; }
 
 private:
     OSMesaContext context_;

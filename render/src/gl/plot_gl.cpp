@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "colour_bar.h"
 #include "gl_context.h"
 #include "overlay_context.h"
 
@@ -257,23 +258,15 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
         draw->AddRect(ImVec2(axes.X(xe[i]), axes.Y(ye[j + 1])), ImVec2(axes.X(xe[i + 1]), axes.Y(ye[j])), IM_COL32(220, 30, 30, 255), 0, 0, fs * 0.18f);
         draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(axes.box.x0, H - fs * 1.5f), IM_COL32(200, 30, 30, 255), h.highlightLabel.c_str());
     }
-    // Colour bar.
-    const float bx0 = W - right + fs * 1.6f, bx1 = bx0 + fs * 1.3f;
-    const int steps = 64;
-    for (int k = 0; k < steps; ++k) {
-        const float ya = axes.box.y1 - (axes.box.y1 - axes.box.y0) * k / steps, yb = axes.box.y1 - (axes.box.y1 - axes.box.y0) * (k + 1) / steps;
-        draw->AddRectFilled(ImVec2(bx0, yb), ImVec2(bx1, ya + 0.5f), Color(ViridisColor((k + 0.5) / steps)));
-    }
-    draw->AddRect(ImVec2(bx0, axes.box.y0), ImVec2(bx1, axes.box.y1), kInk, 0, 0, fs * 0.07f);
-    const auto vTicks = NiceTicks(vMin, vMax, 5);
-    const double vStep = vTicks.size() > 1 ? vTicks[1] - vTicks[0] : 1;
-    for (double t : vTicks) {
-        if (t < vMin || t > vMax) continue;
-        const float y = axes.box.y1 - float((t - vMin) / (vMax - vMin)) * (axes.box.y1 - axes.box.y0);
-        draw->AddLine(ImVec2(bx1, y), ImVec2(bx1 + fs * 0.3f, y), kInk, fs * 0.07f);
-        draw->AddText(o.TextFont(), fs * 0.85f, ImVec2(bx1 + fs * 0.45f, y - fs * 0.5f), kInk, TickText(t, vStep / 10).c_str());
-    }
-    draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(bx0 - fs * 0.8f, axes.box.y0 - fs * 1.45f), kInk, h.valueLabel.c_str());
+    ColourBar bar;
+    bar.x0 = W - right + fs * 1.6f;
+    bar.x1 = bar.x0 + fs * 1.3f;
+    bar.y0 = axes.box.y0;
+    bar.y1 = axes.box.y1;
+    bar.min = vMin;
+    bar.max = vMax;
+    bar.label = h.valueLabel;
+    DrawColourBar(draw, o, bar);
     return End();
 }
 

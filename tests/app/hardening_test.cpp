@@ -1,0 +1,228 @@
+// No crash, no hang, no lost or mixed result: one test per class of hostile input or operator
+// mistake, each asserting the exit code, the message, and that nothing was written or lost. Label
+// `hardening`; the sanitizer build (-DACTUATOR_SANITIZE=ON) runs these under ASan and UBSan.
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.h"
+#include "csv.h"
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using testing_support::Child;
+using testing_support::WaitUntil;
+
+namespace {
+
+class Hardening : public CliTest {
+protected:
+    std::string Ga(int generations = 3) const {
+        Write("ga.json", R"({"id": "h", "seed": 3, "sim": {"iterations": 2000}, "render": {"figures": true},
+            "evolve": {"runs": 1, "population": 8, "generations": )" + std::to_string(generations) +
+                             R"(, "genome": {"kind": "bspline", "splines": 1, "length": [5, 7]}}})");
+        return Path("ga.json");
+    }
+    static std::vector<std::string> Temporaries(const fs::path& dir) {
+        std::vector<std::string> found;
+        for (const auto& e : fs::recursive_directory_iterator(dir)) {
+            const std::string name = e.path().filename().string();
+            if (name.find(".tmp") != std::string::npos) found.push_back(e.path().string());
+        }
+        return found;
+    }
+    // Every file under `dir` with the hash of its bytes, to show that a refused command touched nothing.
+    static std::map<std::string, size_t> Snapshot(const fs::path& dir) {
+        std::map<std::string, size_t> files;
+        for (const auto& e : fs::recursive_directory_iterator(dir))
+            if (e.is_regular_file() && e.path().filename() != ".lock") files[e.path().string()] = std::hash<std::string>{}(Slurp(e.path()));
+        return files;
+    }
+};
+
+}  // namespace
+
+TEST_F(Hardening, DeepExpressionsAreRefusedWhereverNumbersAreRead) {
+    const std::string signs(70000, '-');
+    ExpectRefused("simulate --shape sine --amplitude " + signs + "1", "nests deeper than");
+    Write("deep.obj", "v " + signs + "1 0 0\n");
+    ExpectRefused("simulate --mesh " + Path("deep.obj"), "nests deeper than");
+    Write("deep.json", R"({"sweep": {"shape": {"family": "sine", "amplitude": ")" + std::string(300000, '(') + "1" + std::string(300000, ')') +
+                           R"("}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
+    ExpectRefused("sweep " + Path("deep.json") + " --out " + Path("o"), "is not a number");
+    EXPECT_FALSE(fs::exists(Path("o")));
+}
+
+TEST_F(Hardening, HostileCheckpointsAreRefusedOnResume) {
+    ASSERT_EQ(Run("evolve " + Ga(2) + " --out " + Path("a")).exitCode, 0);
+    const fs::path checkpoint = dir_ / "a" / "run_1" / "checkpoint.json";
+    const std::string good = Slurp(checkpoint);
+    auto edited = [&](const std::function<void(nlohmann::json&)>& edit, const std::string& mentions, std::source_location where = std::source_location::current()) {
+        nlohmann::json j = nlohmann::json::parse(good);
+        edit(j);
+        Write("a/run_1/checkpoint.json", j.dump());
+        const auto before = Snapshot(dir_ / "a");
+        ExpectRefused("evolve --resume " + Path("a"), mentions, where);
+        EXPECT_EQ(Snapshot(dir_ / "a"), before) << "a refused resume changed the folder";
+    };
+    edited([](auto& j) { j["population"] = nlohmann::json::array(); }, "population has 0 individuals");
+    edited([](auto& j) { j["population"][0]["genome"] = {{1, 2}}; }, "2 control points");
+    edited([](auto& j) { j["rng"] = {0, 0, 0, 0}; }, "all zero");
+    edited([](auto& j) { j["archive_count"] = 100000; }, "fewer than its checkpoint's");
+    Write("a/run_1/checkpoint.json", "{\"version\": 2");
+    ExpectRefused("evolve --resume " + Path("a"), "not a checkpoint");
+}
+
+TEST_F(Hardening, AResumeUnderAChangedExperimentIsRefusedNamingWhatChanged) {
+    ASSERT_EQ(Run("evolve " + Ga(2) + " --out " + Path("a")).exitCode, 0);
+    const std::string original = Slurp(dir_ / "a" / "experiment.json");
+    nlohmann::json saved = nlohmann::json::parse(original);
+    saved["evolve"]["genome"]["kind"] = "free-xy";
+    saved["evolve"]["genome"].erase("splines");
+    saved["evolve"]["genome"].erase("length");
+    Write("a/experiment.json", saved.dump());
+    const auto before = Snapshot(dir_ / "a");
+    ExpectRefused("evolve --resume " + Path("a"), "evolve.genome.kind: 'bspline' -> 'free-xy'");
+    EXPECT_EQ(Snapshot(dir_ / "a"), before);
+    // The same through --set on the command line.
+    Write("a/experiment.json", original);
+    ExpectRefused("evolve --resume " + Path("a") + " --set evolve.population=9", "evolve.population: '8' -> '9'");
+}
+
+TEST_F(Hardening, ATornArchiveTailIsCutBeforeAResumeAppends) {
+    const std::string experiment = Ga(4);
+    ASSERT_EQ(Run("evolve " + experiment + " --out " + Path("whole")).exitCode, 0);
+    const fs::path out = dir_ / "torn";
+    {
+        Child child({ACTUATOR_BIN, "evolve", experiment, "--out", out.string()});
+        ASSERT_TRUE(WaitUntil([&] { return fs::exists(out / "run_1" / "checkpoint.json"); }, 60));
+        child.Kill(SIGKILL);
+    }
+    // A crash in the middle of a write: half a record at the end.
+    std::ofstream(out / "evaluations.capnp", std::ios::app | std::ios::binary) << std::string("\x90\x01\x00\x00\xde\xad\xbe\xef partial", 17);
+    const Result resumed = Run("evolve --resume " + out.string());
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    const Result all = Run("inspect " + (out / "evaluations.capnp").string() + " --json");
+    const auto json = nlohmann::json::parse(all.out);
+    EXPECT_FALSE(json["truncated"].get<bool>());
+    EXPECT_FALSE(json["damaged"].get<bool>());
+    EXPECT_EQ(json["total"], nlohmann::json::parse(Run("inspect " + Path("whole/evaluations.capnp") + " --json").out)["total"]);
+    EXPECT_EQ(Slurp(out / "evaluations.csv"), Slurp(dir_ / "whole" / "evaluations.csv"));
+}
+
+TEST_F(Hardening, TwoRunsIntoOneFolderAreRefusedNamingTheHolder) {
+    Write("slow.json", R"({"sim": {"iterations": 3000000}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})");
+    Child first({ACTUATOR_BIN, "sweep", Path("slow.json"), "--out", Path("busy")});
+    ASSERT_TRUE(WaitUntil([&] { return fs::exists(Path("busy/run.json")); }, 30));
+    ExpectRefused("sweep " + Path("slow.json") + " --out " + Path("busy") + " --resume", "is in use by pid " + std::to_string(first.Pid()));
+    ExpectRefused("sweep " + Path("slow.json") + " --out " + Path("busy") + " --overwrite", "is in use by pid " + std::to_string(first.Pid()));
+    EXPECT_TRUE(first.Running());
+}
+
+TEST_F(Hardening, OutputThatCouldNotBeWrittenIsNeverASuccess) {
+    ASSERT_EQ(Run("evolve " + Ga(1) + " --out " + Path("a")).exitCode, 0);
+    for (const std::string& command : std::vector<std::string>{"simulate --iterations 10", "inspect " + Path("a/evaluations.capnp"), "--help", "simulate --help"}) {
+        const Result r = Run(command + " > /dev/full");
+        EXPECT_NE(r.exitCode, 0) << command;
+        EXPECT_THAT(r.err, HasSubstr("could not write the output")) << command;
+    }
+}
+
+TEST_F(Hardening, OutputsNeverReplaceLinksDevicesOrInputs) {
+    fs::create_symlink("/etc/hostname", Path("link.obj"));
+    ExpectRefused("simulate --iterations 1 --save-mesh " + Path("link.obj"), "symbolic link");
+    EXPECT_TRUE(fs::is_symlink(Path("link.obj")));
+    ExpectRefused("simulate --iterations 1 --save-mesh /dev/null", "not a regular file");
+    ASSERT_EQ(Run("render --shape sine --size 160x120 --iterations 100 --out " + Path("p")).exitCode, 0);
+    const std::string expected = Slurp(dir_ / "p" / "inflation.png");
+    ExpectRefused("imgdiff " + Path("p/inflation.png") + " " + Path("p/stretch.png") + " --diff " + Path("p/inflation.png"), "also an input");
+    EXPECT_EQ(Slurp(dir_ / "p" / "inflation.png"), expected);
+    ASSERT_EQ(Run("simulate --iterations 10 --save-mesh " + Path("m.obj")).exitCode, 0);
+    const std::string mesh = Slurp(Path("m.obj"));
+    ExpectRefused("simulate --mesh " + Path("m.obj") + " --save-initial " + Path("m.obj"), "also an input");
+    EXPECT_EQ(Slurp(Path("m.obj")), mesh);
+}
+
+TEST_F(Hardening, BadInputStopsARunBeforeAnyOutputIsWritten) {
+    fs::create_directories(dir_ / "r" / "stretch.png");
+    ExpectRefused("render --shape sine --out " + Path("r"), "stretch.png");
+    EXPECT_FALSE(fs::exists(dir_ / "r" / "inflation.png"));
+    fs::create_directories(dir_ / "t");
+    std::ofstream(dir_ / "t" / "turntable") << "a file where the frames go";
+    ExpectRefused("render --shape sine --out " + Path("t") + " --turntable 3", "turntable");
+    EXPECT_FALSE(fs::exists(dir_ / "t" / "inflation.png"));
+}
+
+TEST_F(Hardening, InterruptedRunsLeaveNoTemporaries) {
+    for (int signal : {SIGINT, SIGTERM}) {
+        const fs::path out = dir_ / ("frames_" + std::to_string(signal));
+        {
+            Child render({ACTUATOR_BIN, "render", "--shape", "sine", "--iterations", "100", "--turntable", "400", "--png-level", "9", "--out", out.string()});
+            ASSERT_TRUE(WaitUntil([&] { return fs::exists(out / "turntable" / "frame_0003.png"); }, 60));
+            render.Kill(signal);
+        }
+        EXPECT_THAT(Temporaries(out), ::testing::IsEmpty()) << "signal " << signal;
+        const fs::path ga = dir_ / ("ga_" + std::to_string(signal));
+        {
+            Child evolve({ACTUATOR_BIN, "evolve", Ga(30), "--out", ga.string()});
+            ASSERT_TRUE(WaitUntil([&] { return fs::exists(ga / "run_1" / "checkpoint.json"); }, 60));
+            evolve.Kill(signal);
+        }
+        EXPECT_THAT(Temporaries(ga), ::testing::IsEmpty()) << "signal " << signal;
+    }
+    // SIGKILL cannot be caught: the next run into the folder removes what the dead process left.
+    const fs::path ga = dir_ / "ga_kill";
+    {
+        Child evolve({ACTUATOR_BIN, "evolve", Ga(30), "--out", ga.string()});
+        ASSERT_TRUE(WaitUntil([&] { return fs::exists(ga / "run_1" / "checkpoint.json"); }, 60));
+        std::ofstream(ga / ".act4194300-7.tmp") << "left by a killed process";
+        evolve.Kill(SIGKILL);
+    }
+    ASSERT_EQ(Run("evolve --resume " + ga.string()).exitCode, 0);
+    EXPECT_THAT(Temporaries(ga), ::testing::IsEmpty());
+}
+
+TEST_F(Hardening, TextInCsvIsQuotedAsRfc4180Says) {
+    const std::string label = R"(say "hi", then
+a new line)";
+    nlohmann::json experiment = {{"sim", {{"iterations", 200}}}, {"render", {{"figures", false}}},
+                                 {"evaluate", {{"shapes", {{{"family", "cylinder"}, {"label", label}}, {{"family", "sine"}, {"amplitude", 2}, {"phase", {0.5, 2.6}}}}}}}};
+    Write("list.json", experiment.dump());
+    ASSERT_EQ(Run("sweep " + Path("list.json") + " --out " + Path("l")).exitCode, 0);
+    for (const char* file : {"results.csv", "evaluations.csv"}) {
+        const auto rows = app::ParseCsv(Slurp(dir_ / "l" / file));
+        ASSERT_EQ(rows.size(), 3u) << file;
+        EXPECT_EQ(rows[1].size(), rows[0].size()) << file;
+        EXPECT_TRUE(std::find(rows[1].begin(), rows[1].end(), label) != rows[1].end()) << file;
+    }
+}
+
+TEST_F(Hardening, JobsTooLargeForTheMachineAreRefusedUpFront) {
+    ExpectRefused("render --resolution 256 --turns 256 --iterations 100000 --timelapse 100000 --out " + Path("big"), "GB of snapshots");
+    EXPECT_FALSE(fs::exists(Path("big/inflation.png")));
+    const auto started = std::chrono::steady_clock::now();
+    ExpectRefused("simulate --mesh /dev/zero", "is a device");
+    ExpectRefused("simulate --shape free-xy --offsets /dev/zero", "is a device");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5);
+    ExpectRefused("simulate --resolution 4096 --turns 4096", "vertices");
+}
+
+TEST_F(Hardening, LongFileNamesWorkUpToTheSystemsLimit) {
+    const std::string name254 = std::string(250, 'm') + ".obj";
+    const Result ok = Run("simulate --iterations 1 --save-mesh " + Path(name254));
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    EXPECT_TRUE(fs::exists(Path(name254)));
+    ExpectRefused("simulate --iterations 1 --save-mesh " + Path(std::string(260, 'm') + ".obj"), "longer than 255 bytes");
+}
+
+TEST_F(Hardening, AFailedRunIsPicturedAsFarAsItIsFinite) {
+    const Result r = Run("render --shape sine --amplitude 4.1 --iterations 40000 --size 320x240 --out " + Path("nan"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(nlohmann::json::parse(r.out)["inflation"]["status"], "ok");
+    const render::Image image = testing_support::LoadPng(dir_ / "nan" / "inflation.png");
+    ASSERT_FALSE(image.Empty());
+    // The "before" mesh (left half) is drawn: not all white.
+    int dark = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width / 2; ++x) dark += image.rgba[4 * (y * image.width + x)] < 200;
+    EXPECT_GT(dark, 500);
+}
