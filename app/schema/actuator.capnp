@@ -101,6 +101,19 @@ struct ShellDef {
   maxIterations @24 :UInt32;
   maxBisections @25 :UInt32;
   selfContact @26 :Bool;
+  fibres @27 :Text;                 # "" (records before fibres) or "none": no fibres
+  fibreAngleDeg @28 :Float64;
+  fibreStiffnessNPerMm @29 :Float64;
+  fibreBands @30 :List(FibreBand);
+  fibreSectorsDeg @31 :List(Float64);
+  fibrePlusOff @32 :Bool;           # a GA gene switched the +alpha family off
+  fibreMinusOff @33 :Bool;          # ... or a braid's -alpha family
+}
+
+struct FibreBand {
+  from @0 :Float64;
+  to @1 :Float64;
+  angleDeg @2 :Float64;
 }
 
 # What a membrane or shell evaluation says beyond the common numbers (sim::ShellOutputs; the
@@ -122,6 +135,9 @@ struct ShellOutputs {
   displacementMm @13 :Float64;
   newtonIterations @14 :UInt32;
   factorizations @15 :UInt32;
+  maxFibreStrain @16 :Float64 = nan;
+  meanFibreStrain @17 :Float64 = nan;
+  fibreAngleDeg @18 :Float64 = nan;
 }
 
 struct EvalResult {

@@ -21,8 +21,19 @@ Json IndividualJson(const sim::Individual& individual) {
 
 // A genome this experiment's GA could have made: the right number of gene lists, lengths and
 // values within the bounds, a buildable shape.
-void CheckGenome(const sim::Genome& genome, const Experiment& e) {
+void CheckGenome(const sim::Genome& whole, const Experiment& e) {
     const sim::GenomeDef& g = e.ga.genome;
+    sim::Genome genome = whole;
+    if (g.HasFibreGenes()) {
+        // The last list: the angles in their range, then 0/1 switches.
+        if (genome.empty()) throw std::runtime_error("a genome has no fibre genes");
+        const auto& fibres = genome.back();
+        if (static_cast<int>(fibres.size()) != g.fibreAngles + (g.fibreSwitches ? 2 : 0)) throw std::runtime_error("a genome has the wrong number of fibre genes");
+        for (size_t k = 0; k < fibres.size(); ++k)
+            if (static_cast<int>(k) < g.fibreAngles ? !(fibres[k] >= g.fibreAngleMin && fibres[k] <= g.fibreAngleMax) : (fibres[k] != 0 && fibres[k] != 1))
+                throw std::runtime_error("a fibre gene is outside its range");
+        genome.pop_back();
+    }
     if (g.kind == sim::GenomeKind::BSpline) {
         if (static_cast<int>(genome.size()) != g.splines) throw std::runtime_error("a genome has " + std::to_string(genome.size()) + " splines, the experiment " + std::to_string(g.splines));
         for (const auto& spline : genome) {
@@ -38,7 +49,7 @@ void CheckGenome(const sim::Genome& genome, const Experiment& e) {
         for (double v : genome[0])
             if (!(std::fabs(v) <= std::max(g.bound, g.initRange))) throw std::runtime_error("a free-xy offset is outside the bound");
     }
-    if (const std::string error = sim::JobError(JobOf(e, sim::ShapeOfGenome(genome, g, DesignMesh(e)))); !error.empty()) throw std::runtime_error(error);
+    if (const std::string error = sim::JobError(JobOfGenome(e, whole)); !error.empty()) throw std::runtime_error(error);
 }
 
 sim::Individual IndividualFrom(const Json& j, const Experiment& e) {

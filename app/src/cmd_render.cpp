@@ -206,6 +206,7 @@ int RunRender(int argc, char** argv, int first) {
         cli.RefuseFields(model.materialFields, "does not go with --from: the settings come from the archive");
         cli.RefuseFields(model.shell.load, "does not go with --from: the settings come from the archive");
         cli.RefuseFields(model.shell.solver, "does not go with --from: the settings come from the archive");
+        cli.RefuseFields(model.shell.fibres, "does not go with --from: the settings come from the archive");
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         stored = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
         job = stored->job;

@@ -4,27 +4,38 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "experiment_runner.h"
 #include "files.h"
 #include "report.h"
+#include "shell_chapter.h"
 #include "run_options.h"
 
 namespace app {
 
 int RunReproduce(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
-    Cli cli("reproduce", "Runs every experiment file of a folder (by default the thesis's chapters 4 to 6 in assets/experiments/) into DIR/<name>/ "
-                         "and writes DIR/report.md: one section per experiment with its figures and our numbers beside the thesis's.");
+    Cli cli("reproduce", "Runs every experiment file of a folder (by default the thesis's chapters 4 to 6 in assets/experiments/) into DIR/<name>/, "
+                         "then part 2: the files of its shell/ subfolder, the thesis's experiments re-run under the shell model, into "
+                         "DIR/shell/<name>/, compared with part 1 in DIR/comparison/. Writes DIR/report.md: one section per experiment with its "
+                         "figures and our numbers beside the thesis's, and part 2's table, mesh-convergence study and finding.");
     RunCommandOptions o;
     std::string experiments;
     bool quick = false;
+    enum class Part { Both, Thesis, Physical } part = Part::Both;
+    const std::map<std::string, Part> parts{{"both", Part::Both}, {"thesis", Part::Thesis}, {"physical", Part::Physical}};
     AddRunOptions(cli, o);
     cli.Group("Experiments");
     cli.Text("--experiments", experiments, "folder of experiment files to run, in name order")->type_name("DIR")->default_str("assets/experiments");
     cli.Flag("--quick", quick, "shrink every experiment (3 values per axis, one GA run of 2 generations of 6): a smoke test in seconds");
+    cli.App()
+        .add_option("--part", part, "both, thesis (part 1 only) or physical (part 2 only; its comparison needs part 1's results)")
+        ->transform(CLI::CheckedTransformer(parts, CLI::ignore_case).description(""))
+        ->default_str("both")
+        ->group("Experiments");
     cli.App().footer("Examples:\n  actuator reproduce --out thesis/\n  actuator reproduce --out smoke/ --quick\n  actuator reproduce --resume thesis/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     const std::string dir = ResultsDir(cli, o);
@@ -34,20 +45,28 @@ int RunReproduce(int argc, char** argv, int first) {
     std::error_code ec;
     if (!cli.Given("--experiments") && !fs::is_directory(folder, ec)) folder = fs::path(ACTUATOR_INSTALLED_ASSETS_DIR) / "experiments";
     if (!fs::is_directory(folder, ec)) throw UsageError("--experiments: no folder " + Quote(folder.string()));
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(folder))
-        if (entry.path().extension() == ".json") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    if (files.empty()) throw UsageError("--experiments: no .json files in " + Quote(folder.string()));
+    // Part 1 from the folder, part 2 from its shell/ subfolder: (file, results folder relative to DIR).
+    auto filesIn = [&](const fs::path& from, const std::string& prefix) {
+        std::vector<std::pair<fs::path, std::string>> found;
+        for (const auto& entry : fs::directory_iterator(from, ec))
+            if (entry.path().extension() == ".json") found.push_back({entry.path(), prefix + entry.path().stem().string()});
+        std::sort(found.begin(), found.end());
+        return found;
+    };
+    std::vector<std::pair<fs::path, std::string>> files;
+    if (part != Part::Physical) files = filesIn(folder, "");
+    if (part != Part::Thesis && fs::is_directory(folder / "shell", ec))
+        for (auto& file : filesIn(folder / "shell", "shell/")) files.push_back(std::move(file));
+    if (files.empty()) throw UsageError("--experiments: no .json files in " + Quote(folder.string()) + (part == Part::Physical ? "/shell" : ""));
 
     // Read every file first: a bad one is refused before hours of work, not after.
     const auto overrides = Overrides(o);
     std::vector<ReportEntry> entries;
-    for (const auto& file : files) {
+    for (const auto& [file, name] : files) {
         Experiment e = LoadExperiment(file.string(), overrides);
         if (quick) e = QuickVersion(e);
         if (e.id.empty()) e.id = file.stem().string();
-        entries.push_back({e, {}, file.stem().string()});
+        entries.push_back({e, {}, name});
     }
     const auto evaluator = MakeEvaluator(cli, o);
     ResultsFolder results(dir, ResultsMode(cli, o), "reproduce");
@@ -65,8 +84,14 @@ int RunReproduce(int argc, char** argv, int first) {
         options.folder = &results;
         entries[k].outcome = RunExperiment(entries[k].experiment, sub, options);
     }
+    // Part 2's comparison with part 1: the thesis model's best designs under the physical model, and
+    // the physical model's best meshed twice as finely.
+    if (std::any_of(entries.begin(), entries.end(), [](const ReportEntry& e) { return !e.experiment.compare.empty(); }))
+        std::cerr << "reproduce: comparing part 2 with part 1\n";
+    const Chapter chapter = CompareChapters(entries, dir, *evaluator);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    WriteFileAtomically((fs::path(dir) / "report.md").string(), ReportMarkdown(entries, quick, seconds, evaluator->Describe()));
+    WriteFileAtomically((fs::path(dir) / "report.md").string(),
+                        ReportMarkdown(entries, quick, seconds, evaluator->Describe(), ChapterMarkdown(chapter, quick)));
     results.FirstResultDone();
     std::cout << nlohmann::ordered_json{{"report", (fs::path(dir) / "report.md").string()}, {"experiments", entries.size()}, {"seconds", seconds}}.dump()
               << "\n";

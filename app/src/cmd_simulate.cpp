@@ -72,6 +72,7 @@ int RunSimulate(int argc, char** argv, int first) {
             cli.CopyGivenFields(model.shell.load, job.shell.load);
             cli.CopyGivenFields(model.shell.solver, job.shell.solver);
             cli.CopyGivenFields(model.materialFields, job.shell.material);
+            cli.CopyGivenFields(model.shell.fibres, job.shell.fibres);
             if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(model.load, "--load");
         }
         if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);

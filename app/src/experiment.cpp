@@ -356,7 +356,8 @@ void ParseModel(ObjectReader model, Experiment& e) {
     if (!model.Has("name")) model.Fail("missing (required): " + sim::Choices<sim::ModelKind>(), "name");
     model.Enum("name", e.model);
     if (e.model == sim::ModelKind::Thesis) {
-        for (const char* key : {"geometry", "material", "load", "solver"})
+        for (const char* key : {"geometry", "material", "load", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
+                                "fibre_sectors_deg"})
             if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
         model.Finish();
         return;
@@ -387,6 +388,23 @@ void ParseModel(ObjectReader model, Experiment& e) {
         solver.Fields(shell.solver);
         solver.Finish();
     }
+    // Fibres: the command line's keys, plus angles by band along the length or by sector.
+    model.Fields(shell.fibres);
+    if (model.Has("fibre_bands")) {
+        const Json& bands = model.Array("fibre_bands", 1, 1000, "a list of bands {\"from\": 0, \"to\": 0.5, \"angle_deg\": 30}");
+        for (size_t k = 0; k < bands.size(); ++k) {
+            ObjectReader band(bands[k], model.Child("fibre_bands") + "[" + std::to_string(k) + "]", model.Origin());
+            sim::FibreBand b;
+            b.from = band.Number("from", 0, 1);
+            b.to = band.Number("to", 0, 1);
+            b.angleDeg = band.Number("angle_deg", -90, 90);
+            band.Finish();
+            shell.fibres.bands.push_back(b);
+        }
+    }
+    if (model.Has("fibre_sectors_deg"))
+        for (const auto& angle : model.Array("fibre_sectors_deg", 1, 4, "a list of 1, 2 or 4 angles (degrees)"))
+            shell.fibres.sectorAnglesDeg.push_back(model.NumberValue(angle, "fibre_sectors_deg", -90, 90));
     model.Finish();
     if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
 }
@@ -423,6 +441,16 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
         genome.Number("sigma", g.sigma, 0, 100);
         genome.Number("bound", g.bound, 1e-9, 100);
     }
+    // Fibre genes (membrane and shell models with fibres in the model block).
+    genome.Integer("fibre_angles", g.fibreAngles, 0, 64);
+    genome.Bool("fibre_switches", g.fibreSwitches);
+    const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
+    g.fibreAngleMin = fibreRange.first;
+    g.fibreAngleMax = fibreRange.second;
+    genome.Number("fibre_sigma_deg", g.fibreSigmaDeg, 0, 180);
+    if (g.HasFibreGenes() && (e.model == sim::ModelKind::Thesis || e.shell.fibres.layout == sim::FibreLayout::None))
+        genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
+                    g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
     genome.Finish();
     evolve.Finish();
     if (const std::string error = sim::GaDefError(ga, DesignMesh(e)); !error.empty()) evolve.Fail(error);
@@ -491,6 +519,7 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
     e.thesis = top.String("thesis", "");
     e.note = top.String("note", "");
     e.explanation = top.String("explanation", "");
+    e.compare = top.String("compare", "");
     if (top.Has("thesis_result")) ParseThesisResult(top.Object("thesis_result"), e.thesisResult);
     top.Integer("seed", e.seed, 0, (1ll << 53));
     for (const char* moved : {"iterations", "load", "precision"}) top.Moved(moved, std::string("\"sim\": {\"") + moved + "\": ...}");
@@ -615,6 +644,14 @@ sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {
     return job;
 }
 
+sim::EvalJob JobOfGenome(const Experiment& e, const sim::Genome& genome) {
+    sim::EvalJob job = JobOf(e, sim::ShapeOfGenome(genome, e.ga.genome, DesignMesh(e)));
+    if (e.ga.genome.HasFibreGenes()) job.shell.fibres = sim::FibresOfGenome(genome, e.ga.genome, e.shell.fibres);
+    return job;
+}
+
+sim::Genome GenomeOfJob(const Experiment& e, const sim::EvalJob& job) { return sim::GenomeOfDesign(job.shape, job.shell.fibres, e.ga.genome); }
+
 sim::MeshDef DesignMesh(const Experiment& e) {
     if (e.model == sim::ModelKind::Thesis) return e.mesh;
     return {e.shell.geometry.ringVertices, sim::RingCount(e.shell.geometry)};
@@ -624,7 +661,13 @@ Experiment QuickVersion(const Experiment& experiment) {
     // Shrunk through the document, so that the saved experiment re-reads as what ran (a resume).
     Json document = experiment.document;
     if (experiment.model == sim::ModelKind::Thesis) document["sim"]["iterations"] = std::min(experiment.params.iterations, 2000);
-    else document["model"]["load"]["steps"] = std::min(experiment.shell.load.steps, 2);
+    else {
+        // A coarse ring mesh and two load steps: the membrane and shell models' cost is in the mesh.
+        Json& model = document["model"];
+        model["load"]["steps"] = std::min(experiment.shell.load.steps, 2);
+        model["geometry"]["ring_vertices"] = std::min(experiment.shell.geometry.ringVertices, 12);
+        model["geometry"]["rings"] = std::min(sim::RingCount(experiment.shell.geometry), 16);
+    }
     for (size_t k = 0; k < experiment.sweep.axes.size(); ++k) {
         const auto& values = experiment.sweep.axes[k].values;
         if (values.size() <= 3) continue;

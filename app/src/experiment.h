@@ -58,6 +58,7 @@ struct Experiment {
     std::string thesis;       // where the thesis reports it, e.g. "Table 4.1, Figure 4.1"
     std::string note;         // choices made where the thesis is silent, and why
     std::string explanation;  // why our numbers may differ from the thesis's (shown when they do)
+    std::string compare;      // the id of the thesis-model experiment this one re-runs under another model
     ThesisResult thesisResult;
     sim::ModelKind model = sim::ModelKind::Thesis;  // the "model" block's name
     sim::MeshDef mesh;                              // thesis model: the "mesh" block
@@ -97,12 +98,17 @@ std::string ExperimentTitle(const Experiment& e);  // "4.1  Variable amplitude s
 
 // The job that evaluates `shape` under the experiment's model.
 sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape);
+// The job a GA genome describes under the experiment's model: its shape and, with fibre genes, its
+// fibres; and the genome of an archived GA job (the inverse).
+sim::EvalJob JobOfGenome(const Experiment& e, const sim::Genome& genome);
+sim::Genome GenomeOfJob(const Experiment& e, const sim::EvalJob& job);
 // The mesh a design's per-vertex offsets (free-xy genomes) live on: the thesis helix, or the
 // membrane and shell models' rings.
 sim::MeshDef DesignMesh(const Experiment& e);  // "4.1  Variable amplitude search"
 
 // The experiment shrunk for a smoke test: at most 3 values per sweep axis, one GA run of 2
-// generations of 6, 2000 iterations. Same files and figures, in seconds.
+// generations of 6, 2000 iterations (thesis model) or a 12 x 16 ring mesh in 2 load steps (the
+// others). Same files and figures, in seconds.
 Experiment QuickVersion(const Experiment& experiment);
 
 }  // namespace app

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@ struct ExperimentOutcome {
     long long evaluations = 0;          // in the archive, earlier sessions of a resumed run included
     std::vector<std::string> figures;   // files in dir worth showing, in reading order
     std::vector<ComparisonRow> rows;
+    std::optional<sim::EvalJob> bestJob;  // the best design found (sweeps and GA runs), with its fitness
+    double bestFitness = NAN;
     std::vector<std::string> details;   // lines such as the best genome of each run
     std::string summaryJson;            // what the command prints
 };

@@ -112,6 +112,16 @@ struct MaterialSetter {
 };
 }  // namespace detail
 
+// Fibres on the wall (SHELL.md section 7). Bands and sectors of angles are experiment-file lists
+// (fibre_bands, fibre_sectors_deg), not fields.
+template <class Def, class Visitor>
+void VisitFields(Def& f, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::FibreDef> {
+    v.Enum("fibres", f.layout, "fibres on the wall: none, meridian (alpha 0), hoop (90 deg), braid (+/- alpha) or single (+alpha)");
+    v.Number("fibre_angle_deg", f.angleDeg, "fibre angle to the meridian, degrees (braid and single)", -90, 90);
+    v.Number("fibre_stiffness_n_per_mm", f.stiffnessNPerMm, "stiffness of each fibre family per unit width, N/mm (1e4 mu h: nearly inextensible)", 0,
+             kUnbounded);
+}
+
 // A preset's material with the fields `isGiven` names taken from `given` (an option or experiment
 // key given by the user overrides the preset's value). A neo-Hookean modulus given over a preset of
 // another law switches to neo-Hookean, unless the law is given too.

@@ -74,6 +74,20 @@ std::shared_ptr<const sim::Surface> SharedSurface(const sim::EvalJob& job) {
 
 namespace {
 
+// The fibres as dashes over the wall: valued by their stretch (on a stretch scale), or at the bottom
+// of the scale (dark lines) when the surface shows something else.
+void AddFibres(render::Panel& panel, const sim::ShellFields& fields, bool byStretch) {
+    for (const sim::FibreDash& dash : fields.fibres) {
+        render::Segment segment;
+        for (int c = 0; c < 3; ++c) {
+            segment.a[c] = static_cast<float>(dash.centre[c] - dash.halfLengthMm * dash.along[c]);
+            segment.b[c] = static_cast<float>(dash.centre[c] + dash.halfLengthMm * dash.along[c]);
+        }
+        segment.value = byStretch ? static_cast<float>(dash.stretch) : -INFINITY;
+        panel.segments.push_back(segment);
+    }
+}
+
 // A panel of a deformed mesh coloured as asked; sets the scene's mode, label and marks.
 render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed, const sim::SimResult& r, const sim::EvalJob& job,
                             Colouring colouring, std::string caption, double rotationDegrees = 0) {
@@ -92,6 +106,8 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
         case Colouring::Stress: {
             if (thesis) break;  // refused earlier (ColouringError)
             const sim::ShellFields fields = sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed);
+            AddFibres(panel, fields, colouring == Colouring::Stretch);
+            if (!fields.fibres.empty()) scene.lines.push_back("lines: the fibres, coloured by their stretch on the same scale");
             const bool stretch = colouring == Colouring::Stretch;
             panel.values = stretch ? fields.stretch : fields.stressKpa;
             scene.colorBy = render::ColorBy::Values;
@@ -102,6 +118,9 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             break;
         }
     }
+    const bool fibres = !thesis && job.shell.fibres.layout != sim::FibreLayout::None;
+    if (fibres && colouring != Colouring::Stretch && colouring != Colouring::Stress)
+        AddFibres(panel, sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed), false);
     return panel;
 }
 
@@ -118,6 +137,8 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     scene.title = title;
     scene.lines = {ResultLine(r, job)};
     scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
+    if (job.model != sim::ModelKind::Thesis && job.shell.fibres.layout != sim::FibreLayout::None)
+        AddFibres(scene.panels.front(), sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
     scene.panels.push_back(ColouredPanel(scene, r.final, r, job, colouring, AfterCaption(r, job)));
     return scene;
 }

@@ -59,6 +59,14 @@ Json ModelJson(const sim::EvalJob& job) {
     j["load"] = sim::Name(s.load.kind);
     VisitFields(s.load, Writer{j});
     VisitFields(s.solver, Writer{j});
+    VisitFields(s.fibres, Writer{j});
+    if (!s.fibres.bands.empty()) {
+        Json bands = Json::array();
+        for (const auto& band : s.fibres.bands) bands.push_back(Json{{"from", band.from}, {"to", band.to}, {"angle_deg", band.angleDeg}});
+        j["fibre_bands"] = bands;
+    }
+    if (!s.fibres.sectorAnglesDeg.empty()) j["fibre_sectors_deg"] = s.fibres.sectorAnglesDeg;
+    if (!s.fibres.plus || !s.fibres.minus) j["fibre_families_on"] = {s.fibres.plus, s.fibres.minus};
     return j;
 }
 
@@ -83,6 +91,11 @@ Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
         j["stretch_limit"] = NumberJson(s.stretchLimit);
         j["max_stress_kpa"] = NumberJson(s.maxStressKpa);
         j["tensile_strength_kpa"] = NumberJson(s.tensileStrengthKpa);
+        if (job.shell.fibres.layout != sim::FibreLayout::None) {
+            j["max_fibre_strain"] = NumberJson(s.maxFibreStrain);
+            j["mean_fibre_strain"] = NumberJson(s.meanFibreStrain);
+            j["fibre_angle_deg"] = NumberJson(s.fibreAngleDeg);
+        }
         j["newton_iterations"] = s.newtonIterations;
         j["factorizations"] = s.factorizations;
         Json curve = Json::array();

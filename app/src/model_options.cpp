@@ -53,6 +53,8 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Group("Membrane and shell models: load and solver");
     cli.Fields(o.shell.load);
     cli.Fields(o.shell.solver);
+    cli.Group("Membrane and shell models: fibres");
+    cli.Fields(o.shell.fibres);
 }
 
 void ApplyModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job) {
@@ -64,7 +66,8 @@ void ApplyModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job)
         auto names = OptionNames(*list);
         shellOptions.insert(shellOptions.end(), names.begin(), names.end());
     }
-    for (const auto& names : {OptionNames(o.shell.load), OptionNames(o.shell.solver)}) shellOptions.insert(shellOptions.end(), names.begin(), names.end());
+    for (const auto& names : {OptionNames(o.shell.load), OptionNames(o.shell.solver), OptionNames(o.shell.fibres)})
+        shellOptions.insert(shellOptions.end(), names.begin(), names.end());
     shellOptions.push_back("--material");
     std::vector<std::string> thesisOptions = OptionNames(o.thesis);
     std::erase(thesisOptions, "--load");

@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kLogHeader{"evaluation",       "role",         "run",         "generation",         "label",
                                           "shape",            "model",        "status",      "fitness",            "contraction_percent",
                                           "iterations",       "thumbnail",    "design",      "pressure_kpa",       "limit_pressure_kpa",
-                                          "blocking_force_n", "axial_stiffness_n_per_mm", "volume_mm3", "max_stretch", "max_stress_kpa"};
+                                          "blocking_force_n", "axial_stiffness_n_per_mm", "volume_mm3", "max_stretch", "max_stress_kpa",
+                                          "fibres",           "max_fibre_strain", "fibre_angle_deg"};
 
 std::string Optional(double value) { return std::isfinite(value) ? CsvNumber(value) : ""; }
 
@@ -83,9 +84,13 @@ void Recorder::Log(const ArchiveRecord& r) {
                                  ok ? CsvNumber(r.result.contractionPercent) : "", std::to_string(thesis ? r.result.iterationsRun : o.newtonIterations),
                                  thumbnails_ ? ThumbnailWriter::Name(r.id) : "", CsvField(DesignText(r.job.shape))};
     if (thesis) row.resize(kLogHeader.size());
-    else
+    else {
         for (double v : {r.job.shell.load.pressureKpa, o.limitPressureKpa, o.blockingForceN, o.axialStiffnessNPerMm, o.volumeMm3, o.maxStretch, o.maxStressKpa})
             row.push_back(Optional(v));
+        row.push_back(sim::Name(r.job.shell.fibres.layout));
+        row.push_back(Optional(o.maxFibreStrain));
+        row.push_back(Optional(o.fibreAngleDeg));
+    }
     log_.Append(row);
 }
 

@@ -26,7 +26,7 @@ std::string ModelDescription(const Experiment& e) {
     const sim::ShellDef& s = e.shell;
     const sim::GeometryDef& g = s.geometry;
     return fmt::format("the `{}` model of `shared/SHELL.md` ({} at equilibrium): a tube of R = {:g} mm, L = {:g} mm, wall {:g} mm, {} ({}, "
-                       "shear modulus {:g} kPa), {} x {} ring mesh, {} to {:g} kPa in {} steps; fitness = contraction in percent at that pressure",
+                       "shear modulus {:.3g} kPa), {} x {} ring mesh, {} to {:g} kPa in {} steps; fitness = contraction in percent at that pressure",
                        sim::Name(e.model), e.model == sim::ModelKind::Shell ? "membrane and bending" : "membrane only", g.radiusMm, g.lengthMm,
                        g.thicknessMm, sim::Name(s.material.preset), sim::Name(s.material.law), sim::ShearModulusKpa(s.material), g.ringVertices,
                        sim::RingCount(g), sim::Name(s.load.kind), s.load.pressureKpa, s.load.steps);
@@ -36,7 +36,7 @@ namespace {
 
 }  // namespace
 
-std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator) {
+std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator, const std::string& chapter) {
     long long simulations = 0, evaluations = 0;
     for (const auto& entry : entries) {
         simulations += entry.outcome.simulations;
@@ -58,12 +58,23 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
     md += fmt::format("| throughput | {} simulations, {:.1f} evaluations/s on {}, figures included, this session |\n\n", simulations,
                       seconds > 0 ? simulations / seconds : 0, evaluator);
     md += "## Contents\n\n";
-    for (const auto& entry : entries)
+    bool chapterListed = false;
+    for (const auto& entry : entries) {
+        if (!chapter.empty() && !entry.experiment.compare.empty() && !chapterListed) {
+            md += "- [Part 2: under a physical model](#physical-chapter)\n";
+            chapterListed = true;
+        }
         md += "- [" + entry.experiment.id + " " + entry.experiment.title + "](#" + entry.folder + ")\n";
+    }
     md += "\n";
 
+    bool chapterWritten = false;
     for (const auto& entry : entries) {
         const Experiment& e = entry.experiment;
+        if (!chapter.empty() && !e.compare.empty() && !chapterWritten) {
+            md += chapter;
+            chapterWritten = true;
+        }
         const ExperimentOutcome& o = entry.outcome;
         md += "<a id=\"" + entry.folder + "\"></a>\n\n## " + e.id + " " + e.title + "\n\n";
         if (!e.thesis.empty()) md += "Thesis: " + e.thesis + ".\n\n";

@@ -16,7 +16,10 @@ struct ReportEntry {
     std::string folder;  // relative to the report
 };
 
-std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator);
+// `chapter`, when given, is inserted before the first experiment that re-runs another under a
+// physical model ("compare"): reproduce's part 2.
+std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator,
+                           const std::string& chapter = "");
 
 // One sentence on the experiment's model and its settings (units included).
 std::string ModelDescription(const Experiment& e);

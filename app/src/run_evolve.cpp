@@ -33,7 +33,7 @@ public:
     void Restore(const std::vector<ArchiveRecord>& records) {
         for (const ArchiveRecord& r : records) {
             if (r.role != Role::Individual || r.run != run_) continue;
-            const std::string key = sim::GenomeText(sim::GenomeOfShape(r.job.shape));
+            const std::string key = sim::GenomeText(GenomeOfJob(c_.e, r.job));
             fitness_.emplace(key, std::pair{r.result.fitness, r.result.status});
             ids_.emplace(key, r.id);
         }
@@ -58,7 +58,7 @@ public:
                 slots.push_back(j);
                 continue;
             }
-            jobs.push_back(JobOf(c_.e, sim::ShapeOfGenome(*genomes[j], c_.e.ga.genome, DesignMesh(c_.e))));
+            jobs.push_back(JobOfGenome(c_.e, *genomes[j]));
             tags.push_back({Role::Individual, run_, generation_, fmt::format("run {} generation {}", run_, generation_)});
             slots.push_back(j);
             keys.push_back(std::move(key));
@@ -81,7 +81,7 @@ public:
             keys.push_back(sim::GenomeText(individual.genome));
             if (!meshes_.count(keys.back())) missing.push_back(ids_.at(keys.back()));
         }
-        for (ArchiveRecord& r : c_.recorder.ReadBack(missing)) meshes_[sim::GenomeText(sim::GenomeOfShape(r.job.shape))] = std::move(r.result);
+        for (ArchiveRecord& r : c_.recorder.ReadBack(missing)) meshes_[sim::GenomeText(GenomeOfJob(c_.e, r.job))] = std::move(r.result);
         std::unordered_map<std::string, sim::SimResult> kept;
         for (const auto& key : keys)
             if (!kept.count(key)) kept.emplace(key, std::move(meshes_.at(key)));
@@ -205,6 +205,11 @@ void RunEvolution(RunContext& c) {
         if (s.hallOfFame.empty()) continue;
         c.outcome.details.push_back(fmt::format("run {} (seed {}): best genome {}", r + 1, runs[r].seed, GenomeSummary(e, s.hallOfFame.front().genome)));
         if (bestRun < 0 || best > runs[bestRun].state.hallOfFame.front().fitness) bestRun = r;
+    }
+    if (bestRun >= 0) {
+        const auto& best = runs[bestRun].state.hallOfFame.front();
+        c.outcome.bestJob = JobOfGenome(e, best.genome);
+        c.outcome.bestFitness = best.fitness;
     }
     if (!e.render.figures) return;
 

@@ -101,6 +101,8 @@ void RunSweep(RunContext& c) {
             bestText += fmt::format("{}{} {:.4g}", a ? ", " : "", sim::Name(axes[a].parameter), sim::SweepValue(grid[best], axes[a].parameter));
         bestText += fmt::format(",  fitness {:.4f}", fitness[static_cast<size_t>(best)]);
         c.outcome.rows.push_back({"best fitness", fitness[static_cast<size_t>(best)], e.thesisResult.bestFitness});
+        c.outcome.bestJob = grid[static_cast<size_t>(best)];
+        c.outcome.bestFitness = fitness[static_cast<size_t>(best)];
         for (const auto& axis : axes) {
             double thesis = NAN;
             for (const auto& [parameter, value] : e.thesisResult.best)

@@ -205,6 +205,19 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setMaxIterations(Count(v.maxIterations));
     s.setMaxBisections(Count(v.maxBisections));
     s.setSelfContact(v.selfContact);
+    const sim::FibreDef& f = def.fibres;
+    s.setFibres(sim::Name(f.layout));
+    s.setFibreAngleDeg(f.angleDeg);
+    s.setFibreStiffnessNPerMm(f.stiffnessNPerMm);
+    auto bands = s.initFibreBands(static_cast<unsigned>(f.bands.size()));
+    for (unsigned k = 0; k < f.bands.size(); ++k) {
+        bands[k].setFrom(f.bands[k].from);
+        bands[k].setTo(f.bands[k].to);
+        bands[k].setAngleDeg(f.bands[k].angleDeg);
+    }
+    Fill<double>(s.initFibreSectorsDeg(static_cast<unsigned>(f.sectorAnglesDeg.size())), f.sectorAnglesDeg);
+    s.setFibrePlusOff(!f.plus);
+    s.setFibreMinusOff(!f.minus);
 }
 
 sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
@@ -240,6 +253,17 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     v.maxIterations = Count(s.getMaxIterations());
     v.maxBisections = Count(s.getMaxBisections());
     v.selfContact = s.getSelfContact();
+    sim::FibreDef& f = def.fibres;
+    const std::string layout = s.getFibres();
+    f.layout = layout.empty() ? sim::FibreLayout::None : NamedEnum<sim::FibreLayout>(layout, "fibre layout");
+    if (s.hasFibres()) {
+        f.angleDeg = s.getFibreAngleDeg();
+        f.stiffnessNPerMm = s.getFibreStiffnessNPerMm();
+    }
+    for (auto band : s.getFibreBands()) f.bands.push_back({band.getFrom(), band.getTo(), band.getAngleDeg()});
+    f.sectorAnglesDeg = Copy(s.getFibreSectorsDeg());
+    f.plus = !s.getFibrePlusOff();
+    f.minus = !s.getFibreMinusOff();
     return def;
 }
 
@@ -268,6 +292,9 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setDisplacementMm(o.displacementMm);
     s.setNewtonIterations(Count(o.newtonIterations));
     s.setFactorizations(Count(o.factorizations));
+    s.setMaxFibreStrain(o.maxFibreStrain);
+    s.setMeanFibreStrain(o.meanFibreStrain);
+    s.setFibreAngleDeg(o.fibreAngleDeg);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -295,6 +322,9 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.displacementMm = s.getDisplacementMm();
     o.newtonIterations = Count(s.getNewtonIterations());
     o.factorizations = Count(s.getFactorizations());
+    o.maxFibreStrain = s.getMaxFibreStrain();
+    o.meanFibreStrain = s.getMeanFibreStrain();
+    o.fibreAngleDeg = s.getFibreAngleDeg();
 }
 
 }  // namespace app

@@ -1,5 +1,6 @@
 // One entry point for every model: a job's checks, its evaluation and the surface its meshes are
 // drawn on.
+#include <Eigen/Geometry>
 #include <set>
 
 #include "sim/batch.h"
@@ -96,6 +97,27 @@ ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bendi
             fields.stretch[a] += v.stretch[0];
             fields.stressKpa[a] += v.stress[0] * 1e3;
             ++count[a];
+        }
+    }
+    // Fibres: a dash per triangle and family along the deformed fibre, on the wall's outer face.
+    for (size_t t = 0; t < problem.wall.size() && !problem.fibreFamilies.empty(); ++t) {
+        const auto& tri = problem.wall[t];
+        Eigen::Vector3d x[3];
+        for (int a = 0; a < 3; ++a) x[a] = {deformed.x[tri[a]], deformed.y[tri[a]], deformed.z[tri[a]]};
+        const Eigen::Vector3d centroid = (x[0] + x[1] + x[2]) / 3, normal = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
+        const double edge = ((x[1] - x[0]).norm() + (x[2] - x[1]).norm() + (x[0] - x[2]).norm()) / 3;
+        const Matrix32 F = DeformationGradient(problem, static_cast<int>(t), deformed);
+        for (int k = 0; k < problem.fibreFamilies[t]; ++k) {
+            const Eigen::Vector3d d = F.col(0) * problem.fibreDirections[t][2 * k] + F.col(1) * problem.fibreDirections[t][2 * k + 1];
+            FibreDash dash;
+            const Eigen::Vector3d centre = centroid + 0.5 * problem.material.thicknessMm * normal, along = d.normalized();
+            for (int c = 0; c < 3; ++c) {
+                dash.centre[c] = centre[c];
+                dash.along[c] = along[c];
+            }
+            dash.halfLengthMm = 0.45 * edge;
+            dash.stretch = d.norm();
+            fields.fibres.push_back(dash);
         }
     }
     for (int v = 0; v < n; ++v) {

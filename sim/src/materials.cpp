@@ -88,6 +88,27 @@ std::string ShellDefError(const ShellDef& d) {
     if (!std::isfinite(l.forceN)) return "the force must be a finite number";
     if (!positive(l.volumeRatio)) return "the volume ratio must be positive";
     if (l.steps < 1 || l.steps > 1000) return "load steps must be between 1 and 1000";
+    const FibreDef& f = d.fibres;
+    auto angleOk = [](double a) { return std::isfinite(a) && a >= -90 && a <= 90; };
+    if (!angleOk(f.angleDeg)) return "the fibre angle must be a number of degrees from -90 to 90";
+    if (!std::isfinite(f.stiffnessNPerMm) || f.stiffnessNPerMm < 0) return "the fibre stiffness must be finite and not negative";
+    if (!f.bands.empty() && !f.sectorAnglesDeg.empty()) return "fibre angles come by bands or by sectors, not both";
+    if (!f.bands.empty()) {
+        // Bands in order, each from where the last ended, together from 0 to 1.
+        double covered = 0;
+        for (const FibreBand& band : f.bands) {
+            if (!angleOk(band.angleDeg)) return "a fibre band's angle must be a number of degrees from -90 to 90";
+            if (!(band.from >= 0 && band.to <= 1 && band.from < band.to)) return "a fibre band runs from 'from' to 'to', fractions of the length with 0 <= from < to <= 1";
+            if (std::fabs(band.from - covered) > 1e-9)
+                return "the fibre bands must cover the length from 0 to 1 in order, each starting where the last ended (a gap or overlap at " +
+                       std::to_string(covered) + ")";
+            covered = band.to;
+        }
+        if (std::fabs(covered - 1) > 1e-9) return "the fibre bands must cover the length up to 1 (they end at " + std::to_string(covered) + ")";
+    }
+    if (f.sectorAnglesDeg.size() == 3 || f.sectorAnglesDeg.size() > 4) return "fibre sectors come as 1, 2 or 4 angles, as the thesis's sectors";
+    for (double a : f.sectorAnglesDeg)
+        if (!angleOk(a)) return "a fibre sector's angle must be a number of degrees from -90 to 90";
     if (!positive(d.solver.tolerance)) return "the tolerance must be positive";
     if (d.solver.maxIterations < 1) return "Newton needs at least one iteration";
     return "";

@@ -62,7 +62,30 @@ std::vector<Shape> SweepShapes(const SweepDef& def) {
 // ---------------------------------------------------------------------------------------------
 namespace {
 
+// Families a fibre layout has: a braid two, the others one.
+int FibreFamilies(const GenomeDef& def) { return def.fibreSwitches ? 2 : 0; }
+
+std::vector<double> RandomFibreGenes(const GenomeDef& def, Random& rng) {
+    std::vector<double> genes;
+    for (int k = 0; k < def.fibreAngles; ++k) genes.push_back(def.fibreAngleMin + (def.fibreAngleMax - def.fibreAngleMin) * rng.Uniform());
+    for (int k = 0; k < FibreFamilies(def); ++k) genes.push_back(rng.Chance(0.5) ? 1.0 : 0.0);
+    return genes;
+}
+
+Genome ShapeGenes(const Genome& genome, const GenomeDef& def) {
+    if (!def.HasFibreGenes() || genome.empty()) return genome;
+    return Genome(genome.begin(), genome.end() - 1);
+}
+
+Genome RandomShapeGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng);
+
 Genome RandomGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
+    Genome genome = RandomShapeGenome(def, mesh, rng);
+    if (def.HasFibreGenes()) genome.push_back(RandomFibreGenes(def, rng));
+    return genome;
+}
+
+Genome RandomShapeGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
     Genome genome;
     if (def.kind == GenomeKind::FreeXY) {
         std::vector<double> offsets(2 * static_cast<size_t>(VertexCount(mesh)));
@@ -84,7 +107,9 @@ Genome RandomGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
 // by Gaussian noise with probability INDPB, clamped to the bounds.
 void Mutate(Genome& genome, const GaDef& def, Random& rng) {
     const GenomeDef& g = def.genome;
-    for (auto& genes : genome) {
+    const size_t shapeLists = g.HasFibreGenes() ? genome.size() - 1 : genome.size();
+    for (size_t list = 0; list < shapeLists; ++list) {
+        auto& genes = genome[list];
         if (g.kind == GenomeKind::FreeXY) {
             for (double& v : genes)
                 if (rng.Chance(def.indpb)) v = std::clamp(v + g.sigma * rng.Normal(), -g.bound, g.bound);
@@ -95,6 +120,15 @@ void Mutate(Genome& genome, const GaDef& def, Random& rng) {
         if (rng.Chance(def.indpb) && static_cast<int>(genes.size()) < g.lengthMax)
             genes.push_back(static_cast<double>(rng.Integer(g.controlMin, g.controlMax)));
         if (rng.Chance(def.indpb) && static_cast<int>(genes.size()) > g.lengthMin) genes.pop_back();
+    }
+    // Fibre genes: angles by clamped Gaussian steps, switches flipped, each with probability INDPB.
+    if (g.HasFibreGenes()) {
+        auto& genes = genome.back();
+        for (size_t k = 0; k < genes.size(); ++k) {
+            if (!rng.Chance(def.indpb)) continue;
+            if (static_cast<int>(k) < g.fibreAngles) genes[k] = std::clamp(genes[k] + g.fibreSigmaDeg * rng.Normal(), g.fibreAngleMin, g.fibreAngleMax);
+            else genes[k] = genes[k] > 0.5 ? 0.0 : 1.0;
+        }
     }
 }
 
@@ -201,10 +235,14 @@ std::string GaDefError(const GaDef& d, const MeshDef& mesh) {
         if (!(g.initRange >= 0) || !(g.sigma >= 0) || !(g.bound > 0) || !std::isfinite(g.initRange + g.sigma + g.bound))
             return "free-xy init_range and sigma must be >= 0 and bound > 0";
     }
+    if (g.fibreAngles < 0 || g.fibreAngles > 64) return "fibre angle genes must number 0 to 64";
+    if (!(g.fibreAngleMin >= -90 && g.fibreAngleMax <= 90 && g.fibreAngleMin <= g.fibreAngleMax)) return "the fibre angle range must lie within -90 to 90 degrees, low end first";
+    if (!(g.fibreSigmaDeg >= 0) || !std::isfinite(g.fibreSigmaDeg)) return "the fibre angle mutation's sigma must be >= 0 degrees";
     return "";
 }
 
-Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& mesh) {
+Shape ShapeOfGenome(const Genome& whole, const GenomeDef& def, const MeshDef& mesh) {
+    const Genome genome = ShapeGenes(whole, def);
     if (def.kind == GenomeKind::FreeXY) {
         FreeXYShape s;
         const auto& offsets = genome.at(0);
@@ -218,6 +256,38 @@ Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& m
         return s;
     }
     return BSplineShape{def.region, genome};
+}
+
+FibreDef FibresOfGenome(const Genome& genome, const GenomeDef& def, FibreDef base) {
+    if (!def.HasFibreGenes() || genome.empty()) return base;
+    const auto& genes = genome.back();
+    if (def.fibreAngles == 1 && !genes.empty()) base.angleDeg = genes[0];
+    if (def.fibreAngles > 1) {
+        base.bands.clear();
+        for (int k = 0; k < def.fibreAngles && k < static_cast<int>(genes.size()); ++k)
+            base.bands.push_back({double(k) / def.fibreAngles, k + 1 == def.fibreAngles ? 1.0 : double(k + 1) / def.fibreAngles, genes[static_cast<size_t>(k)]});
+        base.sectorAnglesDeg.clear();
+    }
+    if (def.fibreSwitches && static_cast<int>(genes.size()) >= def.fibreAngles + 2) {
+        base.plus = genes[static_cast<size_t>(def.fibreAngles)] > 0.5;
+        base.minus = genes[static_cast<size_t>(def.fibreAngles) + 1] > 0.5;
+    }
+    return base;
+}
+
+Genome GenomeOfDesign(const Shape& shape, const FibreDef& fibres, const GenomeDef& def) {
+    Genome genome = GenomeOfShape(shape);
+    if (!def.HasFibreGenes()) return genome;
+    std::vector<double> genes;
+    if (def.fibreAngles == 1) genes.push_back(fibres.angleDeg);
+    for (int k = 0; def.fibreAngles > 1 && k < def.fibreAngles; ++k)
+        genes.push_back(k < static_cast<int>(fibres.bands.size()) ? fibres.bands[static_cast<size_t>(k)].angleDeg : fibres.angleDeg);
+    if (def.fibreSwitches) {
+        genes.push_back(fibres.plus ? 1.0 : 0.0);
+        genes.push_back(fibres.minus ? 1.0 : 0.0);
+    }
+    genome.push_back(genes);
+    return genome;
 }
 
 Genome GenomeOfShape(const Shape& shape) {

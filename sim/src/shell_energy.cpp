@@ -131,15 +131,23 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     };
 
     CompensatedSum energy;
-    // Membrane: A0 Psi(F) per wall triangle.
-    if (terms.membrane) {
+    // Membrane and fibres: A0 (Psi(F) + sum over families (k/4)(I4 - 1)^2) per wall triangle.
+    const bool withFibres = terms.fibres && !p.fibreFamilies.empty();
+    if (terms.membrane || withFibres) {
         for (size_t t = 0; t < p.wall.size(); ++t) {
+            const int families = withFibres ? p.fibreFamilies[t] : 0;
+            if (!terms.membrane && families == 0) continue;
             const auto& tri = p.wall[t];
             const MembraneRest& rest = p.membrane[t];
             const Matrix32 F = DeformationGradient(p, static_cast<int>(t), x);
-            Vector6 gF;
-            Matrix6 hF;
-            energy.Add(rest.area * MembraneDensity(p.material, F, wantGradient || hessian ? &gF : nullptr, hessian ? &hF : nullptr));
+            Vector6 gF = Vector6::Zero();
+            Matrix6 hF = Matrix6::Zero();
+            Vector6* gradientOfF = wantGradient || hessian ? &gF : nullptr;
+            Matrix6* hessianOfF = hessian ? &hF : nullptr;
+            double density = terms.membrane ? MembraneDensity(p.material, F, gradientOfF, hessianOfF) : 0.0;
+            // The fibres' part is positive semi-definite where taut and zero where slack.
+            for (int k = 0; k < families; ++k) density += FibreDensity(F, &p.fibreDirections[t][2 * k], p.fibreStiffness, gradientOfF, hessianOfF);
+            energy.Add(rest.area * density);
             if (wantGradient || hessian) {
                 // dE/dx_a = A0 sum_alpha g_a[alpha] dPsi/df_alpha.
                 if (wantGradient)

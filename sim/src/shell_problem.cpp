@@ -222,6 +222,9 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
     for (const auto& rest : p.membrane)
         if (!(rest.area > 1e-12 * p.meanEdgeMm * p.meanEdgeMm)) return fail("the rest shape has a degenerate triangle (two vertices in one place)");
     if (SelfIntersects(p, p.rest)) return fail("the rest shape passes through itself");
+    std::string fibreError;
+    SetFibres(p, def.fibres, g.lengthMm, &fibreError);
+    if (!fibreError.empty()) return fail(fibreError);
     if (error) error->clear();
     return p;
 }

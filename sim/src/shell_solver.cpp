@@ -257,6 +257,26 @@ void MaxStretchAndStress(const ShellProblem& p, const Positions& x, double* stre
     }
 }
 
+// The fibres' largest and mean strain, and their mean angle to the axis over the middle third of the
+// tube (away from the clamps: where a braided tube is an ideal McKibben muscle).
+void FibreOutputs(const ShellProblem& p, const Positions& x, double length, ShellOutputs& out) {
+    const FibreState state = FibreStates(p, x);
+    if (state.stretch.empty()) return;
+    double largest = -INFINITY, sum = 0, angles = 0;
+    int middle = 0;
+    for (size_t k = 0; k < state.stretch.size(); ++k) {
+        largest = std::max(largest, state.stretch[k] - 1);
+        sum += state.stretch[k] - 1;
+        if (state.restHeightMm[k] >= length / 3 && state.restHeightMm[k] <= 2 * length / 3) {
+            angles += state.angleDeg[k];
+            ++middle;
+        }
+    }
+    out.maxFibreStrain = largest;
+    out.meanFibreStrain = sum / static_cast<double>(state.stretch.size());
+    out.fibreAngleDeg = middle ? angles / middle : NAN;
+}
+
 // One pressure-controlled (or gas, or force) load path in steps to the target, each step tried
 // whole from the previous state and halved on failure.
 struct PathEnd {
@@ -422,6 +442,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     out.volumeMm3 = EnclosedVolume(problem, x);
     MaxStretchAndStress(problem, x, &out.maxStretch, &out.maxStressKpa);
     out.maxStressKpa *= 1e3;
+    FibreOutputs(problem, x, length, out);
     result.contractionPercent = Contraction(problem, q, length);
     if (status != Status::Ok) {
         out.factorizations = solver.counters.factorizations;

@@ -326,21 +326,27 @@ TEST_F(SearchCli, BadExperimentFilesAreRefusedPrecisely) {
 TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     // Parsing happens before any work: a missing --out is reported only after the file was read.
     int files = 0;
-    for (const auto& entry : fs::directory_iterator(fs::path(ACTUATOR_ASSETS_DIR) / "experiments")) {
-        const std::string command = entry.path().filename().string().rfind("5.", 0) == 0 ? "evolve " : "sweep ";
-        const Result r = Run(command + entry.path().string());
-        EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
-        ++files;
-    }
-    EXPECT_EQ(files, 10);
+    for (const auto& folder : {fs::path(ACTUATOR_ASSETS_DIR) / "experiments", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "shell"})
+        for (const auto& entry : fs::directory_iterator(folder)) {
+            if (entry.is_directory()) continue;
+            const std::string name = entry.path().filename().string();
+            const std::string command = name.rfind("5.", 0) == 0 || name.rfind("S5.", 0) == 0 ? "evolve " : "sweep ";
+            const Result r = Run(command + entry.path().string());
+            EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
+            ++files;
+        }
+    EXPECT_EQ(files, 10 + 7) << "the thesis's experiments, and part 2's under the shell model";
 }
 
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     const Result r = Run("reproduce --quick --out " + Path("thesis"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string report = Slurp(dir_ / "thesis" / "report.md");
-    for (const char* section : {"## 4.1 ", "## 4.2 ", "## 4.3 ", "## 5.1 ", "## 5.2 ", "## 5.3 ", "## 5.4 ", "## 5.5 ", "## 6.1 ", "## 6.2 "})
+    for (const char* section : {"## 4.1 ", "## 4.2 ", "## 4.3 ", "## 5.1 ", "## 5.2 ", "## 5.3 ", "## 5.4 ", "## 5.5 ", "## 6.1 ", "## 6.2 ", "## S4.1 ",
+                                "## S5.4 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**"})
         EXPECT_THAT(report, HasSubstr(section));
+    const auto comparison = app::ParseCsv(Slurp(dir_ / "thesis" / "comparison" / "comparison.csv"));
+    EXPECT_EQ(comparison.size(), 8u) << "a row per experiment of part 2";
     EXPECT_THAT(report, HasSubstr("| ours | thesis |"));
     // Every figure the report shows exists and is a real picture.
     size_t images = 0;

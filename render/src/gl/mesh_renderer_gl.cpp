@@ -335,6 +335,9 @@ Image MeshRendererGl::Render(const Scene& scene) {
         const Rect cell = cellOf(k);
         glViewport(int(cell.x0), int(height - cell.y1), int(cell.Width()), int(cell.Height()));
         const int n = static_cast<int>(rotated[k].size());
+        // A panel without the surface's vertices (a design that could not be built has no mesh)
+        // shows only its caption.
+        if (n != surface.vertexCount) continue;
 
         const auto normals = OutwardNormals(surface, rotated[k]);
         // A panel at rest (no reference mesh and no values) has nothing to colour: it gets the plain

@@ -11,6 +11,7 @@
 
 #include "sim/random.h"
 #include "sim/shape.h"
+#include "sim/shell.h"
 #include "sim/solver.h"
 
 namespace sim {
@@ -64,6 +65,14 @@ struct GenomeDef {
     double initRange = 0.5; // free-xy: initial offsets uniform in [-initRange, initRange] (thesis 5.5)
     double sigma = 0.2;     // free-xy: standard deviation of the Gaussian mutation, mesh units
     double bound = 1.0;     // free-xy: offsets are clamped to [-bound, bound] (thesis 5.5)
+    // Fibre genes (membrane and shell models with fibres), in one extra gene list after the shape's:
+    // the angles, then the switches.
+    int fibreAngles = 0;         // angle genes: 0 none; 1 one angle; n > 1 one per band of n equal bands
+    bool fibreSwitches = false;  // one on/off gene per fibre family (+alpha, and a braid's -alpha)
+    double fibreAngleMin = 0;    // angle genes lie in [fibreAngleMin, fibreAngleMax], degrees
+    double fibreAngleMax = 90;
+    double fibreSigmaDeg = 10;   // Gaussian mutation of an angle gene, degrees
+    bool HasFibreGenes() const { return fibreAngles > 0 || fibreSwitches; }
 };
 
 struct GaDef {
@@ -113,9 +122,14 @@ using GenomeEvaluator = std::function<std::vector<std::pair<double, Status>>(con
 // Empty when the definition is usable; otherwise what is wrong.
 std::string GaDefError(const GaDef& def, const MeshDef& mesh);
 
+// The shape a genome describes (its fibre genes, if any, aside).
 Shape ShapeOfGenome(const Genome& genome, const GenomeDef& def, const MeshDef& mesh);
 // The inverse: the genome a shape of this genome kind was built from (empty for another kind).
 Genome GenomeOfShape(const Shape& shape);
+// The fibres a genome's fibre genes give over `base` (layout and stiffness from the model), and the
+// inverse: the whole genome of a design.
+FibreDef FibresOfGenome(const Genome& genome, const GenomeDef& def, FibreDef base);
+Genome GenomeOfDesign(const Shape& shape, const FibreDef& fibres, const GenomeDef& def);
 
 // Creates and evaluates the initial population (generation 0).
 GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed, const GenomeEvaluator& evaluate);

@@ -85,6 +85,32 @@ struct LoadDef {
     int steps = 4;             // load steps: the contraction-pressure curve's points
 };
 
+// Stiff threads on the wall (SHELL.md section 7): fibre families as directions in the rest tangent
+// plane at an angle to the meridian, tension only, energy (k/4)(I4 - 1)^2 per rest area.
+enum class FibreLayout {
+    None,
+    Meridian,  // one family along the meridian (alpha = 0): the pleated-muscle mechanism
+    Hoop,      // one family around the tube (alpha = 90 deg)
+    Single,    // one family at +alpha
+    Braid,     // +alpha and -alpha: a McKibben braid
+};
+
+// A band of the tube's length whose fibres run at their own angle.
+struct FibreBand {
+    double from = 0, to = 1;  // fractions of the length, 0 at the bottom end
+    double angleDeg = 0;      // to the meridian
+};
+
+struct FibreDef {
+    FibreLayout layout = FibreLayout::None;
+    double angleDeg = 30;                 // to the meridian: braid +/- this, single + this
+    double stiffnessNPerMm = 50;          // per family and unit width: about 1,300 mu h of Ecoflex 00-30 at
+                                          // 1 mm, near the inextensible limit
+    std::vector<FibreBand> bands;         // angles by band along the length (covering 0 to 1); empty: angleDeg
+    std::vector<double> sectorAnglesDeg;  // or angles by angular sector, as the thesis's B-spline sectors
+    bool plus = true, minus = true;       // which families are on (+alpha, and a braid's -alpha): GA genes
+};
+
 struct SolverDef {
     double tolerance = 1e-8;   // converged when the largest free-node force is below this x mu h l
     int maxIterations = 50;    // Newton iterations per load step
@@ -97,6 +123,7 @@ struct ShellDef {
     MaterialDef material = MaterialPresetDef(MaterialPreset::Ecoflex0030);
     LoadDef load;
     SolverDef solver;
+    FibreDef fibres;
 };
 ShellDef DefaultShellDef();
 
@@ -120,6 +147,8 @@ struct ShellOutputs {
     double maxStressKpa = NAN;                     // largest principal true (Cauchy) stress
     double stretchLimit = NAN, tensileStrengthKpa = NAN;  // the material's, to compare with
     double displacementMm = NAN;                   // top clamp's axial displacement u
+    double maxFibreStrain = NAN, meanFibreStrain = NAN;  // fibre stretch - 1 at the target (fibres only)
+    double fibreAngleDeg = NAN;                    // the fibres' mean angle to the axis in the middle third
     int newtonIterations = 0;
     int factorizations = 0;
     std::vector<Positions> steps;                  // positions at each load step (for pictures)
@@ -134,8 +163,16 @@ Surface ShellSurface(const GeometryDef& geometry);
 
 // Per-vertex largest principal stretch and true stress (kPa) of a deformed shell, averaged from the
 // triangles around each vertex: for colour maps.
+// A fibre drawn as a dash across its triangle: centre (on the outer face), unit direction, half
+// length, and the fibre's stretch.
+struct FibreDash {
+    double centre[3], along[3];
+    double halfLengthMm = 0;
+    double stretch = 1;
+};
 struct ShellFields {
     std::vector<double> stretch, stressKpa;
+    std::vector<FibreDash> fibres;  // one per wall triangle and fibre family
 };
 ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bending, const Positions& deformed);
 
@@ -170,6 +207,14 @@ struct sim::EnumNames<sim::ShellLoad> {
                                                                                    {sim::ShellLoad::Volume, "volume"},
                                                                                    {sim::ShellLoad::Force, "force"},
                                                                                    {sim::ShellLoad::Blocked, "blocked"}}};
+};
+template <>
+struct sim::EnumNames<sim::FibreLayout> {
+    static constexpr std::array<std::pair<sim::FibreLayout, const char*>, 5> table{{{sim::FibreLayout::None, "none"},
+                                                                                     {sim::FibreLayout::Meridian, "meridian"},
+                                                                                     {sim::FibreLayout::Hoop, "hoop"},
+                                                                                     {sim::FibreLayout::Braid, "braid"},
+                                                                                     {sim::FibreLayout::Single, "single"}}};
 };
 template <>
 struct sim::EnumNames<sim::EndCondition> {

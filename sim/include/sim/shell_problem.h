@@ -60,6 +60,11 @@ struct PrincipalValues {
 };
 PrincipalValues Principal(const MembraneMaterial& material, const Matrix32& F);
 
+// A fibre family's energy per rest area, (k/4)(I4 - 1)^2 with I4 = |F a|^2 when I4 > 1 (threads carry
+// no compression), for unit rest direction a in the triangle's rest frame and stiffness k (N/mm);
+// with its derivatives with respect to F's entries. Either pointer may be null (then not touched).
+double FibreDensity(const Matrix32& F, const double a[2], double stiffness, Vector6* gradient, Matrix6* hessian);
+
 // The bending angle of hinge (p0, p1, q, r) and its derivatives (see scripts/generate_hinge_angle.py):
 // 12-vector gradient and 12 x 12 Hessian over (p0, p1, q, r). Either pointer may be null.
 double HingeAngle(const Eigen::Matrix<double, 12, 1>& x, Eigen::Matrix<double, 12, 1>* gradient, Eigen::Matrix<double, 12, 12>* hessian);
@@ -101,6 +106,11 @@ struct ShellProblem {
     Anchor anchor;
     double restVolume = 0;                         // mm^3, caps included
     double meanEdgeMm = 1;                         // for the convergence tolerance
+    // Fibres: per wall triangle, up to two families' unit rest directions in its rest frame (the
+    // frame of MembraneRest::g).
+    std::vector<std::array<double, 4>> fibreDirections;
+    std::vector<int> fibreFamilies;                // per wall triangle: 0, 1 or 2
+    double fibreStiffness = 0;                     // N/mm per family
     int vertexCount() const { return rest.Size(); }
 };
 
@@ -149,7 +159,7 @@ enum class HessianKind {
 
 // Which terms to include (verification checks them one by one).
 struct EnergyTerms {
-    bool membrane = true, bending = true, pressure = true, force = true, anchor = true;
+    bool membrane = true, bending = true, pressure = true, force = true, anchor = true, fibres = true;
 };
 
 // The sparse pattern of a problem's Hessian over its unknowns, and where each element's entries go.
@@ -186,6 +196,18 @@ Status SolveVolume(const ShellProblem& problem, const SolverDef& solver, double 
 
 // Enclosed volume of positions x (caps included), summed compensated.
 double EnclosedVolume(const ShellProblem& problem, const Positions& x);
+
+// Sets a problem's fibre families from a fibre def (SHELL.md section 7): each wall triangle's
+// directions at its angle (by band or sector of its rest centroid) to the rest meridian, the tangent
+// of the surface along the axis. Empty error when the def is usable.
+void SetFibres(ShellProblem& problem, const FibreDef& fibres, double lengthMm, std::string* error);
+
+// Per wall triangle and family: the fibre's stretch (|F a|) and its angle to the axis (degrees) at
+// positions x.
+struct FibreState {
+    std::vector<double> stretch, angleDeg, restHeightMm;
+};
+FibreState FibreStates(const ShellProblem& problem, const Positions& x);
 
 // Whether two non-adjacent wall or cap triangles intersect (SHELL.md section 8).
 bool SelfIntersects(const ShellProblem& problem, const Positions& x);
