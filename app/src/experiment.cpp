@@ -564,8 +564,15 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             const Json& axes = sweep.Array("axes", 1, 2, "a list of one or two axes");
             for (size_t k = 0; k < axes.size(); ++k) {
                 e.sweep.axes.push_back(ParseAxis(ObjectReader(axes[k], sweep.Child("axes") + "[" + std::to_string(k) + "]", source)));
-                if (thesisModel && e.sweep.axes.back().parameter == sim::SweepParameter::PressureKpa)
+                const sim::SweepParameter parameter = e.sweep.axes.back().parameter;
+                if (thesisModel && parameter == sim::SweepParameter::PressureKpa)
                     sweep.Fail("a pressure_kpa axis needs a membrane or shell model (\"model\": {\"name\": \"shell\"}); the thesis model has no pressure in kPa", "axes");
+                if (parameter == sim::SweepParameter::FibreAngleDeg && (thesisModel || e.shell.fibres.layout == sim::FibreLayout::None ||
+                                                                         e.shell.fibres.layout == sim::FibreLayout::Meridian ||
+                                                                         e.shell.fibres.layout == sim::FibreLayout::Hoop))
+                    sweep.Fail("a fibre_angle_deg axis needs fibres at an angle: a membrane or shell model with \"fibres\": \"braid\" or \"single\"", "axes");
+                for (double v : e.sweep.axes.back().values)
+                    if (parameter == sim::SweepParameter::FibreAngleDeg && !(v >= -90 && v <= 90)) sweep.Fail("fibre angles lie from -90 to 90 degrees", "axes");
             }
             if (e.sweep.axes.size() == 2 && e.sweep.axes[0].parameter == e.sweep.axes[1].parameter) sweep.Fail("the two axes vary the same parameter", "axes");
             sweep.Finish();

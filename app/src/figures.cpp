@@ -37,6 +37,22 @@ std::string ShapeTitle(const sim::Shape& shape) {
     return title;
 }
 
+std::string FibreTitle(const sim::FibreDef& f) {
+    if (f.layout == sim::FibreLayout::None) return "";
+    if (f.layout == sim::FibreLayout::Meridian || f.layout == sim::FibreLayout::Hoop) return std::string(sim::Name(f.layout)) + " fibres";
+    const bool braid = f.layout == sim::FibreLayout::Braid && f.plus && f.minus;
+    std::string title = braid ? "braid" : "one fibre family";
+    if (!f.plus && !f.minus) return "fibres switched off";
+    const char* sign = braid ? "+/-" : (f.layout == sim::FibreLayout::Braid && !f.plus) ? "-" : "+";
+    std::vector<double> angles;
+    for (const auto& band : f.bands) angles.push_back(band.angleDeg);
+    for (double a : f.sectorAnglesDeg) angles.push_back(a);
+    if (angles.empty()) angles.push_back(f.angleDeg);
+    title += angles.size() > 1 ? (f.bands.empty() ? " by sector " : " by band ") : std::string(" ");
+    for (size_t k = 0; k < angles.size(); ++k) title += fmt::format("{}{}{:.0f}", k ? ", " : "", sign, angles[k]);
+    return title + " deg";
+}
+
 std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
     if (job.model == sim::ModelKind::Thesis) {

@@ -17,6 +17,7 @@
 namespace app {
 
 std::string ShapeTitle(const sim::Shape& shape);  // "sine  A = 4.1, phase 0.5 to pi-0.5"
+std::string FibreTitle(const sim::FibreDef& fibres);  // "braid +/-30 deg", "bands 20, 35 deg", "" without fibres
 // Status and the model's numbers: fitness and contraction (thesis), contraction at the pressure,
 // stretch against its limit and Newton iterations (membrane, shell); and the mesh size.
 std::string ResultLine(const sim::SimResult& result, const sim::EvalJob& job);

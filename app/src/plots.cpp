@@ -1,6 +1,8 @@
 #include "plots.h"
 
+#include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "errors.h"
 #include "render/plot.h"
@@ -13,6 +15,7 @@ std::string AxisLabel(sim::SweepParameter parameter) {
         case sim::SweepParameter::Cycles: return "cycles n (phase 0 to n pi)";
         case sim::SweepParameter::PhaseEnd: return "phase end (radians)";
         case sim::SweepParameter::PressureKpa: return "gauge pressure (kPa)";
+        case sim::SweepParameter::FibreAngleDeg: return "fibre angle to the axis (degrees)";
     }
     return "";
 }
@@ -48,6 +51,50 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
         plot.series.push_back(series);
         if (best >= 0) {
             plot.highlight = std::pair{axes[0].values[static_cast<size_t>(best)], fitness[static_cast<size_t>(best)]};
+            plot.highlightLabel = bestText;
+        }
+        return plots->RenderLines(title, {plot});
+    }
+    // A short axis (a few pressures, say) reads better as one curve per value than as a heat map.
+    const size_t shortAxis = axes[0].values.size() <= axes[1].values.size() ? 0 : 1, longAxis = 1 - shortAxis;
+    if (axes[shortAxis].values.size() <= 6 && axes[longAxis].values.size() > axes[shortAxis].values.size()) {
+        render::LinePlot plot;
+        plot.xLabel = AxisLabel(axes[longAxis].parameter);
+        plot.yLabel = FitnessLabel(e);
+        plot.zeroLine = true;
+        const render::Rgb colours[] = {{0.13f, 0.35f, 0.75f}, {0.85f, 0.45f, 0.10f}, {0.15f, 0.60f, 0.25f},
+                                       {0.60f, 0.20f, 0.65f}, {0.55f, 0.35f, 0.20f}, {0.30f, 0.30f, 0.30f}};
+        const size_t n1 = axes[1].values.size();
+        for (size_t s = 0; s < axes[shortAxis].values.size(); ++s) {
+            render::LineSeries series{fmt::format("{} = {:.4g}", sim::Name(axes[shortAxis].parameter), axes[shortAxis].values[s]), axes[longAxis].values, {},
+                                      colours[s % 6], true};
+            for (size_t k = 0; k < axes[longAxis].values.size(); ++k)
+                series.y.push_back(fitness[shortAxis == 0 ? s * n1 + k : k * n1 + s]);
+            plot.series.push_back(series);
+        }
+        if (axes[longAxis].parameter == sim::SweepParameter::FibreAngleDeg) {
+            // The ideal McKibben muscle's free contraction, 1 - cos(54.74 deg) / cos(alpha): what an
+            // inextensible braid on a wall of no stiffness reaches at any pressure.
+            // Drawn down to a little below the data: past about 70 degrees it falls away steeply.
+            double low = INFINITY, high = -INFINITY;
+            for (double f : fitness)
+                if (std::isfinite(f)) {
+                    low = std::min(low, f);
+                    high = std::max(high, f);
+                }
+            const double floor = std::isfinite(low) ? low - 0.25 * std::max(high - low, 1.0) : -50;
+            render::LineSeries ideal{"ideal McKibben muscle (inextensible braid, no wall)", {}, {}, {0.2f, 0.2f, 0.2f}, false};
+            for (double a = 0; a <= 89.01; a += 0.5) {
+                const double y = 100 * (1 - std::cos(54.7356 * std::numbers::pi / 180) / std::cos(a * std::numbers::pi / 180));
+                if (y < floor) break;
+                ideal.x.push_back(a);
+                ideal.y.push_back(y);
+            }
+            plot.series.push_back(ideal);
+        }
+        if (best >= 0) {
+            const size_t b = static_cast<size_t>(best);
+            plot.highlight = std::pair{axes[longAxis].values[shortAxis == 0 ? b % n1 : b / n1], fitness[b]};
             plot.highlightLabel = bestText;
         }
         return plots->RenderLines(title, {plot});

@@ -239,8 +239,10 @@ void RunEvolution(RunContext& c) {
     if (bestRun >= 0) {
         const auto& best = runs[bestRun].state.hallOfFame.front();
         const ArchiveRecord record = c.recorder.ReadBack({caches[bestRun]->IdOf(best.genome)}).at(0);
-        const std::string title = fmt::format("best of run {}: {}", bestRun + 1,
+        std::string title = fmt::format("best of run {}: {}", bestRun + 1,
                                               e.ga.genome.kind == sim::GenomeKind::BSpline ? ShapeTitle(record.job.shape) : std::string("free-xy offsets"));
+        const std::string fibres = record.job.model == sim::ModelKind::Thesis ? "" : FibreTitle(record.job.shell.fibres);
+        if (!fibres.empty()) title += ",  " + fibres;
         WriteBestFigures(c, c.dir, record.job, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
     }
 }

@@ -29,6 +29,7 @@ std::string PointTitle(const sim::EvalJob& job, const std::vector<sim::SweepAxis
     std::string title = ShapeTitle(job.shape);
     for (const auto& axis : axes)
         if (axis.parameter == sim::SweepParameter::PressureKpa) title += fmt::format(",  {:.4g} kPa", job.shell.load.pressureKpa);
+        else if (axis.parameter == sim::SweepParameter::FibreAngleDeg) title += fmt::format(",  fibres at {:.4g} deg", job.shell.fibres.angleDeg);
     return title;
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 
 #include "archive.h"
 #include "csv.h"
@@ -56,6 +57,7 @@ struct Tally {
     std::map<std::string, int> statuses;
     int evaluated = 0, contracting = 0;
     double bestContraction = NAN;
+    std::optional<ArchiveRecord> best;  // the record of the best contraction (no meshes)
 };
 
 Tally TallyOf(const fs::path& archive) {
@@ -68,7 +70,10 @@ Tally TallyOf(const fs::path& archive) {
         ++t.statuses[sim::Name(r.result.status)];
         if (r.result.status == sim::Status::Ok) {
             if (r.result.contractionPercent > 0) ++t.contracting;
-            if (!(r.result.contractionPercent <= t.bestContraction)) t.bestContraction = r.result.contractionPercent;
+            if (!(r.result.contractionPercent <= t.bestContraction)) {
+                t.bestContraction = r.result.contractionPercent;
+                t.best = std::move(r);
+            }
         }
         return true;
     });
@@ -163,18 +168,31 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     md += "| experiment | designs evaluated | their statuses | thesis model's best (mesh units) | that design here | best here | best at 2x mesh | change |\n";
     md += "|---|---:|---|---:|---|---:|---:|---:|\n";
     int evaluated = 0, ok = 0, contracting = 0, thesisBestsValid = 0, thesisBests = 0;
+    int fibreEvaluated = 0, fibreOk = 0, fibreContracting = 0;
     double bestOverall = NAN;
+    // The best design of the isotropic experiments and of those with fibres, with their records.
+    struct Best {
+        const ChapterRow* row = nullptr;
+        std::optional<ArchiveRecord> record;
+    } bestIsotropic, bestWithFibres;
     int meshChecked = 0, meshWithin = 0;
     std::string bestWhere;
     for (const ChapterRow& row : chapter.rows) {
-        const Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");
-        evaluated += tally.evaluated;
-        contracting += tally.contracting;
-        ok += tally.statuses.count("ok") ? tally.statuses.at("ok") : 0;
+        Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");
+        const bool fibres = row.physical->experiment.shell.fibres.layout != sim::FibreLayout::None;
+        const int okHere = tally.statuses.count("ok") ? tally.statuses.at("ok") : 0;
+        (fibres ? fibreEvaluated : evaluated) += tally.evaluated;
+        (fibres ? fibreContracting : contracting) += tally.contracting;
+        (fibres ? fibreOk : ok) += okHere;
         const double best = row.physical->outcome.bestFitness;
-        if (std::isfinite(best) && !(best <= bestOverall)) {
+        if (!fibres && std::isfinite(best) && !(best <= bestOverall)) {
             bestOverall = best;
             bestWhere = row.physical->experiment.id;
+        }
+        Best& slot = fibres ? bestWithFibres : bestIsotropic;
+        if (tally.best && (!slot.record || tally.best->result.contractionPercent > slot.record->result.contractionPercent)) {
+            slot.row = &row;
+            slot.record = std::move(tally.best);
         }
         const double fine = row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
         const MeshChange change = ChangeOf(best, fine);
@@ -197,7 +215,8 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
 
     // The finding, from the numbers.
     md += "**Finding.** ";
-    md += fmt::format("Of {} designs evaluated under the `{}` model at {:g} kPa, {} reached equilibrium", evaluated, model, first.shell.load.pressureKpa, ok);
+    md += fmt::format("Of {} isotropic designs (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium", evaluated, model,
+                      first.shell.load.pressureKpa, ok);
     if (contracting == 0)
         md += " and every one of them lengthened: none contracts. The thesis's premise, that shaping an isotropic tube makes it contract "
               "when inflated, does not hold in a model with equilibrium and units. Shaped tubes of one isotropic silicone balloon and "
@@ -211,6 +230,29 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
         md += fmt::format(" Mesh convergence (SHELL.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
                           "under 1 % contraction, within 0.05 percentage points): {} of {} best designs pass{}.",
                           meshWithin, meshChecked, meshWithin == meshChecked ? "" : "; the others (marked **) need a finer mesh than the default to be trusted");
+    if (fibreEvaluated > 0) {
+        md += fmt::format("\n\n**With fibres.** Of {} designs with a braid on the wall, {} reached equilibrium and {} contracted.", fibreEvaluated, fibreOk,
+                          fibreContracting);
+        auto describe = [&](const Best& b, const char* what) {
+            if (!b.record) return;
+            const sim::ShellOutputs& o = b.record->result.shell;
+            md += fmt::format(" The best {} design (experiment {}): contraction {:+.2f} % at {:g} kPa, blocking force {} N, largest stretch {:.2f} (limit {:.2f})",
+                              what, b.row->physical->experiment.id, b.record->result.contractionPercent, o.targetPressureKpa,
+                              Cell(o.blockingForceN), o.maxStretch, o.stretchLimit);
+            if (std::isfinite(o.fibreAngleDeg)) md += fmt::format(", braid at {:.0f} deg to the axis at that pressure, fibre strain {:.2f} %", o.fibreAngleDeg,
+                                                                 100 * o.maxFibreStrain);
+            md += ".";
+        };
+        describe(bestWithFibres, "fibre-reinforced");
+        describe(bestIsotropic, "isotropic");
+        md += "\n\n";
+        for (const Best* b : {&bestWithFibres, &bestIsotropic}) {
+            if (!b->row) continue;
+            for (const auto& figure : b->row->physical->outcome.figures)
+                if (figure == "best_inflation.png" || figure == "best_pressure_curve.png")
+                    md += "![" + b->row->physical->experiment.id + " " + figure + "](" + b->row->physical->folder + "/" + figure + ")\n";
+        }
+    }
     md += fmt::format("\n\nThe comparison took {:.0f} s; its numbers are in [`{}/comparison.csv`]({}/comparison.csv).\n\n", chapter.seconds,
                       chapter.folder, chapter.folder);
 

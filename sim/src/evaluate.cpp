@@ -42,11 +42,13 @@ std::string JobError(const EvalJob& job) {
 
 double SweepValue(const EvalJob& job, SweepParameter parameter) {
     if (parameter == SweepParameter::PressureKpa) return job.model == ModelKind::Thesis ? NAN : job.shell.load.pressureKpa;
+    if (parameter == SweepParameter::FibreAngleDeg) return job.model == ModelKind::Thesis ? NAN : job.shell.fibres.angleDeg;
     return SweepParameterValue(job.shape, parameter);
 }
 
 EvalJob WithSweepValue(EvalJob job, SweepParameter parameter, double value) {
     if (parameter == SweepParameter::PressureKpa) job.shell.load.pressureKpa = value;
+    else if (parameter == SweepParameter::FibreAngleDeg) job.shell.fibres.angleDeg = value;
     else job.shape = WithSweepParameter(job.shape, parameter, value);
     return job;
 }

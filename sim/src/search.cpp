@@ -17,7 +17,8 @@ double SweepParameterValue(const Shape& shape, SweepParameter parameter) {
             case SweepParameter::Amplitude: return sine.amplitude;
             case SweepParameter::Cycles: return (sine.phaseEnd - sine.phaseStart) / std::numbers::pi;
             case SweepParameter::PhaseEnd: return sine.phaseEnd;
-            case SweepParameter::PressureKpa: break;
+            case SweepParameter::PressureKpa:
+            case SweepParameter::FibreAngleDeg: break;
         }
         return std::nan("");
     };
@@ -32,7 +33,8 @@ Shape WithSweepParameter(Shape shape, SweepParameter parameter, double value) {
             case SweepParameter::Amplitude: sine.amplitude = value; break;
             case SweepParameter::Cycles: sine.phaseEnd = sine.phaseStart + value * std::numbers::pi; break;
             case SweepParameter::PhaseEnd: sine.phaseEnd = value; break;
-            case SweepParameter::PressureKpa: break;
+            case SweepParameter::PressureKpa:
+            case SweepParameter::FibreAngleDeg: break;
         }
     };
     if (auto* s = std::get_if<SineShape>(&shape)) write(*s);

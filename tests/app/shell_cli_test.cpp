@@ -163,3 +163,74 @@ TEST_F(ShellCli, EvolveUnderTheMembraneModelDoesNotDependOnThreads) {
     ASSERT_EQ(logbook.size(), 3u);
     EXPECT_FALSE(logbook[1][2].empty()) << "generation 0 has a best contraction";
 }
+
+// Fibres from the command line and from experiment files; bad fibre input refused.
+TEST_F(ShellCli, FibresReachTheModelAndBadFibreInputIsRefused) {
+    const Result braid = Run("simulate --model membrane --shape cylinder --fibres braid --fibre-angle-deg 30 --fibre-stiffness-n-per-mm 40" + kSmall);
+    ASSERT_EQ(braid.exitCode, 0) << braid.err;
+    const auto json = nlohmann::json::parse(braid.out);
+    EXPECT_GT(json["contraction_percent"].get<double>(), 0) << "a braid at 30 degrees makes the tube contract";
+    EXPECT_EQ(json["model"]["fibres"], "braid");
+    EXPECT_EQ(json["model"]["fibre_angle_deg"], 30);
+    EXPECT_GE(json["max_fibre_strain"].get<double>(), 0);
+    EXPECT_GT(json["fibre_angle_deg"].get<double>(), 30) << "the braid opens towards the magic angle";
+    ExpectRefused("simulate --model shell --fibres braid --fibre-angle-deg nan", "--fibre-angle-deg");
+    ExpectRefused("simulate --model shell --fibres braid --fibre-angle-deg 91", "--fibre-angle-deg");
+    ExpectRefused("simulate --model shell --fibres braid --fibre-stiffness-n-per-mm -2", "--fibre-stiffness-n-per-mm");
+    ExpectRefused("simulate --model shell --fibres knitted", "braid");
+    ExpectRefused("simulate --fibres braid", "membrane and shell");
+    const std::string sweep = R"("sweep": {"shape": {"family": "sine", "amplitude": 1}, "axes": [{"parameter": "fibre_angle_deg", "values": [20, 40]}]})";
+    Write("gap.json", R"({"model": {"name": "shell", "fibres": "braid", "fibre_bands": [{"from": 0, "to": 0.4, "angle_deg": 20},
+        {"from": 0.5, "to": 1, "angle_deg": 40}]}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("gap.json") + " --out " + Path("gap"), "cover the length");
+    Write("short.json", R"({"model": {"name": "shell", "fibres": "braid", "fibre_bands": [{"from": 0, "to": 0.7, "angle_deg": 20}]}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("short.json") + " --out " + Path("short"), "up to 1");
+    Write("none.json", R"({"model": {"name": "shell"}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("none.json") + " --out " + Path("none"), "fibre_angle_deg axis needs fibres");
+    Write("genes.json", R"({"model": {"name": "shell"}, "evolve": {"genome": {"kind": "bspline", "fibre_angles": 1}}})");
+    ExpectRefused("evolve " + Path("genes.json") + " --out " + Path("genes"), "fibre genes need fibres");
+    for (const char* folder : {"gap", "short", "none", "genes"}) EXPECT_FALSE(fs::exists(dir_ / folder / "evaluations.capnp")) << folder;
+}
+
+// A fibre angle sweep: the braid's angle is a sweep axis, and the magic angle shows in the numbers.
+TEST_F(ShellCli, AFibreAngleSweepCrossesZeroAtTheMagicAngle) {
+    Write("angles.json", R"({"id": "a", "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2},
+        "fibres": "braid"}, "sweep": {"shape": {"family": "sine", "amplitude": 1, "phase": ["pi/2", "pi/2"]},
+        "axes": [{"parameter": "pressure_kpa", "values": [2, 4]}, {"parameter": "fibre_angle_deg", "values": [35, 75]}]},
+        "render": {"thumbnails": false}})");
+    const Result r = Run("sweep " + Path("angles.json") + " --out " + Path("angles"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = app::ParseCsv(Slurp(dir_ / "angles" / "results.csv"));
+    ASSERT_EQ(rows.size(), 5u);
+    EXPECT_EQ(rows[0][2], "fibre_angle_deg");
+    for (size_t k = 1; k < rows.size(); ++k) {
+        const double angle = std::stod(rows[k][2]), contraction = std::stod(rows[k][4]);
+        EXPECT_EQ(contraction > 0, angle < 54.7) << "at " << rows[k][1] << " kPa and " << angle << " degrees";
+    }
+    testing_support::ExpectPicture(dir_ / "angles" / "landscape.png");
+}
+
+// The GA searches fibre genes beside the shape's, and they are archived with the design.
+TEST_F(ShellCli, TheGaSearchesFibreGenes) {
+    Write("genes.json", R"({"id": "g", "seed": 7, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16},
+        "load": {"pressure_kpa": 3, "steps": 1}, "fibres": "braid", "fibre_angle_deg": 40},
+        "evolve": {"runs": 1, "population": 6, "generations": 2, "elite": 1,
+                   "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [1, 3], "fibre_angles": 2, "fibre_switches": true}},
+        "render": {"figures": false, "thumbnails": false}})");
+    const Result r = Run("evolve " + Path("genes.json") + " --out " + Path("genes"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto fame = app::ParseCsv(Slurp(dir_ / "genes" / "run_1" / "halloffame.csv"));
+    ASSERT_GE(fame.size(), 2u);
+    // The genome: the spline's control points, then two angles and two switches.
+    const std::string genome = fame[1][2];
+    const std::string fibres = genome.substr(genome.find(';') + 1);
+    EXPECT_EQ(std::count(fibres.begin(), fibres.end(), ','), 3) << genome;
+    const auto log = app::ParseCsv(Slurp(dir_ / "genes" / "evaluations.csv"));
+    const size_t column = static_cast<size_t>(std::find(log[0].begin(), log[0].end(), "fibres") - log[0].begin());
+    ASSERT_LT(column, log[0].size());
+    EXPECT_EQ(log[1][column], "braid");
+    // The archive gives the fibres back: the best design replays to its fitness.
+    const Result replay = Run("simulate --from " + Path("genes/evaluations.capnp") + " --index 0");
+    ASSERT_EQ(replay.exitCode, 0) << replay.err;
+    EXPECT_EQ(nlohmann::json::parse(replay.out)["model"]["fibres"], "braid");
+}

@@ -427,7 +427,7 @@ Image MeshRendererGl::Render(const Scene& scene) {
         ImDrawList* draw = overlay.Begin(width, height);
         const ImU32 ink = IM_COL32(25, 25, 25, 255), grey = IM_COL32(70, 70, 70, 255);
         const float margin = fontSize * 0.7f;
-        draw->AddText(overlay.TitleFont(), fontSize * 1.37f, ImVec2(margin, margin * 0.8f), ink, scene.title.c_str());
+        overlay.DrawTitle(draw, fontSize * 1.37f, ImVec2(margin, margin * 0.8f), width - 2 * margin, ink, scene.title);
         float y = margin * 0.8f + fontSize * 1.7f;
         for (const std::string& line : scene.lines) {
             draw->AddText(overlay.TextFont(), fontSize, ImVec2(margin, y), grey, line.c_str());

@@ -1,5 +1,7 @@
 #include "overlay_context.h"
 
+#include <algorithm>
+
 #include <filesystem>
 
 #include "imgui_impl_opengl3.h"
@@ -56,6 +58,18 @@ ImDrawList* OverlayContext::Begin(int width, int height) {
 void OverlayContext::End() {
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void OverlayContext::DrawTitle(ImDrawList* draw, float size, ImVec2 at, float maxWidth, ImU32 colour, const std::string& title) const {
+    float width = titleFont_->CalcTextSizeA(size, FLT_MAX, 0, title.c_str()).x;
+    if (width > maxWidth) size = std::max(size * 0.65f, size * maxWidth / width);
+    std::string text = title;
+    while (text.size() > 4 && titleFont_->CalcTextSizeA(size, FLT_MAX, 0, text.c_str()).x > maxWidth) {
+        text.resize(text.size() - 4);
+        while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80) text.pop_back();  // whole UTF-8 characters
+        text += "...";
+    }
+    draw->AddText(titleFont_, size, at, colour, text.c_str());
 }
 
 }  // namespace render

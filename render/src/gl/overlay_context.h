@@ -24,6 +24,10 @@ public:
     ImFont* TitleFont() const { return titleFont_; }
     float FontSize() const { return fontSize_; }  // body text size in frame-buffer pixels
 
+    // A title at (x, y) in the title font at `size`, shrunk (to 65 %) to fit `maxWidth`, then cut
+    // with "..." if it still does not: a long design name never runs off the picture.
+    void DrawTitle(ImDrawList* draw, float size, ImVec2 at, float maxWidth, ImU32 colour, const std::string& title) const;
+
 private:
     ImGuiContext* context_ = nullptr;
     bool backendStarted_ = false;

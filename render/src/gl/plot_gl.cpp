@@ -122,7 +122,7 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
     ImDrawList* draw = Begin();
     const OverlayContext& o = overlay;
     const float W = float(width * kSupersample), H = float(height * kSupersample), fs = o.FontSize();
-    draw->AddText(o.TitleFont(), fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), kInk, title.c_str());
+    o.DrawTitle(draw, fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), W - fs * 1.4f, kInk, title);
 
     // One y range for all plots, so runs side by side compare at a glance.
     double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
@@ -220,7 +220,7 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
     ImDrawList* draw = Begin();
     const OverlayContext& o = overlay;
     const float W = float(width * kSupersample), H = float(height * kSupersample), fs = o.FontSize();
-    draw->AddText(o.TitleFont(), fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), kInk, title.c_str());
+    o.DrawTitle(draw, fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), W - fs * 1.4f, kInk, title);
 
     const size_t nx = h.xValues.size(), ny = h.yValues.size();
     double vMin = INFINITY, vMax = -INFINITY;

@@ -24,6 +24,7 @@ enum class SweepParameter {
     PhaseEnd,   // b: phase runs from phaseStart to b
     PressureKpa,  // the target gauge pressure of the membrane and shell models: a load, not a shape
                   // parameter (sweeps over jobs: SweepJobs in batch.h)
+    FibreAngleDeg,  // the fibres' angle to the meridian (membrane and shell models with fibres)
 };
 
 // A sine or abs-sine shape's value of a sweep parameter (NaN for other shapes and for PressureKpa),
@@ -143,9 +144,10 @@ std::string GenomeText(const Genome& genome);
 
 template <>
 struct EnumNames<SweepParameter> {
-    static constexpr std::array<std::pair<SweepParameter, const char*>, 4> table{{
+    static constexpr std::array<std::pair<SweepParameter, const char*>, 5> table{{
         {SweepParameter::Amplitude, "amplitude"}, {SweepParameter::Cycles, "cycles"}, {SweepParameter::PhaseEnd, "phase_end"},
-        {SweepParameter::PressureKpa, "pressure_kpa"}}};
+        {SweepParameter::PressureKpa, "pressure_kpa"},
+        {SweepParameter::FibreAngleDeg, "fibre_angle_deg"}}};
 };
 template <>
 struct EnumNames<GenomeKind> {
