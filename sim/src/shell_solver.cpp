@@ -244,7 +244,7 @@ struct Solver {
 
 double Contraction(const ShellProblem& p, const Eigen::VectorXd& q, double length) {
     const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
-    return -100 * u / length;
+    return (0.0 - 100 * u) / length;  // +0, not -0, when the clamp is held
 }
 
 void MaxStretchAndStress(const ShellProblem& p, const Positions& x, double* stretch, double* stress) {
