@@ -135,8 +135,9 @@ public:
                 words += ReplyWords(jobs.back());
             }
             // Bounded by work and by the reply: a call inside the other limits could still need
-            // many gigabytes (4,096 shapes of 65,536 vertices) or hours.
-            if (work > limits_.maxWork)
+            // many gigabytes (4,096 shapes of 65,536 vertices) or hours. One shape alone is bounded by
+            // the vertex and iteration limits (a shell job's estimate counts its whole Newton budget).
+            if (jobs.size() > 1 && work > limits_.maxWork)
                 throw std::runtime_error("the call asks for " + std::to_string(work) + " vertex-iterations, more than " +
                                          std::to_string(limits_.maxWork) + "; split it (see info)");
             if (words > limits_.maxReplyWords)

@@ -127,6 +127,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         const std::string model = sim::Name(row.physical->experiment.model);
         if (slots[k].fine) {
             row.fine = std::move(result);
+            row.fineEvaluated = true;
             return;
         }
         row.thesisBestHere = std::move(result);
@@ -140,7 +141,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
                               "mesh_change_relative_percent"});
     for (const ChapterRow& row : chapter.rows) {
         const double best = row.physical->outcome.bestFitness;
-        const double fine = row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
+        const double fine = row.fineEvaluated && row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
         int evaluated = 0;
         for (const auto& [status, count] : row.statuses) evaluated += count;
         csv += CsvRow({row.physical->experiment.id, row.physical->experiment.compare, std::to_string(evaluated), CsvField(StatusText(row.statuses)),
@@ -194,7 +195,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
             slot.row = &row;
             slot.record = std::move(tally.best);
         }
-        const double fine = row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
+        const double fine = row.fineEvaluated && row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
         const MeshChange change = ChangeOf(best, fine);
         if (std::isfinite(change.points)) {
             ++meshChecked;

@@ -22,6 +22,7 @@ struct ChapterRow {
     std::map<std::string, int> statuses;    // of the re-run's evaluations, by status name
     sim::SimResult thesisBestHere;          // the thesis model's best design under the physical model
     sim::SimResult fine;                    // the re-run's best at twice the mesh in both directions
+    bool fineEvaluated = false;             // false when there was no best to re-run
     std::string thesisBestFigure, bestFigure;  // pictures under `folder`, relative to the report
 };
 

@@ -113,7 +113,7 @@ struct FibreDef {
 
 struct SolverDef {
     double tolerance = 1e-8;   // converged when the largest free-node force is below this x mu h l
-    int maxIterations = 50;    // Newton iterations per load step
+    int maxIterations = 200;   // Newton iterations per load step (wrinkled walls need 100+)
     int maxBisections = 6;     // a failed step is halved at most this often (down to 1/64)
     bool selfContact = true;   // check every converged state for self-intersection
 };
