@@ -1,0 +1,314 @@
+// The optimizers' plain parts: objectives, fixed-length genomes, the parameter table, checks and
+// Pareto dominance. The pagmo loop is in optimize_pagmo.cpp.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "sim/optimize.h"
+
+namespace sim {
+
+bool IsMultiObjective(Algorithm algorithm) { return algorithm == Algorithm::Nsga2 || algorithm == Algorithm::Moead; }
+
+// [SECTION] Objectives ----------------------------------------------------------------------------
+
+bool MaximisedByDefault(ObjectiveKind kind) { return kind != ObjectiveKind::MaxStretch && kind != ObjectiveKind::VolumeChange; }
+
+std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
+    const bool thesis = model == ModelKind::Thesis;
+    if (kind == ObjectiveKind::ThesisFitness && !thesis)
+        return fmt::format("objective thesis_fitness is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
+                           "max_stretch and volume_change",
+                           Name(model));
+    if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness)
+        return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness and contraction (use the "
+                           "membrane or shell model)",
+                           Name(kind));
+    return "";
+}
+
+double ObjectiveValue(ObjectiveKind kind, const SimResult& r) {
+    if (r.status != Status::Ok) return NAN;
+    const ShellOutputs& s = r.shell;
+    switch (kind) {
+        case ObjectiveKind::Contraction: return r.contractionPercent;
+        case ObjectiveKind::ThesisFitness: return r.fitness;
+        case ObjectiveKind::BlockingForce: return s.blockingForceN;
+        case ObjectiveKind::AxialStiffness: return s.axialStiffnessNPerMm;
+        case ObjectiveKind::MaxStretch: return s.maxStretch;
+        case ObjectiveKind::VolumeChange: return 100.0 * (s.volumeMm3 / s.restVolumeMm3 - 1.0);
+    }
+    return NAN;
+}
+
+const char* ObjectiveUnit(ObjectiveKind kind) {
+    switch (kind) {
+        case ObjectiveKind::Contraction: return "contraction, %";
+        case ObjectiveKind::ThesisFitness: return "thesis fitness, mesh units";
+        case ObjectiveKind::BlockingForce: return "blocking force, N";
+        case ObjectiveKind::AxialStiffness: return "axial stiffness, N/mm";
+        case ObjectiveKind::MaxStretch: return "largest stretch";
+        case ObjectiveKind::VolumeChange: return "volume change, %";
+    }
+    return "?";
+}
+
+std::vector<double> MinimisedForm(const OptimizerDef& def, const DesignScore& score) {
+    std::vector<double> f(def.objectives.size(), kFailedPenalty);
+    if (score.status != Status::Ok) return f;
+    for (size_t k = 0; k < f.size(); ++k) {
+        const double v = k < score.values.size() ? score.values[k] : NAN;
+        // A valid design without this output (a blocked solve that failed) counts as failed here.
+        if (std::isfinite(v)) f[k] = def.objectives[k].maximise ? -v : v;
+    }
+    return f;
+}
+
+std::vector<size_t> NonDominated(const std::vector<std::vector<double>>& points) {
+    auto dominates = [](const std::vector<double>& a, const std::vector<double>& b) {
+        bool better = false;
+        for (size_t k = 0; k < a.size(); ++k) {
+            if (a[k] > b[k]) return false;
+            if (a[k] < b[k]) better = true;
+        }
+        return better;
+    };
+    std::vector<size_t> front;
+    for (size_t i = 0; i < points.size(); ++i) {
+        bool dominated = false;
+        for (size_t j = 0; j < points.size() && !dominated; ++j) dominated = j != i && dominates(points[j], points[i]);
+        // Of equal points, the first stands for them all.
+        for (size_t j = 0; j < i && !dominated; ++j) dominated = points[j] == points[i];
+        if (!dominated) front.push_back(i);
+    }
+    return front;
+}
+
+// [SECTION] Genomes -------------------------------------------------------------------------------
+
+namespace {
+
+int FibreGeneCount(const GenomeDef& g) { return g.fibreAngles + (g.fibreSwitches ? 2 : 0); }
+
+bool IsSine(VectorFamily f) { return f == VectorFamily::Sine || f == VectorFamily::AbsSine; }
+
+}  // namespace
+
+std::pair<std::vector<double>, std::vector<double>> VectorBounds(const VectorGenomeDef& def, const MeshDef& mesh) {
+    std::vector<double> lo, hi;
+    auto add = [&](double a, double b, int times) {
+        for (int k = 0; k < times; ++k) {
+            lo.push_back(a);
+            hi.push_back(b);
+        }
+    };
+    const GenomeDef& g = def.genes;
+    if (IsSine(def.family)) {
+        for (const auto& range : {def.amplitude, def.phaseStart, def.phaseEnd})
+            if (range[0] != range[1]) add(range[0], range[1], 1);
+    } else if (def.family == VectorFamily::BSpline) {
+        // Each integer gets an equal share of the real line: [min - 0.5, max + 0.5) rounds onto it.
+        add(g.controlMin - 0.5, g.controlMax + 0.5, g.splines * def.controlPoints);
+    } else {
+        add(-g.bound, g.bound, 2 * VertexCount(mesh));
+    }
+    add(g.fibreAngleMin, g.fibreAngleMax, g.fibreAngles);
+    add(0, 1, g.fibreSwitches ? 2 : 0);
+    return {lo, hi};
+}
+
+std::vector<std::string> VectorGeneNames(const VectorGenomeDef& def, const MeshDef& mesh) {
+    std::vector<std::string> names;
+    const GenomeDef& g = def.genes;
+    if (IsSine(def.family)) {
+        const char* labels[] = {"amplitude", "phase_start", "phase_end"};
+        const std::array<double, 2> ranges[] = {def.amplitude, def.phaseStart, def.phaseEnd};
+        for (int k = 0; k < 3; ++k)
+            if (ranges[k][0] != ranges[k][1]) names.push_back(labels[k]);
+    } else if (def.family == VectorFamily::BSpline) {
+        for (int s = 0; s < g.splines; ++s)
+            for (int c = 0; c < def.controlPoints; ++c) names.push_back(fmt::format("spline{}.c{}", s + 1, c + 1));
+    } else {
+        for (int v = 0; v < VertexCount(mesh); ++v) {
+            names.push_back(fmt::format("dx{}", v));
+            names.push_back(fmt::format("dy{}", v));
+        }
+    }
+    for (int k = 0; k < g.fibreAngles; ++k) names.push_back(g.fibreAngles == 1 ? std::string("fibre_angle_deg") : fmt::format("fibre_angle_deg{}", k + 1));
+    if (g.fibreSwitches) {
+        names.push_back("fibre_plus_on");
+        names.push_back("fibre_minus_on");
+    }
+    return names;
+}
+
+VectorDesign DesignOfVector(const VectorGenomeDef& def, const std::vector<double>& x, const MeshDef& mesh) {
+    const GenomeDef& g = def.genes;
+    const auto [lo, hi] = VectorBounds(def, mesh);
+    // pagmo keeps vectors inside their bounds; clamping here keeps a hand-made one in them too.
+    auto gene = [&](size_t k) { return std::clamp(k < x.size() ? x[k] : lo[k], lo[k], hi[k]); };
+    VectorDesign d;
+    size_t k = 0;
+    if (IsSine(def.family)) {
+        double values[3];
+        const std::array<double, 2> ranges[] = {def.amplitude, def.phaseStart, def.phaseEnd};
+        for (int p = 0; p < 3; ++p) values[p] = ranges[p][0] == ranges[p][1] ? ranges[p][0] : gene(k++);
+        if (def.family == VectorFamily::Sine) d.shape = SineShape{values[0], values[1], values[2]};
+        else d.shape = AbsSineShape{values[0], values[1], values[2]};
+    } else if (def.family == VectorFamily::BSpline) {
+        // The thesis's control points are integers: the one place a real gene is rounded (half up,
+        // and the top of the range onto the largest integer).
+        BSplineShape b;
+        b.region = g.region;
+        for (int s = 0; s < g.splines; ++s) {
+            std::vector<double> control;
+            for (int c = 0; c < def.controlPoints; ++c)
+                control.push_back(std::min<double>(g.controlMax, std::floor(gene(k++) + 0.5)));
+            b.splines.push_back(control);
+        }
+        d.genome = b.splines;
+        d.shape = std::move(b);
+    } else {
+        FreeXYShape f;
+        const size_t n = static_cast<size_t>(VertexCount(mesh));
+        std::vector<double> offsets;
+        for (size_t v = 0; v < n; ++v) {
+            f.dx.push_back(gene(k++));
+            f.dy.push_back(gene(k++));
+            offsets.push_back(f.dx.back());
+            offsets.push_back(f.dy.back());
+        }
+        d.genome.push_back(offsets);
+        d.shape = std::move(f);
+    }
+    if (FibreGeneCount(g) > 0) {
+        std::vector<double> fibres;
+        for (int a = 0; a < g.fibreAngles; ++a) fibres.push_back(gene(k++));
+        for (int s = 0; g.fibreSwitches && s < 2; ++s) fibres.push_back(gene(k++) >= 0.5 ? 1.0 : 0.0);
+        d.genome.push_back(fibres);
+    }
+    return d;
+}
+
+// [SECTION] Parameters and checks -----------------------------------------------------------------
+
+const std::vector<AlgorithmParameter>& AlgorithmParameters() {
+    // pagmo 2.18's own defaults, except where noted.
+    static const std::vector<AlgorithmParameter> table{
+        {Algorithm::Cmaes, "sigma0", 0.3, 1e-6, 1, false, "initial step size sigma0 (pagmo: 0.5)"},
+        {Algorithm::Cmaes, "cc", -1, -1, 1, false, "backward time horizon for the evolution path (-1: automatic)"},
+        {Algorithm::Cmaes, "cs", -1, -1, 1, false, "makes partly up for the small variance loss in case the indicator is zero (-1: automatic)"},
+        {Algorithm::Cmaes, "c1", -1, -1, 1, false, "learning rate for the rank-one update of the covariance matrix (-1: automatic)"},
+        {Algorithm::Cmaes, "cmu", -1, -1, 1, false, "learning rate for the rank-mu update of the covariance matrix (-1: automatic)"},
+        {Algorithm::Xnes, "sigma0", 0.3, 1e-6, 1, false, "initial step size sigma0 (pagmo: automatic)"},
+        {Algorithm::Xnes, "eta_mu", -1, -1, 1, false, "learning rate for the mean (-1: automatic)"},
+        {Algorithm::Xnes, "eta_sigma", -1, -1, 1, false, "learning rate for the step size (-1: automatic)"},
+        {Algorithm::Xnes, "eta_b", -1, -1, 1, false, "learning rate for the covariance (-1: automatic)"},
+        {Algorithm::De, "F", 0.8, 0, 1, false, "weight coefficient of the difference vectors"},
+        {Algorithm::De, "CR", 0.9, 0, 1, false, "crossover probability"},
+        {Algorithm::De, "variant", 2, 1, 10, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"},
+        {Algorithm::Sade, "variant", 2, 1, 18, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"},
+        {Algorithm::Sade, "variant_adptv", 1, 1, 2, true, "self-adaptation: 1 jDE, 2 iDE"},
+        {Algorithm::Pso, "omega", 0.7298, 0, 1, false, "inertia weight (or constriction factor)"},
+        {Algorithm::Pso, "eta1", 2.05, 0, 4, false, "social component"},
+        {Algorithm::Pso, "eta2", 2.05, 0, 4, false, "cognitive component"},
+        {Algorithm::Pso, "max_vel", 0.5, 1e-6, 1, false, "largest velocity, as a fraction of each gene's range"},
+        {Algorithm::Pso, "variant", 5, 1, 6, true, "algorithm variant (pagmo's numbering; 5: canonical with constriction)"},
+        {Algorithm::Pso, "neighb_type", 2, 1, 4, true, "swarm topology: 1 gbest, 2 lbest, 3 Von Neumann, 4 adaptive random"},
+        {Algorithm::Pso, "neighb_param", 4, 1, 1000, true, "topology parameter (lbest: neighbours)"},
+        {Algorithm::Nsga2, "cr", 0.95, 0, 0.999999, false, "crossover probability"},
+        {Algorithm::Nsga2, "eta_c", 10, 1, 100, false, "distribution index of the crossover"},
+        {Algorithm::Nsga2, "m", 0.01, 0, 1, false, "mutation probability"},
+        {Algorithm::Nsga2, "eta_m", 50, 1, 100, false, "distribution index of the mutation"},
+        {Algorithm::Moead, "neighbours", 10, 2, 10000, true, "size of each weight's neighbourhood (pagmo: 20); smaller than the population"},
+        {Algorithm::Moead, "CR", 1, 0, 1, false, "crossover parameter of the DE operator"},
+        {Algorithm::Moead, "F", 0.5, 0, 1, false, "scale factor of the DE operator"},
+        {Algorithm::Moead, "eta_m", 20, 0, 100, false, "distribution index of the polynomial mutation"},
+        {Algorithm::Moead, "realb", 0.9, 0, 1, false, "chance that the mating pool is the neighbourhood"},
+        {Algorithm::Moead, "limit", 2, 1, 10000, true, "most parents replaced by one child"},
+    };
+    return table;
+}
+
+double ParameterValue(const OptimizerDef& def, const char* name) {
+    if (auto given = def.parameters.find(name); given != def.parameters.end()) return given->second;
+    for (const AlgorithmParameter& p : AlgorithmParameters())
+        if (p.algorithm == def.algorithm && std::string(p.name) == name) return p.defaultValue;
+    return NAN;
+}
+
+namespace {
+// pagmo's smallest populations (it throws otherwise, mid-run).
+int SmallestPopulation(Algorithm a) {
+    switch (a) {
+        case Algorithm::Cmaes: return 5;
+        case Algorithm::Xnes: return 5;
+        case Algorithm::De: return 5;
+        case Algorithm::Sade: return 7;
+        case Algorithm::Pso: return 2;
+        case Algorithm::Nsga2: return 8;
+        case Algorithm::Moead: return 4;
+    }
+    return 1;
+}
+}  // namespace
+
+std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const MeshDef& mesh) {
+    const char* name = Name(def.algorithm);
+    if (def.population < SmallestPopulation(def.algorithm) || def.population > 100000)
+        return fmt::format("{} needs a population of at least {} (got {})", name, SmallestPopulation(def.algorithm), def.population);
+    if (def.algorithm == Algorithm::Nsga2 && def.population % 4 != 0)
+        return fmt::format("nsga2 needs a population that is a multiple of 4 (got {}; try {})", def.population, (def.population + 3) / 4 * 4);
+    for (const auto& [key, value] : def.parameters) {
+        const AlgorithmParameter* found = nullptr;
+        std::string valid;
+        for (const AlgorithmParameter& p : AlgorithmParameters()) {
+            if (p.algorithm != def.algorithm) continue;
+            valid += (valid.empty() ? "" : ", ") + std::string(p.name);
+            if (key == p.name) found = &p;
+        }
+        if (!found) return fmt::format("{} has no parameter '{}' (valid: {})", name, key, valid);
+        if (!(value >= found->min && value <= found->max) || (found->integer && value != std::floor(value)))
+            return fmt::format("{} parameter '{}' must be {} in [{:g}, {:g}] (got {:g})", name, key, found->integer ? "an integer" : "a number",
+                               found->min, found->max, value);
+    }
+    if (def.algorithm == Algorithm::Moead && ParameterValue(def, "neighbours") >= def.population)
+        return fmt::format("moead's neighbours ({:g}) must be smaller than the population ({})", ParameterValue(def, "neighbours"), def.population);
+    if (def.objectives.empty()) return "at least one objective is needed";
+    const bool multi = IsMultiObjective(def.algorithm);
+    if (multi && def.objectives.size() < 2)
+        return fmt::format("{} optimises several objectives: give two or more (one objective: cmaes, xnes, de, sade or pso)", name);
+    if (!multi && def.objectives.size() != 1)
+        return fmt::format("{} optimises one objective (got {}); for several use nsga2 or moead", name, def.objectives.size());
+    for (size_t i = 0; i < def.objectives.size(); ++i) {
+        if (std::string e = ObjectiveError(def.objectives[i].kind, model); !e.empty()) return e;
+        for (size_t j = 0; j < i; ++j)
+            if (def.objectives[j].kind == def.objectives[i].kind) return fmt::format("objective {} is given twice", Name(def.objectives[i].kind));
+    }
+    const VectorGenomeDef& v = def.genome;
+    const GenomeDef& g = v.genes;
+    if (IsSine(v.family)) {
+        if (!(v.amplitude[0] <= v.amplitude[1]) || !(v.phaseStart[0] <= v.phaseStart[1]) || !(v.phaseEnd[0] <= v.phaseEnd[1]))
+            return "a sine gene's bounds are reversed (give the low end first)";
+        for (const auto& r : {v.amplitude, v.phaseStart, v.phaseEnd})
+            if (!std::isfinite(r[0]) || !std::isfinite(r[1])) return "a sine gene's bounds must be finite";
+    } else if (v.family == VectorFamily::BSpline) {
+        if (g.splines != 1 && g.splines != 2 && g.splines != 4) return "splines must be 1, 2 or 4";
+        if (g.controlMin > g.controlMax) return "the control point range is reversed (give the low end first)";
+        if (v.controlPoints < 4 || v.controlPoints > 64) return "a spline needs 4 to 64 control points";
+        if (g.splines > mesh.resolution) return "more splines than vertices per turn";
+    } else if (!(g.bound > 0) || !std::isfinite(g.bound)) {
+        return "free-xy bound must be > 0";
+    }
+    if (g.fibreAngles < 0 || g.fibreAngles > 64) return "fibre angle genes must number 0 to 64";
+    if (!(g.fibreAngleMin >= -90 && g.fibreAngleMax <= 90 && g.fibreAngleMin <= g.fibreAngleMax))
+        return "the fibre angle range must lie within -90 to 90 degrees, low end first";
+    if (g.HasFibreGenes() && model == ModelKind::Thesis) return "fibre genes need the membrane or shell model";
+    if (VectorBounds(v, mesh).first.empty()) return "the genome has no gene: every bound is fixed";
+    const StopDef& s = def.stop;
+    if (s.generations < 0 || s.evaluations < 0 || !(s.seconds >= 0) || s.stagnation < 0) return "stop criteria must not be negative";
+    if (std::isfinite(s.target) && multi) return "a target stops one objective's run; with several objectives use stagnation";
+    return "";
+}
+
+}  // namespace sim

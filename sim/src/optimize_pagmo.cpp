@@ -1,0 +1,272 @@
+// RunOptimizer: pagmo's algorithms stepped one generation at a time, each generation foreseen on
+// copies so that its designs are evaluated as one batch (see optimize.h). Built without
+// -march=native: pagmo's headers carry Eigen, and Debian's libpagmo was built for the baseline
+// x86-64, so both sides must agree on Eigen's alignment (a mismatch crashes in ~cmaes()).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <pagmo/algorithm.hpp>
+#include <pagmo/algorithms/cmaes.hpp>
+#include <pagmo/algorithms/de.hpp>
+#include <pagmo/algorithms/moead.hpp>
+#include <pagmo/algorithms/nsga2.hpp>
+#include <pagmo/algorithms/pso_gen.hpp>
+#include <pagmo/algorithms/sade.hpp>
+#include <pagmo/algorithms/xnes.hpp>
+#include <pagmo/population.hpp>
+#include <pagmo/problem.hpp>
+#include <pagmo/utils/hypervolume.hpp>
+
+#include "sim/optimize.h"
+
+namespace sim {
+namespace {
+
+// What the problem's fitness calls go to. Answering: from the results so far, else evaluated on
+// the spot (one design: the foresight missed it). Recording: every design asked for is noted and
+// answered with zeros; the copy that was recorded is then thrown away.
+struct Oracle {
+    const OptimizerDef* def = nullptr;
+    const VectorEvaluator* evaluate = nullptr;
+    bool recording = false;
+    std::map<std::vector<double>, size_t> known;  // vector -> index into run->evaluated
+    std::vector<std::vector<double>> asked;       // recording: new vectors, in the order asked
+    OptimizerRun* run = nullptr;
+    int generation = 0;
+
+    // Evaluates new vectors as one batch and records them.
+    void EvaluateBatch(const std::vector<std::vector<double>>& xs) {
+        std::vector<std::vector<double>> fresh;
+        for (const auto& x : xs)
+            if (!known.count(x) && std::find(fresh.begin(), fresh.end(), x) == fresh.end()) fresh.push_back(x);
+        if (fresh.empty()) return;
+        std::vector<DesignScore> scores = (*evaluate)(fresh);
+        for (size_t k = 0; k < fresh.size(); ++k) {
+            known.emplace(fresh[k], run->evaluated.size());
+            run->evaluated.push_back({fresh[k], k < scores.size() ? scores[k] : DesignScore{{}, Status::NaN}, generation});
+        }
+    }
+
+    pagmo::vector_double Fitness(const pagmo::vector_double& x) {
+        if (recording) {
+            if (!known.count(x) && std::find(asked.begin(), asked.end(), x) == asked.end()) asked.push_back(x);
+            return pagmo::vector_double(def->objectives.size(), 0.0);
+        }
+        if (!known.count(x)) {
+            ++run->unforeseen;
+            EvaluateBatch({x});
+        }
+        return MinimisedForm(*def, run->evaluated[known.at(x)].score);
+    }
+};
+
+// The user-defined problem pagmo sees: the genome's bounds and the oracle.
+struct DesignProblem {
+    std::shared_ptr<Oracle> oracle;
+    std::vector<double> lo, hi;
+    size_t objectives = 1;
+
+    pagmo::vector_double fitness(const pagmo::vector_double& x) const { return oracle->Fitness(x); }
+    std::pair<pagmo::vector_double, pagmo::vector_double> get_bounds() const { return {lo, hi}; }
+    pagmo::vector_double::size_type get_nobj() const { return objectives; }
+    std::string get_name() const { return "actuator design"; }
+    // Never evaluated on pagmo's threads: the oracle batches for the workbench's evaluator.
+    pagmo::thread_safety get_thread_safety() const { return pagmo::thread_safety::none; }
+};
+
+unsigned Seed32(std::uint64_t seed, std::uint64_t stream) { return static_cast<unsigned>(DeriveSeed(seed, stream) >> 32); }
+
+pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) {
+    auto p = [&](const char* name) { return ParameterValue(def, name); };
+    auto u = [&](const char* name) { return static_cast<unsigned>(ParameterValue(def, name)); };
+    // One generation per evolve() call, with memory, so that stepping equals one long call; pagmo's
+    // own tolerances off (0): the run's stop criteria decide.
+    switch (def.algorithm) {
+        case Algorithm::Cmaes: return pagmo::algorithm{pagmo::cmaes(1, p("cc"), p("cs"), p("c1"), p("cmu"), p("sigma0"), 0, 0, true, true, seed)};
+        case Algorithm::Xnes: return pagmo::algorithm{pagmo::xnes(1, p("eta_mu"), p("eta_sigma"), p("eta_b"), p("sigma0"), 0, 0, true, true, seed)};
+        case Algorithm::De: return pagmo::algorithm{pagmo::de(1, p("F"), p("CR"), u("variant"), 0, 0, seed)};
+        case Algorithm::Sade: return pagmo::algorithm{pagmo::sade(1, u("variant"), u("variant_adptv"), 0, 0, true, seed)};
+        case Algorithm::Pso:
+            return pagmo::algorithm{pagmo::pso_gen(1, p("omega"), p("eta1"), p("eta2"), p("max_vel"), u("variant"), u("neighb_type"), u("neighb_param"), true, seed)};
+        case Algorithm::Nsga2: return pagmo::algorithm{pagmo::nsga2(1, p("cr"), p("eta_c"), p("m"), p("eta_m"), seed)};
+        case Algorithm::Moead:
+            // "low discrepancy" weights work for any population size ("grid" does not).
+            return pagmo::algorithm{pagmo::moead(1, "low discrepancy", "tchebycheff", static_cast<pagmo::population::size_type>(p("neighbours")), p("CR"),
+                                                 p("F"), p("eta_m"), p("realb"), u("limit"), true, seed)};
+    }
+    return pagmo::algorithm{};
+}
+
+void SetOracle(pagmo::population& pop, std::shared_ptr<Oracle> oracle) { pop.get_problem().extract<DesignProblem>()->oracle = std::move(oracle); }
+
+// The statistics of a generation and of the run so far.
+OptimizerLogRow LogRow(const OptimizerDef& def, const OptimizerRun& run, const pagmo::population& pop, const std::map<std::vector<double>, size_t>& known,
+                       int generation) {
+    OptimizerLogRow row;
+    row.generation = generation;
+    row.evaluations = static_cast<long long>(run.evaluated.size());
+    const bool maximise = def.objectives[0].maximise;
+    auto better = [&](double a, double b) { return maximise ? a > b : a < b; };
+    std::vector<double> values;
+    for (const auto& x : pop.get_x()) {
+        const DesignScore& s = run.evaluated[known.at(x)].score;
+        if (s.status != Status::Ok || s.values.empty() || !std::isfinite(s.values[0])) {
+            ++row.invalid;
+            continue;
+        }
+        values.push_back(s.values[0]);
+    }
+    if (!values.empty()) {
+        double sum = 0, best = values[0], worst = values[0];
+        for (double v : values) {
+            sum += v;
+            if (better(v, best)) best = v;
+            if (better(worst, v)) worst = v;
+        }
+        row.mean = sum / static_cast<double>(values.size());
+        double squares = 0;
+        for (double v : values) squares += (v - row.mean) * (v - row.mean);
+        row.stddev = std::sqrt(squares / static_cast<double>(values.size()));
+        row.best = best;
+        row.worst = worst;
+    }
+    for (const EvaluatedDesign& d : run.evaluated)
+        if (d.score.status == Status::Ok && !d.score.values.empty() && std::isfinite(d.score.values[0]) &&
+            (std::isnan(row.bestSoFar) || better(d.score.values[0], row.bestSoFar)))
+            row.bestSoFar = d.score.values[0];
+    return row;
+}
+
+bool Valid(const OptimizerDef& def, const EvaluatedDesign& d) {
+    if (d.score.status != Status::Ok) return false;
+    for (double v : MinimisedForm(def, d.score))
+        if (v >= kFailedPenalty) return false;
+    return true;
+}
+
+// Front and hypervolume of every valid design so far (several objectives); the hall of fame (one).
+void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& row) {
+    std::vector<size_t> valid;
+    std::vector<std::vector<double>> points;
+    for (size_t k = 0; k < run.evaluated.size(); ++k)
+        if (Valid(def, run.evaluated[k])) {
+            valid.push_back(k);
+            points.push_back(MinimisedForm(def, run.evaluated[k].score));
+        }
+    if (def.objectives.size() == 1) {
+        std::vector<size_t> order(valid.size());
+        for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+        // Best first; ties keep the order of evaluation.
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return points[a][0] < points[b][0]; });
+        run.hallOfFame.clear();
+        for (size_t k = 0; k < order.size() && run.hallOfFame.size() < 10; ++k) run.hallOfFame.push_back(valid[order[k]]);
+        return;
+    }
+    run.front.clear();
+    for (size_t k : NonDominated(points)) run.front.push_back(valid[k]);
+    std::stable_sort(run.front.begin(), run.front.end(), [&](size_t a, size_t b) {
+        return MinimisedForm(def, run.evaluated[a].score)[0] < MinimisedForm(def, run.evaluated[b].score)[0];
+    });
+    row.frontSize = static_cast<int>(run.front.size());
+    // The reference point: fixed once there are valid designs, 10 % beyond the worst of them in
+    // each objective (and a little beyond when all are equal), so that hypervolumes compare across
+    // generations. Designs outside it do not count.
+    if (run.referencePoint.empty() && !points.empty()) {
+        run.referencePoint.assign(def.objectives.size(), 0.0);
+        for (size_t m = 0; m < def.objectives.size(); ++m) {
+            double lo = points[0][m], hi = points[0][m];
+            for (const auto& p : points) {
+                lo = std::min(lo, p[m]);
+                hi = std::max(hi, p[m]);
+            }
+            run.referencePoint[m] = hi + std::max(0.1 * (hi - lo), 1e-9 * std::max(1.0, std::fabs(hi)));
+        }
+    }
+    std::vector<pagmo::vector_double> inside;
+    for (size_t k : run.front) {
+        const auto p = MinimisedForm(def, run.evaluated[k].score);
+        bool in = !run.referencePoint.empty();
+        for (size_t m = 0; in && m < p.size(); ++m) in = p[m] < run.referencePoint[m];
+        if (in) inside.push_back(p);
+    }
+    row.hypervolume = inside.empty() ? 0.0 : pagmo::hypervolume(inside, true).compute(run.referencePoint);
+}
+
+// Why the run stops after this generation, or "".
+std::string StopReason(const OptimizerDef& def, const OptimizerRun& run) {
+    const StopDef& s = def.stop;
+    const OptimizerLogRow& last = run.logbook.back();
+    if (last.generation >= s.generations) return "generations";
+    if (s.evaluations > 0 && last.evaluations >= s.evaluations) return "evaluations";
+    if (std::isfinite(s.target) && std::isfinite(last.bestSoFar) && (def.objectives[0].maximise ? last.bestSoFar >= s.target : last.bestSoFar <= s.target))
+        return "target";
+    if (s.stagnation > 0 && static_cast<int>(run.logbook.size()) > s.stagnation) {
+        const OptimizerLogRow& then = run.logbook[run.logbook.size() - 1 - static_cast<size_t>(s.stagnation)];
+        const bool multi = def.objectives.size() > 1;
+        const double now = multi ? last.hypervolume : last.bestSoFar, before = multi ? then.hypervolume : then.bestSoFar;
+        const bool improved = multi ? now > before : (def.objectives[0].maximise ? now > before : now < before);
+        if (!improved && !(std::isnan(before) && std::isfinite(now))) return "stagnation";
+    }
+    return "";
+}
+
+}  // namespace
+
+OptimizerRun RunOptimizer(const OptimizerDef& def, const MeshDef& mesh, std::uint64_t seed, const VectorEvaluator& evaluate,
+                          const GenerationHook& onGeneration) {
+    OptimizerRun run;
+    auto oracle = std::make_shared<Oracle>();
+    oracle->def = &def;
+    oracle->evaluate = &evaluate;
+    oracle->run = &run;
+    auto recorder = std::make_shared<Oracle>(*oracle);
+    recorder->recording = true;
+
+    DesignProblem udp;
+    std::tie(udp.lo, udp.hi) = VectorBounds(def.genome, mesh);
+    udp.objectives = def.objectives.size();
+    udp.oracle = recorder;
+    const pagmo::problem problem{udp};
+    const unsigned populationSeed = Seed32(seed, 0), algorithmSeed = Seed32(seed, 1);
+    const auto size = static_cast<pagmo::population::size_type>(def.population);
+
+    // Generation 0: the random population, recorded, evaluated as one batch, then made for real
+    // (the same seed draws the same vectors).
+    { pagmo::population foreseen{problem, size, populationSeed}; }
+    oracle->EvaluateBatch(recorder->asked);
+    pagmo::problem answering = problem;
+    answering.extract<DesignProblem>()->oracle = oracle;
+    pagmo::population pop{answering, size, populationSeed};
+    pagmo::algorithm algorithm = MakeAlgorithm(def, algorithmSeed);
+
+    for (int generation = 0;; ++generation) {
+        if (generation > 0) {
+            oracle->generation = recorder->generation = generation;
+            // Foresee: the same step on copies, asking a recorder; then one batch.
+            pagmo::algorithm ahead = algorithm;
+            pagmo::population copy = pop;
+            SetOracle(copy, recorder);
+            recorder->known = oracle->known;
+            recorder->asked.clear();
+            ahead.evolve(copy);
+            oracle->EvaluateBatch(recorder->asked);
+            pop = algorithm.evolve(pop);
+        }
+        run.population = pop.get_x();
+        OptimizerLogRow row = LogRow(def, run, pop, oracle->known, generation);
+        UpdateBests(def, run, row);
+        run.logbook.push_back(row);
+        std::string reason = StopReason(def, run);
+        const bool anyValid = row.invalid < def.population;
+        if (reason.empty() && !anyValid && generation == 0) reason = "no valid design";
+        if (onGeneration && !onGeneration(run) && reason.empty()) reason = "stopped";
+        if (!reason.empty()) {
+            run.stopReason = reason;
+            return run;
+        }
+    }
+}
+
+}  // namespace sim
