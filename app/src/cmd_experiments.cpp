@@ -27,7 +27,8 @@ Experiment ExperimentToRun(const Cli& cli, const std::string& file, const std::s
 
 int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
     const char* command = evolve ? "evolve" : "sweep";
-    Cli cli(command, evolve ? "Runs an experiment's genetic algorithm (thesis chapter 5, DEAP's eaSimple plus elitism): as many independent runs as the file asks, "
+    Cli cli(command, evolve ? "Runs an experiment's genetic algorithm (thesis chapter 5, DEAP's eaSimple plus elitism; the 'evolve' block) or optimizer "
+                              "(pagmo's cmaes, xnes, de, sade, pso, nsga2 or moead; the 'optimizer' block): as many independent runs as the file asks, "
                               "each seeded from the experiment's seed. Same seed, same bytes, whatever --threads or --workers."
                             : "Evaluates every point of an experiment's 1-D or 2-D grid of sine shapes, or every shape of an experiment that lists them "
                               "('evaluate'), and draws the fitness landscape.");
@@ -38,9 +39,12 @@ int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
     cli.App().footer(evolve ? "Writes, per run, DIR/run_K/{logbook.csv, best_per_generation.csv, halloffame.csv, checkpoint.json} and\n"
                               "DIR/run_K/sheets/generation_NNN.png after every generation; then DIR/evolution.png, DIR/best_inflation.png,\n"
                               "DIR/best_stretch.png, DIR/report.md and DIR/summary.json. Every evaluation is in DIR/evaluations.capnp, DIR/evaluations.csv\n"
-                              "and DIR/thumbnails/ under one id. An interrupted run continues with --resume and ends as if never stopped.\n\n"
+                              "and DIR/thumbnails/ under one id. An interrupted run continues with --resume and ends as if never stopped.\n"
+                              "An optimizer with several objectives also writes DIR/run_K/pareto_front.csv, DIR/pareto_front.png (numbered front designs),\n"
+                              "DIR/pareto_designs.png (their contact sheet) and DIR/hypervolume.png.\n\n"
                               "Examples:\n  actuator evolve assets/experiments/5.2_bspline_middle.json --out runs/5.2\n"
                               "  actuator evolve --resume runs/5.2\n"
+                              "  actuator evolve assets/experiments/optimizers/O5.2_cmaes_shell.json --out runs/cmaes\n"
                               "  actuator evolve assets/experiments/5.2_bspline_middle.json --out runs/quick --set evolve.generations=3 --set seed=7\n"
                             : "Writes DIR/results.csv (one row per grid point or shape), DIR/landscape.png, DIR/contact_sheet.png,\n"
                               "DIR/best_inflation.png, DIR/best_stretch.png, DIR/report.md, DIR/summary.json, and every evaluation in DIR/evaluations.capnp,\n"
@@ -50,8 +54,9 @@ int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
     if (!cli.Parse(argc, argv, first)) return 0;
     const std::string dir = ResultsDir(cli, o);
     const Experiment e = ExperimentToRun(cli, file, dir, o);
-    if (evolve && e.kind != ExperimentKind::Evolve) throw UsageError(e.path + " describes no genetic algorithm: run it with 'actuator sweep'");
-    if (!evolve && e.kind == ExperimentKind::Evolve) throw UsageError(e.path + " describes a genetic algorithm: run it with 'actuator evolve'");
+    const bool searches = e.kind == ExperimentKind::Evolve || e.kind == ExperimentKind::Optimize;
+    if (evolve && !searches) throw UsageError(e.path + " describes no genetic algorithm or optimizer: run it with 'actuator sweep'");
+    if (!evolve && searches) throw UsageError(e.path + " describes a genetic algorithm or optimizer: run it with 'actuator evolve'");
     const auto evaluator = MakeEvaluator(cli, o);
     ResultsFolder folder(dir, ResultsMode(cli, o), command);
     RunOptions options;

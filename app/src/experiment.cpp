@@ -456,6 +456,107 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
     if (const std::string error = sim::GaDefError(ga, DesignMesh(e)); !error.empty()) evolve.Fail(error);
 }
 
+// "optimizer": {"algorithm": "cmaes", "runs": 1, "population": 16, "parameters": {"sigma0": 0.3},
+// "objectives": ["contraction", {"name": "max_stretch", "direction": "min"}],
+// "stop": {"generations": 20, "evaluations": 0, "seconds": 0, "target": 5, "stagnation": 0},
+// "genome": {"family": "bspline", "region": "middle", "splines": 1, "control_points": 8, ...}}.
+void ParseOptimizer(ObjectReader block, Experiment& e) {
+    sim::OptimizerDef& o = e.optimizer;
+    if (!block.Has("algorithm")) block.Fail("missing (required): " + sim::Choices<sim::Algorithm>(), "algorithm");
+    if (block.Get("algorithm") == "ga")
+        block.Fail("the thesis's GA (variable-length genomes) is the 'evolve' block; 'optimizer' takes " + sim::Choices<sim::Algorithm>(), "algorithm");
+    block.Enum("algorithm", o.algorithm);
+    block.Integer("runs", e.runs, 1, 100);
+    block.Integer("population", o.population, 1, 100000);
+    if (block.Has("parameters")) {
+        const Json& parameters = block.Get("parameters");
+        if (!parameters.is_object()) block.Fail("expected an object of the algorithm's parameters, e.g. {\"sigma0\": 0.3}", "parameters");
+        for (const auto& [key, value] : parameters.items()) o.parameters[key] = block.NumberValue(value, "parameters." + key, -1e9, 1e9);
+    }
+    if (block.Has("objectives")) {
+        o.objectives.clear();
+        const Json& list = block.Array("objectives", 1, 6, "a list of 1 to 6 objectives: names, or {\"name\": ..., \"direction\": \"max\" or \"min\"}");
+        for (size_t k = 0; k < list.size(); ++k) {
+            const std::string where = block.Child("objectives") + "[" + std::to_string(k) + "]";
+            sim::Objective objective;
+            std::string direction;
+            if (list[k].is_string()) {
+                const auto kind = sim::FromName<sim::ObjectiveKind>(list[k].get<std::string>());
+                if (!kind) block.Fail("unknown objective " + Shown(list[k]) + " (choose " + sim::Choices<sim::ObjectiveKind>() + ")", "objectives");
+                objective.kind = *kind;
+            } else {
+                ObjectReader item(list[k], where, block.Origin());
+                if (!item.Has("name")) item.Fail("missing (required): " + sim::Choices<sim::ObjectiveKind>(), "name");
+                item.Enum("name", objective.kind);
+                direction = item.String("direction", "");
+                if (!direction.empty() && direction != "max" && direction != "min") item.Fail("expected \"max\" or \"min\", got " + Quote(direction), "direction");
+                item.Finish();
+            }
+            objective.maximise = direction.empty() ? sim::MaximisedByDefault(objective.kind) : direction == "max";
+            o.objectives.push_back(objective);
+        }
+    }
+    if (block.Has("stop")) {
+        ObjectReader stop = block.Object("stop");
+        stop.Integer("generations", o.stop.generations, 0, 100000);
+        stop.Integer("evaluations", o.stop.evaluations, 0, 1ll << 40);
+        stop.Number("seconds", o.stop.seconds, 0, 1e9);
+        stop.Number("target", o.stop.target, -1e12, 1e12);
+        stop.Integer("stagnation", o.stop.stagnation, 0, 100000);
+        stop.Finish();
+    }
+    ObjectReader genome = block.Object("genome");
+    sim::VectorGenomeDef& v = o.genome;
+    sim::GenomeDef& g = v.genes;
+    if (!genome.Has("family")) genome.Fail("missing (required): " + sim::Choices<sim::VectorFamily>(), "family");
+    genome.Enum("family", v.family);
+    auto range = [&](const char* key, std::array<double, 2>& target, double min, double max) {
+        const auto r = genome.Range(key, {target[0], target[1]}, min, max);
+        target = {r.first, r.second};
+    };
+    switch (v.family) {
+        case sim::VectorFamily::Sine:
+        case sim::VectorFamily::AbsSine:
+            if (v.family == sim::VectorFamily::AbsSine) {
+                const sim::AbsSineShape a;
+                v.phaseStart = {a.phaseStart, a.phaseStart};
+                v.phaseEnd = {a.phaseEnd, a.phaseEnd};
+            }
+            range("amplitude", v.amplitude, -1e3, 1e3);
+            range("phase_start", v.phaseStart, -1e4, 1e4);
+            range("phase_end", v.phaseEnd, -1e4, 1e4);
+            break;
+        case sim::VectorFamily::BSpline: {
+            g.kind = sim::GenomeKind::BSpline;
+            genome.Enum("region", g.region);
+            genome.Integer("splines", g.splines, 1, 4);
+            genome.Integer("control_points", v.controlPoints, 4, 64);
+            const auto control = genome.Range("control", {g.controlMin, g.controlMax}, -1000, 1000);
+            if (control.first != std::floor(control.first) || control.second != std::floor(control.second))
+                genome.Fail("control points are whole numbers", "control");
+            g.controlMin = static_cast<int>(control.first);
+            g.controlMax = static_cast<int>(control.second);
+            break;
+        }
+        case sim::VectorFamily::FreeXY:
+            g.kind = sim::GenomeKind::FreeXY;
+            genome.Number("bound", g.bound, 1e-9, 100);
+            break;
+    }
+    genome.Integer("fibre_angles", g.fibreAngles, 0, 64);
+    genome.Bool("fibre_switches", g.fibreSwitches);
+    const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
+    g.fibreAngleMin = fibreRange.first;
+    g.fibreAngleMax = fibreRange.second;
+    if (g.HasFibreGenes() && (e.model == sim::ModelKind::Thesis || e.shell.fibres.layout == sim::FibreLayout::None))
+        genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
+                    g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
+    genome.Finish();
+    block.Finish();
+    e.ga.genome = g;  // JobOfGenome and GenomeOfJob read the genes from here
+    if (const std::string error = sim::OptimizerDefError(o, e.model, DesignMesh(e)); !error.empty()) block.Fail(error);
+}
+
 void ParseThesisResult(ObjectReader result, ThesisResult& t) {
     result.Number("best_fitness", t.bestFitness, -1e6, 1e6);
     if (result.Has("best")) {
@@ -542,9 +643,12 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             mesh.Fail("more than " + std::to_string(sim::kMaxVertices) + " vertices");
     }
 
-    const int kinds = top.Has("sweep") + top.Has("evolve") + top.Has("evaluate");
-    if (kinds != 1) top.Fail("needs exactly one of 'sweep', 'evolve' or 'evaluate'");
-    e.kind = top.Has("sweep") ? ExperimentKind::Sweep : top.Has("evolve") ? ExperimentKind::Evolve : ExperimentKind::Evaluate;
+    const int kinds = top.Has("sweep") + top.Has("evolve") + top.Has("evaluate") + top.Has("optimizer");
+    if (kinds != 1) top.Fail("needs exactly one of 'sweep', 'evolve', 'optimizer' or 'evaluate'");
+    e.kind = top.Has("sweep")       ? ExperimentKind::Sweep
+             : top.Has("evolve")    ? ExperimentKind::Evolve
+             : top.Has("optimizer") ? ExperimentKind::Optimize
+                                    : ExperimentKind::Evaluate;
     top.Moved("shape", "\"sweep\": {\"shape\": ...}");
     switch (e.kind) {
         case ExperimentKind::Evaluate: {
@@ -582,6 +686,7 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             break;
         }
         case ExperimentKind::Evolve: ParseGa(top.Object("evolve"), e); break;
+        case ExperimentKind::Optimize: ParseOptimizer(top.Object("optimizer"), e); break;
     }
     if (top.Has("render")) {
         ObjectReader render = top.Object("render");
@@ -687,6 +792,11 @@ Experiment QuickVersion(const Experiment& experiment) {
         evolve["population"] = std::min(experiment.ga.population, 6);
         evolve["elite"] = std::min(experiment.ga.elite, 1);
         evolve["generations"] = std::min(experiment.ga.generations, 2);
+    }
+    if (experiment.kind == ExperimentKind::Optimize) {
+        Json& optimizer = document["optimizer"];
+        optimizer["runs"] = 1;
+        optimizer["stop"]["generations"] = std::min(experiment.optimizer.stop.generations, 2);
     }
     if (document.contains("thesis_result")) document["thesis_result"].erase("points");
     if (document.contains("render")) document["render"]["turntable_frames"] = std::min(experiment.render.turntableFrames, 4);

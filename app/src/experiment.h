@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim/batch.h"
+#include "sim/optimize.h"
 #include "sim/search.h"
 #include "sim/solver.h"
 
@@ -31,6 +32,7 @@ enum class ExperimentKind {
     Sweep,     // a 1-D or 2-D grid of sine parameters (thesis chapter 4)
     Evolve,    // the genetic algorithm (chapter 5)
     Evaluate,  // a list of given shapes, e.g. the stretch tests of chapter 6
+    Optimize,  // a pagmo optimizer over a fixed-length genome (the "optimizer" block)
 };
 
 struct LabelledShape {
@@ -68,8 +70,9 @@ struct Experiment {
     ExperimentKind kind = ExperimentKind::Sweep;
     sim::SweepDef sweep;
     std::vector<LabelledShape> shapes;  // Evaluate
-    sim::GaDef ga;
-    int runs = 1;  // independent GA runs, seeds derived from `seed`
+    sim::GaDef ga;                  // Evolve; under Optimize its genome describes the optimizer's genes
+    sim::OptimizerDef optimizer;    // Optimize
+    int runs = 1;  // independent GA or optimizer runs, seeds derived from `seed`
     RenderPlan render;
     nlohmann::ordered_json document;  // the file with every --set applied: what DIR/experiment.json holds
 };
@@ -120,6 +123,8 @@ struct sim::EnumNames<app::TurntablePlan> {
 };
 template <>
 struct sim::EnumNames<app::ExperimentKind> {
-    static constexpr std::array<std::pair<app::ExperimentKind, const char*>, 3> table{
-        {{app::ExperimentKind::Sweep, "sweep"}, {app::ExperimentKind::Evolve, "evolve"}, {app::ExperimentKind::Evaluate, "evaluate"}}};
+    static constexpr std::array<std::pair<app::ExperimentKind, const char*>, 4> table{{{app::ExperimentKind::Sweep, "sweep"},
+                                                                                       {app::ExperimentKind::Evolve, "evolve"},
+                                                                                       {app::ExperimentKind::Evaluate, "evaluate"},
+                                                                                       {app::ExperimentKind::Optimize, "optimizer"}}};
 };

@@ -57,6 +57,7 @@ struct RunContext {
 void RunSweep(RunContext& c);
 void RunList(RunContext& c);
 void RunEvolution(RunContext& c);
+void RunOptimization(RunContext& c);
 
 // The best design's figures (its inflation result is given). Under the thesis model also the stretch
 // test, evaluated and archived as a figure evaluation; under the membrane and shell models the

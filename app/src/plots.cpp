@@ -24,6 +24,10 @@ namespace {
 
 // The fitness's meaning and unit under the experiment's model.
 std::string FitnessLabel(const Experiment& e) {
+    if (e.kind == ExperimentKind::Optimize) {
+        const sim::Objective& o = e.optimizer.objectives[0];
+        return fmt::format("{} ({})", sim::ObjectiveUnit(o.kind), o.maximise ? "maximised" : "minimised");
+    }
     return e.model == sim::ModelKind::Thesis ? "fitness (contraction, mesh units)" : "fitness: contraction (percent, positive = shorter)";
 }
 
@@ -139,14 +143,66 @@ render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& r
         }
         plot.bands = {band};
         plot.series = {bestLine, meanLine, worstLine};
+        if (!run.bestSoFar.empty()) {
+            bestLine.label = "generation's best";
+            render::LineSeries soFar{"best so far", {}, run.bestSoFar, {0.05f, 0.05f, 0.05f}};
+            for (const auto& row : run.logbook) soFar.x.push_back(row.generation);
+            plot.series = {soFar, bestLine, meanLine, worstLine};
+        }
         if (!run.logbook.empty()) {
             const auto& last = run.logbook.back();
-            plot.highlight = std::pair{double(last.generation), last.best};
-            plot.highlightLabel = fmt::format("best {:.4f}", last.best);
+            const double best = run.bestSoFar.empty() ? last.best : run.bestSoFar.back();
+            plot.highlight = std::pair{double(last.generation), best};
+            plot.highlightLabel = fmt::format("best {:.4f}", best);
         }
         panels.push_back(plot);
     }
     return plots->RenderLines(ExperimentTitle(e) + "  -  evolution", panels);
+}
+
+render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front) {
+    auto plots = MakePlots(1200, 800);
+    const sim::Objective& a = e.optimizer.objectives[0];
+    const sim::Objective& b = e.optimizer.objectives[1];
+    render::LinePlot plot;
+    plot.xLabel = fmt::format("{} ({})", sim::ObjectiveUnit(a.kind), a.maximise ? "better to the right" : "better to the left");
+    plot.yLabel = fmt::format("{} ({})", sim::ObjectiveUnit(b.kind), b.maximise ? "better up" : "better down");
+    render::LineSeries cloud{fmt::format("every valid design ({})", all.size()), {}, {}, {0.45f, 0.45f, 0.50f}, true};
+    cloud.lines = false;
+    cloud.alpha = 0.3f;
+    for (const auto& p : all) {
+        cloud.x.push_back(p.x);
+        cloud.y.push_back(p.y);
+    }
+    // The front drawn as a staircase-free polyline through its designs sorted by the first objective.
+    render::LineSeries line{fmt::format("non-dominated front ({} designs, numbered as in pareto_front.csv)", front.size()), {}, {}, {0.80f, 0.20f, 0.15f}, true};
+    for (size_t k = 0; k < front.size(); ++k) {
+        line.x.push_back(front[k].x);
+        line.y.push_back(front[k].y);
+        line.pointLabels.push_back(std::to_string(k + 1));
+    }
+    plot.series = {cloud, line};
+    std::string extra = e.optimizer.objectives.size() > 2 ? fmt::format(" (first two of {} objectives)", e.optimizer.objectives.size()) : "";
+    return plots->RenderLines(ExperimentTitle(e) + "  -  Pareto front, run 1" + extra, {plot});
+}
+
+render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs) {
+    auto plots = MakePlots(1024, 640);
+    render::LinePlot plot;
+    plot.xLabel = "generation";
+    std::string units;
+    for (const sim::Objective& o : e.optimizer.objectives) units += (units.empty() ? "" : " x ") + std::string(sim::ObjectiveUnit(o.kind));
+    plot.yLabel = "hypervolume of every valid design so far (" + units + ")";
+    const render::Rgb colours[] = {{0.13f, 0.35f, 0.75f}, {0.80f, 0.20f, 0.15f}, {0.10f, 0.55f, 0.20f}, {0.55f, 0.25f, 0.65f}, {0.85f, 0.55f, 0.10f}};
+    for (size_t r = 0; r < runs.size(); ++r) {
+        render::LineSeries series{runs[r].first, {}, {}, colours[r % 5], true};
+        for (const auto& [g, hv] : runs[r].second) {
+            series.x.push_back(g);
+            series.y.push_back(hv);
+        }
+        plot.series.push_back(series);
+    }
+    return plots->RenderLines(ExperimentTitle(e) + "  -  hypervolume (reference point fixed at generation 0)", {plot});
 }
 
 render::Image PressureCurveImage(const std::string& title, const sim::SimResult& r) {

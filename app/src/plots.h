@@ -16,8 +16,18 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
 struct RunCurve {
     std::string title;  // e.g. "run 2"
     std::vector<sim::LogbookRow> logbook;
+    std::vector<double> bestSoFar;  // optimizers that may lose their best (CMA-ES): per generation; empty for the GA
 };
 render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
+
+// An optimizer's two-objective Pareto front (natural units and directions): every valid design
+// faint, the front's designs numbered 1, 2, ... in the order of pareto_front.csv.
+struct ParetoPoint {
+    double x, y;
+};
+render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front);
+// The hypervolume of each run against its generation.
+render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs);
 
 // A membrane or shell result's contraction-pressure curve at its load steps, the target pressure
 // and the limit point (the pressure maximum) marked when met.

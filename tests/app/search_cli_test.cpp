@@ -28,6 +28,21 @@ protected:
             "render": {"figures": )" + (figures ? "true" : "false") + "}}");
         return Path("ga.json");
     }
+    // A pagmo optimizer over a fixed-length B-spline genome: CMA-ES under the thesis model (one
+    // objective), or NSGA-II under a coarse shell (two).
+    std::string SmallOptimizer(const std::string& algorithm, int generations, int runs = 1) const {
+        const bool multi = algorithm == "nsga2" || algorithm == "moead";
+        const std::string model = multi ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2},
+                                                       "fibres": "braid", "fibre_stiffness_n_per_mm": 50},)"
+                                        : R"("sim": {"iterations": 3000},)";
+        const std::string objectives = multi ? R"(["contraction", "max_stretch"])" : R"(["thesis_fitness"])";
+        Write(algorithm + ".json", R"({"id": "o", "title": "small optimizer", "seed": 5, )" + model + R"(
+            "optimizer": {"algorithm": ")" + algorithm + R"(", "runs": )" + std::to_string(runs) + R"(, "population": 8, "objectives": )" + objectives +
+                                       R"(, "stop": {"generations": )" + std::to_string(generations) + R"(},
+                          "genome": {"family": "bspline", "region": "middle", "splines": 1, "control_points": 6, "control": [0, 8])" +
+                                       (multi ? R"(, "fibre_angles": 1, "fibre_angle_range": [10, 80])" : "") + "}}}");
+        return Path(algorithm + ".json");
+    }
     std::string SmallSweep(int points = 24) const {
         Write("sweep.json", R"({"id": "s", "sim": {"iterations": 4000},
             "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
@@ -160,6 +175,87 @@ TEST_F(SearchCli, EvolveResumedAfterAKillAtThreeMomentsEndsLikeAnUninterruptedRu
         ASSERT_EQ(resumed.exitCode, 0) << m.name << ": " << resumed.err;
         ExpectSameOutputs(dir_ / "whole", out);
     }
+}
+
+// The optimizers: thread-count independence, and kill-and-resume at three moments ending like an
+// uninterrupted run (resume replays the run from its seed, answered from the archive).
+TEST_F(SearchCli, OptimizerRunsGiveTheSameBytesWhateverTheThreadsAndResumeExactly) {
+    for (const std::string algorithm : {"cmaes", "nsga2"}) {
+        SCOPED_TRACE(algorithm);
+        const std::string experiment = SmallOptimizer(algorithm, 6, 2);
+        const Result whole = Run("evolve " + experiment + " --out " + Path(algorithm + "_whole") + " --threads 2");
+        ASSERT_EQ(whole.exitCode, 0) << whole.err;
+        ASSERT_EQ(Run("evolve " + experiment + " --out " + Path(algorithm + "_t1") + " --threads 1").exitCode, 0);
+        ExpectSameOutputs(dir_ / (algorithm + "_whole"), dir_ / (algorithm + "_t1"));
+        const std::pair<const char*, std::function<bool(const fs::path&)>> moments[] = {
+            {"first", [](const fs::path& out) { return fs::exists(out / "evaluations.csv") && Slurp(out / "evaluations.csv").size() > 400; }},
+            {"middle", [](const fs::path& out) { return Generation(out / "run_1" / "checkpoint.json") >= 3; }},
+            {"second", [](const fs::path& out) { return Generation(out / "run_2" / "checkpoint.json") >= 1; }},
+        };
+        for (const auto& [name, ready] : moments) {
+            const fs::path out = dir_ / (algorithm + "_" + name);
+            KillWhen({ACTUATOR_BIN, "evolve", experiment, "--out", out.string()}, [&] { return ready(out); });
+            const Result resumed = Run("evolve --resume " + out.string());
+            ASSERT_EQ(resumed.exitCode, 0) << name << ": " << resumed.err;
+            ExpectSameOutputs(dir_ / (algorithm + "_whole"), out);
+        }
+    }
+}
+
+TEST_F(SearchCli, ParetoFrontsAreNonDominatedAndPictured) {
+    const Result r = Run("evolve " + SmallOptimizer("nsga2", 4) + " --out " + Path("pareto"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto front = app::ParseCsv(Slurp(dir_ / "pareto" / "run_1" / "pareto_front.csv"));
+    ASSERT_GE(front.size(), 3u);
+    EXPECT_THAT(front[0], ::testing::ElementsAre("front", "evaluation", "generation", "status", "contraction_percent", "largest_stretch", "design",
+                                                 "gene_spline1.c1", "gene_spline1.c2", "gene_spline1.c3", "gene_spline1.c4", "gene_spline1.c5",
+                                                 "gene_spline1.c6", "gene_fibre_angle_deg"));
+    // Nothing evaluated dominates a front design (contraction up, stretch down).
+    const auto all = app::ParseCsv(Slurp(dir_ / "pareto" / "evaluations.csv"));
+    size_t contraction = 0, stretch = 0, status = 0;
+    for (size_t k = 0; k < all[0].size(); ++k) {
+        if (all[0][k] == "contraction_percent") contraction = k;
+        if (all[0][k] == "max_stretch") stretch = k;
+        if (all[0][k] == "status") status = k;
+    }
+    ASSERT_GT(contraction * stretch * status, 0u);
+    for (size_t f = 1; f < front.size(); ++f) {
+        const double c = std::stod(front[f][4]), s = std::stod(front[f][5]);
+        for (size_t k = 1; k < all.size(); ++k) {
+            if (all[k][status] != "ok") continue;
+            const double c2 = std::stod(all[k][contraction]), s2 = std::stod(all[k][stretch]);
+            EXPECT_FALSE(c2 >= c && s2 <= s && (c2 > c || s2 < s)) << "evaluation " << all[k][0] << " dominates front design " << f;
+        }
+    }
+    const auto logbook = app::ParseCsv(Slurp(dir_ / "pareto" / "run_1" / "logbook.csv"));
+    ASSERT_EQ(logbook.size(), 6u);
+    for (size_t g = 2; g < logbook.size(); ++g) EXPECT_GE(std::stod(logbook[g][8]), std::stod(logbook[g - 1][8])) << "hypervolume fell";
+    for (const char* figure : {"pareto_front.png", "pareto_designs.png", "hypervolume.png", "best_inflation.png"}) ExpectPicture(dir_ / "pareto" / figure);
+}
+
+TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
+    const std::string good = Slurp(SmallOptimizer("cmaes", 2));
+    auto with = [&](const std::string& from, const std::string& to) {
+        std::string text = good;
+        const size_t at = text.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        Write("bad.json", text.replace(at, from.size(), to));
+        return "evolve " + Path("bad.json") + " --out " + Path("bad");
+    };
+    ExpectRefused(with("\"cmaes\"", "\"cma-es\""), "unknown value 'cma-es' (choose cmaes, xnes, de, sade, pso, nsga2 or moead)");
+    ExpectRefused(with("\"cmaes\"", "\"ga\""), "the thesis's GA (variable-length genomes) is the 'evolve' block");
+    ExpectRefused(with("\"cmaes\"", "\"nsga2\""), "nsga2 optimises several objectives");
+    ExpectRefused(with("\"population\": 8", "\"population\": 3"), "cmaes needs a population of at least 5 (got 3)");
+    ExpectRefused(with("\"control\": [0, 8]", "\"control\": [8, 0]"), "low end above high end");
+    ExpectRefused(with("[\"thesis_fitness\"]", "[\"blocking_force\"]"), "the thesis model gives only thesis_fitness and contraction");
+    ExpectRefused(with("\"population\": 8", "\"population\": 8, \"parameters\": {\"sigma\": 0.2}"), "cmaes has no parameter 'sigma' (valid: sigma0, cc, cs, c1, cmu)");
+    ExpectRefused(with("\"stop\": {", "\"stop\": {\"generation\": 3, "), "did you mean 'optimizer.stop.generations'?");
+    ExpectRefused("sweep " + SmallOptimizer("cmaes", 2) + " --out " + Path("bad"), "run it with 'actuator evolve'");
+    Write("n.json", std::string(Slurp(SmallOptimizer("nsga2", 2))));
+    std::string text = Slurp(Path("n.json"));
+    text.replace(text.find("\"population\": 8"), 15, "\"population\": 10");
+    Write("n.json", text);
+    ExpectRefused("evolve " + Path("n.json") + " --out " + Path("bad"), "nsga2 needs a population that is a multiple of 4 (got 10; try 12)");
 }
 
 TEST_F(SearchCli, SweepResumedAfterAKillEndsLikeAnUninterruptedRun) {
@@ -326,16 +422,17 @@ TEST_F(SearchCli, BadExperimentFilesAreRefusedPrecisely) {
 TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     // Parsing happens before any work: a missing --out is reported only after the file was read.
     int files = 0;
-    for (const auto& folder : {fs::path(ACTUATOR_ASSETS_DIR) / "experiments", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "shell"})
+    for (const auto& folder : {fs::path(ACTUATOR_ASSETS_DIR) / "experiments", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "shell",
+                               fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers"})
         for (const auto& entry : fs::directory_iterator(folder)) {
             if (entry.is_directory()) continue;
             const std::string name = entry.path().filename().string();
-            const std::string command = name.find("5.") <= 1 ? "evolve " : "sweep ";
+            const std::string command = name.find("5.") <= 1 || name[0] == 'O' ? "evolve " : "sweep ";
             const Result r = Run(command + entry.path().string());
             EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
             ++files;
         }
-    EXPECT_EQ(files, 10 + 10) << "the thesis's experiments, and part 2's under the shell model";
+    EXPECT_EQ(files, 10 + 10 + 3) << "the thesis's experiments, part 2's under the shell model, and the optimizers'";
 }
 
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {

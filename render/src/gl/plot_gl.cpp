@@ -174,13 +174,25 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
             }
         draw->Flags = flags;
         for (const LineSeries& series : plot.series) {
-            for (size_t i = 1; i < series.x.size(); ++i)
+            for (size_t i = 1; series.lines && i < series.x.size(); ++i)
                 if (std::isfinite(series.y[i - 1]) && std::isfinite(series.y[i]))
                     draw->AddLine(ImVec2(axes.X(series.x[i - 1]), axes.Y(series.y[i - 1])), ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])),
                                   Color(series.color), fs * 0.16f);
             if (series.markers)
                 for (size_t i = 0; i < series.x.size(); ++i)
-                    if (std::isfinite(series.y[i])) draw->AddCircleFilled(ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])), fs * 0.22f, Color(series.color));
+                    if (std::isfinite(series.y[i])) draw->AddCircleFilled(ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])), fs * 0.22f, Color(series.color, series.alpha));
+            // A label that would overlap one already drawn is left out (crowded fronts stay legible).
+            std::vector<ImVec2> drawn;
+            for (size_t i = 0; i < series.pointLabels.size() && i < series.x.size(); ++i) {
+                if (!std::isfinite(series.y[i]) || series.pointLabels[i].empty()) continue;
+                const ImVec2 at(axes.X(series.x[i]) + fs * 0.3f, axes.Y(series.y[i]) - fs * 1.0f);
+                const ImVec2 size = o.TextFont()->CalcTextSizeA(fs * 0.8f, FLT_MAX, 0, series.pointLabels[i].c_str());
+                bool clear = true;
+                for (const ImVec2& d : drawn) clear = clear && (std::fabs(d.x - at.x) > size.x + fs * 0.3f || std::fabs(d.y - at.y) > fs * 0.9f);
+                if (!clear) continue;
+                drawn.push_back(at);
+                draw->AddText(o.TextFont(), fs * 0.8f, at, Color(series.color), series.pointLabels[i].c_str());
+            }
         }
         if (plot.highlight) {
             const ImVec2 at(axes.X(plot.highlight->first), axes.Y(plot.highlight->second));
@@ -199,15 +211,16 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
     // Legend under the plots, from the first plot's series and bands.
     if (!plots.empty()) {
         float x = left, y = H - fs * 2.2f;
-        auto entry = [&](const std::string& label, ImU32 color, bool filled) {
+        auto entry = [&](const std::string& label, ImU32 color, int kind) {  // 0 line, 1 filled, 2 dot
             if (label.empty()) return;
-            if (filled) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), color);
+            if (kind == 1) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), color);
+            else if (kind == 2) draw->AddCircleFilled(ImVec2(x + fs * 0.8f, y + fs * 0.5f), fs * 0.3f, color);
             else draw->AddLine(ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), color, fs * 0.18f);
             draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(x + fs * 2.0f, y), kInk, label.c_str());
             x += fs * 2.6f + o.TextFont()->CalcTextSizeA(fs * 0.9f, FLT_MAX, 0, label.c_str()).x + fs * 1.2f;
         };
-        for (const auto& series : plots[0].series) entry(series.label, Color(series.color), false);
-        for (const auto& band : plots[0].bands) entry(band.label, Color(band.color, 0.35f), true);
+        for (const auto& series : plots[0].series) entry(series.label, Color(series.color, std::max(series.alpha, 0.5f)), series.lines ? 0 : 2);
+        for (const auto& band : plots[0].bands) entry(band.label, Color(band.color, 0.35f), 1);
     }
     return End();
 }
