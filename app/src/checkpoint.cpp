@@ -74,6 +74,7 @@ std::string FormatCheckpoint(const RunCheckpoint& c) {
     j["experiment_hash"] = c.experimentHash;
     j["seed"] = c.seed;
     j["generation"] = c.state.generation;
+    j["stop_reason"] = c.state.stopReason;
     j["archive_count"] = c.archiveCount;
     j["rng"] = c.state.rng.State();
     j["population"] = Json::array();
@@ -114,6 +115,9 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
     try {
         c.seed = j.at("seed").get<std::uint64_t>();
         c.state.generation = j.at("generation").get<int>();
+        // Checkpoints written before stop criteria existed have no reason: the run had not ended.
+        if (j.contains("stop_reason")) c.state.stopReason = j.at("stop_reason").get<std::string>();
+        if (c.state.stopReason.size() > 64) throw std::runtime_error("the stop reason is too long");
         c.archiveCount = j.at("archive_count").get<std::uint64_t>();
         const auto rng = j.at("rng").get<std::array<std::uint64_t, 4>>();
         if (rng == std::array<std::uint64_t, 4>{}) throw std::runtime_error("the generator's state is all zero (xoshiro256** would repeat zeros forever)");
@@ -141,10 +145,12 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
 }
 
 std::string LogbookCsv(const sim::GaState& state) {
-    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "std", "invalid"});
-    for (const auto& r : state.logbook)
+    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "std", "invalid", "stopped_by"});
+    for (size_t k = 0; k < state.logbook.size(); ++k) {
+        const auto& r = state.logbook[k];
         csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
-                       CsvNumber(r.stddev), std::to_string(r.invalid)});
+                       CsvNumber(r.stddev), std::to_string(r.invalid), k + 1 == state.logbook.size() ? CsvField(state.stopReason) : ""});
+    }
     return csv;
 }
 

@@ -409,6 +409,15 @@ void ParseModel(ObjectReader model, Experiment& e) {
     if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
 }
 
+// "stop": {"evaluations": 0, "seconds": 0, "target": 5, "stagnation": 0} of the GA and the optimizers.
+void ParseStop(ObjectReader stop, sim::StopDef& s) {
+    stop.Integer("evaluations", s.evaluations, 0, 1ll << 40);
+    stop.Number("seconds", s.seconds, 0, 1e9);
+    stop.Number("target", s.target, -1e12, 1e12);
+    stop.Integer("stagnation", s.stagnation, 0, 100000);
+    stop.Finish();
+}
+
 void ParseGa(ObjectReader evolve, Experiment& e) {
     sim::GaDef& ga = e.ga;
     evolve.Integer("runs", e.runs, 1, 100);
@@ -419,6 +428,7 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
     evolve.Number("mutpb", ga.mutpb, 0, 1);
     evolve.Number("indpb", ga.indpb, 0, 1);
     evolve.Number("cxpb", ga.cxpb, 0, 1);
+    if (evolve.Has("stop")) ParseStop(evolve.Object("stop"), ga.stop);
     ObjectReader genome = evolve.Object("genome");
     sim::GenomeDef& g = ga.genome;
     if (!genome.Has("kind")) genome.Fail("missing (required): " + sim::Choices<sim::GenomeKind>(), "kind");
@@ -458,7 +468,7 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
 
 // "optimizer": {"algorithm": "cmaes", "runs": 1, "population": 16, "parameters": {"sigma0": 0.3},
 // "objectives": ["contraction", {"name": "max_stretch", "direction": "min"}],
-// "stop": {"generations": 20, "evaluations": 0, "seconds": 0, "target": 5, "stagnation": 0},
+// "generations": 20, "stop": {"evaluations": 0, "seconds": 0, "target": 5, "stagnation": 0},
 // "genome": {"family": "bspline", "region": "middle", "splines": 1, "control_points": 8, ...}}.
 void ParseOptimizer(ObjectReader block, Experiment& e) {
     sim::OptimizerDef& o = e.optimizer;
@@ -468,6 +478,7 @@ void ParseOptimizer(ObjectReader block, Experiment& e) {
     block.Enum("algorithm", o.algorithm);
     block.Integer("runs", e.runs, 1, 100);
     block.Integer("population", o.population, 1, 100000);
+    block.Integer("generations", o.generations, 0, 100000);
     if (block.Has("parameters")) {
         const Json& parameters = block.Get("parameters");
         if (!parameters.is_object()) block.Fail("expected an object of the algorithm's parameters, e.g. {\"sigma0\": 0.3}", "parameters");
@@ -496,15 +507,7 @@ void ParseOptimizer(ObjectReader block, Experiment& e) {
             o.objectives.push_back(objective);
         }
     }
-    if (block.Has("stop")) {
-        ObjectReader stop = block.Object("stop");
-        stop.Integer("generations", o.stop.generations, 0, 100000);
-        stop.Integer("evaluations", o.stop.evaluations, 0, 1ll << 40);
-        stop.Number("seconds", o.stop.seconds, 0, 1e9);
-        stop.Number("target", o.stop.target, -1e12, 1e12);
-        stop.Integer("stagnation", o.stop.stagnation, 0, 100000);
-        stop.Finish();
-    }
+    if (block.Has("stop")) ParseStop(block.Object("stop"), o.stop);
     ObjectReader genome = block.Object("genome");
     sim::VectorGenomeDef& v = o.genome;
     sim::GenomeDef& g = v.genes;
@@ -796,7 +799,7 @@ Experiment QuickVersion(const Experiment& experiment) {
     if (experiment.kind == ExperimentKind::Optimize) {
         Json& optimizer = document["optimizer"];
         optimizer["runs"] = 1;
-        optimizer["stop"]["generations"] = std::min(experiment.optimizer.stop.generations, 2);
+        optimizer["generations"] = std::min(experiment.optimizer.generations, 2);
     }
     if (document.contains("thesis_result")) document["thesis_result"].erase("points");
     if (document.contains("render")) document["render"]["turntable_frames"] = std::min(experiment.render.turntableFrames, 4);

@@ -5,6 +5,7 @@
 // an uninterrupted run's.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -176,7 +177,18 @@ void RunEvolution(RunContext& c) {
             checkpoint.archiveCount = c.recorder.Count();
             WriteRunFiles(dir, checkpoint);
         }
-        while (checkpoint.state.generation < e.ga.generations) {
+        const auto started = std::chrono::steady_clock::now();
+        while (checkpoint.state.stopReason.empty()) {
+            // The stop criteria, after each generation; wall time counts this session's.
+            std::string reason = sim::GaStopReason(e.ga, checkpoint.state);
+            if (reason.empty() && e.ga.stop.seconds > 0 &&
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= e.ga.stop.seconds)
+                reason = "seconds";
+            if (!reason.empty()) {
+                checkpoint.state.stopReason = reason;
+                WriteRunFiles(dir, checkpoint);
+                break;
+            }
             cache.SetGeneration(checkpoint.state.generation + 1);
             if (!sim::EvolveOneGeneration(e.ga, DesignMesh(e), checkpoint.state, evaluator)) {
                 std::map<std::string, int> statuses;
@@ -185,6 +197,8 @@ void RunEvolution(RunContext& c) {
                 for (const auto& [status, count] : statuses) tally += (tally.empty() ? "" : ", ") + std::to_string(count) + " " + status;
                 std::cerr << "run " << r << ": every individual of generation " << checkpoint.state.generation << " failed (" << tally
                           << "); the run stops here. The status column of evaluations.csv says why for each.\n";
+                checkpoint.state.stopReason = "no valid design";
+                WriteRunFiles(dir, checkpoint);
                 break;
             }
             WriteGenerationSheet(c, dir, r, cache, checkpoint.state, sheetRenderer);
@@ -203,7 +217,8 @@ void RunEvolution(RunContext& c) {
         c.outcome.rows.push_back({fmt::format("run {} best fitness", r + 1), best,
                                   r < static_cast<int>(e.thesisResult.runBest.size()) ? e.thesisResult.runBest[r] : NAN});
         if (s.hallOfFame.empty()) continue;
-        c.outcome.details.push_back(fmt::format("run {} (seed {}): best genome {}", r + 1, runs[r].seed, GenomeSummary(e, s.hallOfFame.front().genome)));
+        c.outcome.details.push_back(fmt::format("run {} (seed {}): best genome {}, stopped by {} after generation {}", r + 1, runs[r].seed,
+                                                GenomeSummary(e, s.hallOfFame.front().genome), s.stopReason, s.generation));
         if (bestRun < 0 || best > runs[bestRun].state.hallOfFame.front().fitness) bestRun = r;
     }
     if (bestRun >= 0) {

@@ -153,10 +153,14 @@ std::vector<std::string> ObjectiveColumns(const Experiment& e) {
 }
 
 std::string LogbookText(const sim::OptimizerRun& run) {
-    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "stddev", "best_so_far", "invalid", "hypervolume", "front_size"});
-    for (const auto& r : run.logbook)
+    std::string csv = CsvRow(
+        {"generation", "evaluations", "best", "worst", "mean", "stddev", "best_so_far", "invalid", "hypervolume", "front_size", "stopped_by"});
+    for (size_t k = 0; k < run.logbook.size(); ++k) {
+        const auto& r = run.logbook[k];
         csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
-                       CsvNumber(r.stddev), CsvNumber(r.bestSoFar), std::to_string(r.invalid), CsvNumber(r.hypervolume), std::to_string(r.frontSize)});
+                       CsvNumber(r.stddev), CsvNumber(r.bestSoFar), std::to_string(r.invalid), CsvNumber(r.hypervolume), std::to_string(r.frontSize),
+                       k + 1 == run.logbook.size() ? CsvField(run.stopReason) : ""});
+    }
     return csv;
 }
 
@@ -271,12 +275,14 @@ void RunOptimization(RunContext& c) {
             WriteFileAtomically((dir / "checkpoint.json").string(), FormatOptimizerCheckpoint(checkpoint, e));
             state.checkpoint = checkpoint;
             const auto& row = run.logbook.back();
-            progress.Update(generation, def.stop.generations, c.recorder.Simulated(),
+            progress.Update(generation, def.generations, c.recorder.Simulated(),
                             Multi(e) ? fmt::format("hypervolume {:.4g}, front {}, generation", row.hypervolume, row.frontSize)
                                      : fmt::format("best {:.4f}, generation", row.bestSoFar));
             return timeLeft;
         };
         state.run = sim::RunOptimizer(def, DesignMesh(e), state.checkpoint.seed, evaluate, onGeneration);
+        if (state.run.stopReason == "stopped") state.run.stopReason = "seconds";  // the hook stops only for wall time
+        WriteFileAtomically((dir / "logbook.csv").string(), LogbookText(state.run));
         // The final checkpoint says why the run ended (a resume then only redraws); a run that had
         // ended before a resume keeps its own.
         if (before && !before->stopReason.empty()) state.checkpoint = *before;

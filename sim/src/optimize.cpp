@@ -306,7 +306,7 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
     if (g.HasFibreGenes() && model == ModelKind::Thesis) return "fibre genes need the membrane or shell model";
     if (VectorBounds(v, mesh).first.empty()) return "the genome has no gene: every bound is fixed";
     const StopDef& s = def.stop;
-    if (s.generations < 0 || s.evaluations < 0 || !(s.seconds >= 0) || s.stagnation < 0) return "stop criteria must not be negative";
+    if (def.generations < 0 || s.evaluations < 0 || !(s.seconds >= 0) || s.stagnation < 0) return "stop criteria must not be negative";
     if (std::isfinite(s.target) && multi) return "a target stops one objective's run; with several objectives use stagnation";
     return "";
 }

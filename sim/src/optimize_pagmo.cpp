@@ -198,7 +198,7 @@ void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& ro
 std::string StopReason(const OptimizerDef& def, const OptimizerRun& run) {
     const StopDef& s = def.stop;
     const OptimizerLogRow& last = run.logbook.back();
-    if (last.generation >= s.generations) return "generations";
+    if (last.generation >= def.generations) return "generations";
     if (s.evaluations > 0 && last.evaluations >= s.evaluations) return "evaluations";
     if (std::isfinite(s.target) && std::isfinite(last.bestSoFar) && (def.objectives[0].maximise ? last.bestSoFar >= s.target : last.bestSoFar <= s.target))
         return "target";

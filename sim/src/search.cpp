@@ -360,4 +360,20 @@ std::string GenomeText(const Genome& genome) {
     return text;
 }
 
+std::string GaStopReason(const GaDef& def, const GaState& state) {
+    if (state.generation >= def.generations) return "generations";
+    const StopDef& s = def.stop;
+    long long evaluations = 0;
+    for (const LogbookRow& row : state.logbook) evaluations += row.evaluations;
+    if (s.evaluations > 0 && evaluations >= s.evaluations) return "evaluations";
+    if (state.logbook.empty()) return "";
+    // Elitism keeps the best: a generation's best is the run's best so far.
+    const double best = state.logbook.back().best;
+    if (std::isfinite(s.target) && best >= s.target) return "target";
+    if (s.stagnation > 0 && state.logbook.size() > static_cast<size_t>(s.stagnation) &&
+        !(best > state.logbook[state.logbook.size() - 1 - static_cast<size_t>(s.stagnation)].best))
+        return "stagnation";
+    return "";
+}
+
 }  // namespace sim

@@ -38,7 +38,7 @@ protected:
         const std::string objectives = multi ? R"(["contraction", "max_stretch"])" : R"(["thesis_fitness"])";
         Write(algorithm + ".json", R"({"id": "o", "title": "small optimizer", "seed": 5, )" + model + R"(
             "optimizer": {"algorithm": ")" + algorithm + R"(", "runs": )" + std::to_string(runs) + R"(, "population": 8, "objectives": )" + objectives +
-                                       R"(, "stop": {"generations": )" + std::to_string(generations) + R"(},
+                                       R"(, "generations": )" + std::to_string(generations) + R"(,
                           "genome": {"family": "bspline", "region": "middle", "splines": 1, "control_points": 6, "control": [0, 8])" +
                                        (multi ? R"(, "fibre_angles": 1, "fibre_angle_range": [10, 80])" : "") + "}}}");
         return Path(algorithm + ".json");
@@ -144,12 +144,32 @@ TEST_F(SearchCli, EvolveImprovesAndLogsEveryGeneration) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto rows = app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "logbook.csv"));
     ASSERT_EQ(rows.size(), 12u);  // header + generations 0..10
-    EXPECT_EQ(rows[0], (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "invalid"}));
+    EXPECT_EQ(rows[0], (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "invalid", "stopped_by"}));
+    EXPECT_EQ(rows.back().back(), "generations");
+    EXPECT_EQ(rows[rows.size() - 2].back(), "");
     EXPECT_EQ(rows[1][1], "10");  // the initial population is evaluated whole
     for (size_t k = 2; k < rows.size(); ++k) EXPECT_GE(std::stod(rows[k][2]), std::stod(rows[k - 1][2])) << "best fell at row " << k;
     EXPECT_GT(std::stod(rows.back()[2]), std::stod(rows[1][2])) << "ten generations should improve on the initial best";
     EXPECT_EQ(app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "best_per_generation.csv")).size(), 12u);
     EXPECT_GE(app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "halloffame.csv")).size(), 2u);
+}
+
+TEST_F(SearchCli, EvolveStopsAtItsCriteriaAndSaysWhichInTheLogbook) {
+    const std::string experiment = SmallGa(10, 1, false);
+    const std::pair<std::string, std::string> criteria[] = {
+        {"evolve.stop.evaluations=25", "evaluations"}, {"evolve.stop.target=-100", "target"}, {"evolve.stop.stagnation=1", "stagnation"}};
+    for (const auto& [set, reason] : criteria) {
+        const fs::path out = dir_ / reason;
+        const Result r = Run("evolve " + experiment + " --out " + out.string() + " --set " + set);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const auto rows = app::ParseCsv(Slurp(out / "run_1" / "logbook.csv"));
+        EXPECT_EQ(rows.back().back(), reason) << set;
+        EXPECT_LT(rows.size(), 12u) << set << ": stopped before generation 10";
+        EXPECT_THAT(r.out, HasSubstr("stopped by " + reason)) << set;
+    }
+    int evaluations = 0;
+    for (const auto& row : app::ParseCsv(Slurp(dir_ / "evaluations" / "run_1" / "logbook.csv"))) evaluations += row[0] == "generation" ? 0 : std::stoi(row[1]);
+    EXPECT_GE(evaluations, 25);
 }
 
 // Killed early in run 1, mid-way through run 1, and during run 2: each resumed run's every output
@@ -249,7 +269,8 @@ TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
     ExpectRefused(with("\"control\": [0, 8]", "\"control\": [8, 0]"), "low end above high end");
     ExpectRefused(with("[\"thesis_fitness\"]", "[\"blocking_force\"]"), "the thesis model gives only thesis_fitness and contraction");
     ExpectRefused(with("\"population\": 8", "\"population\": 8, \"parameters\": {\"sigma\": 0.2}"), "cmaes has no parameter 'sigma' (valid: sigma0, cc, cs, c1, cmu)");
-    ExpectRefused(with("\"stop\": {", "\"stop\": {\"generation\": 3, "), "did you mean 'optimizer.stop.generations'?");
+    ExpectRefused(with("\"generations\": 2", "\"generation\": 2"), "did you mean 'optimizer.generations'?");
+    ExpectRefused(with("\"generations\": 2", "\"generations\": 2, \"stop\": {\"stagnation\": -1}"), "'optimizer.stop.stagnation': '-1' is out of range (0 to 100000)");
     ExpectRefused("sweep " + SmallOptimizer("cmaes", 2) + " --out " + Path("bad"), "run it with 'actuator evolve'");
     Write("n.json", std::string(Slurp(SmallOptimizer("nsga2", 2))));
     std::string text = Slurp(Path("n.json"));

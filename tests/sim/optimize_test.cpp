@@ -24,7 +24,7 @@ OptimizerDef OneGene(Algorithm algorithm, int population, int generations) {
     def.population = population;
     def.genome.family = VectorFamily::Sine;
     def.genome.amplitude = {0, 10};
-    def.stop.generations = generations;
+    def.generations = generations;
     return def;
 }
 

@@ -96,18 +96,10 @@ struct AlgorithmParameter {
 };
 const std::vector<AlgorithmParameter>& AlgorithmParameters();
 
-struct StopDef {
-    int generations = 20;                 // generations after the initial population
-    long long evaluations = 0;            // stop once this many distinct designs were evaluated (0: no limit)
-    double seconds = 0;                   // stop after this much wall time (0: no limit; not reproducible)
-    double target = NAN;                  // one objective: stop when the best reaches it (NaN: never)
-    int stagnation = 0;                   // stop after this many generations without improvement (0: never);
-                                          // several objectives: of the hypervolume
-};
-
 struct OptimizerDef {
     Algorithm algorithm = Algorithm::Cmaes;
     int population = 16;                        // designs per generation
+    int generations = 20;                       // generations after the initial population (the first stop)
     std::map<std::string, double> parameters;   // given values; the rest from AlgorithmParameters()
     std::vector<Objective> objectives{Objective{}};
     VectorGenomeDef genome;

@@ -76,6 +76,16 @@ struct GenomeDef {
     bool HasFibreGenes() const { return fibreAngles > 0 || fibreSwitches; }
 };
 
+// When a search stops besides its number of generations (each 0 or NaN: never). The reason is
+// written in the run's logbook.
+struct StopDef {
+    long long evaluations = 0;  // once this many designs were evaluated (checked after each generation)
+    double seconds = 0;         // after this much wall time (this session's for the GA); not reproducible
+    double target = NAN;        // once the best reaches it (one objective)
+    int stagnation = 0;         // after this many generations without improvement of the best (several
+                                // objectives: of the hypervolume)
+};
+
 struct GaDef {
     int population = 30;    // individuals per generation
     int generations = 40;   // generations after the initial population
@@ -85,6 +95,7 @@ struct GaDef {
     double indpb = 0.2;     // probability that a gene is reset, and that a spline grows or shrinks (INDPB)
     double cxpb = 0.0;      // probability that a pair gets two-point crossover (thesis: only for free-xy)
     GenomeDef genome;
+    StopDef stop;
 };
 
 // B-spline: one list of control points per sector. Free-xy: one list dx0, dy0, dx1, dy1, ...
@@ -108,6 +119,7 @@ struct LogbookRow {
 
 struct GaState {
     int generation = 0;  // generations completed; 0 once the initial population is evaluated
+    std::string stopReason;  // why the run ended, once it has (GaStopReason, or "stopped", "no valid design")
     Random rng;
     std::vector<Individual> population;
     std::vector<LogbookRow> logbook;
@@ -138,6 +150,10 @@ GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed
 // One generation: keep the elite, select by tournament among valid individuals, cross, mutate,
 // evaluate the changed individuals. False (state unchanged) when no individual is valid to select.
 bool EvolveOneGeneration(const GaDef& def, const MeshDef& mesh, GaState& state, const GenomeEvaluator& evaluate);
+
+// Why the run should stop after its latest generation ("generations", "evaluations", "target",
+// "stagnation"), or "" to go on. Wall time is the caller's.
+std::string GaStopReason(const GaDef& def, const GaState& state);
 
 // A genome as text: splines separated by ';', genes by ',' (shortest round-trip digits).
 std::string GenomeText(const Genome& genome);
