@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "experiment_runner.h"
 #include "files.h"
+#include "optimizer_comparison.h"
 #include "report.h"
 #include "shell_chapter.h"
 #include "run_options.h"
@@ -89,9 +90,29 @@ int RunReproduce(int argc, char** argv, int first) {
     if (std::any_of(entries.begin(), entries.end(), [](const ReportEntry& e) { return !e.experiment.compare.empty(); }))
         std::cerr << "reproduce: comparing part 2 with part 1\n";
     const Chapter chapter = CompareChapters(entries, dir, *evaluator);
+    // Part 3: optimizers side by side on one of the thesis's problems (the files in optimizers/compare/).
+    std::string optimizers;
+    const fs::path compareFolder = folder / "optimizers" / "compare";
+    if (part != Part::Physical && fs::is_directory(compareFolder, ec)) {
+        std::vector<Experiment> contenders;
+        for (const auto& [file, name] : filesIn(compareFolder, "")) contenders.push_back(LoadExperiment(file.string(), overrides));
+        if (contenders.size() >= 2) {
+            ComparisonDef def;
+            if (quick) {
+                def.seeds = 2;
+                def.budget = 24;
+                for (auto& contender : contenders) contender = QuickVersion(contender);
+            }
+            def.linkPrefix = "optimizers/";
+            std::cerr << "reproduce: optimizers compared\n";
+            const ComparisonResult compared =
+                CompareOptimizers(contenders, def, fs::path(dir) / "optimizers", *evaluator, &results, results.Mode() == FolderMode::Resume, true);
+            optimizers = "<a id=\"optimizers\"></a>\n\n# Part 3: optimizers compared on 5.2's problem\n\n" + compared.markdown + "\n";
+        }
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     WriteFileAtomically((fs::path(dir) / "report.md").string(),
-                        ReportMarkdown(entries, quick, seconds, evaluator->Describe(), ChapterMarkdown(chapter, quick)));
+                        ReportMarkdown(entries, quick, seconds, evaluator->Describe(), ChapterMarkdown(chapter, quick) + optimizers));
     results.FirstResultDone();
     std::cout << nlohmann::ordered_json{{"report", (fs::path(dir) / "report.md").string()}, {"experiments", entries.size()}, {"seconds", seconds}}.dump()
               << "\n";

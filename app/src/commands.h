@@ -9,6 +9,7 @@ int RunRender(int argc, char** argv, int first);
 int RunSweepCommand(int argc, char** argv, int first);
 int RunEvolveCommand(int argc, char** argv, int first);
 int RunReproduce(int argc, char** argv, int first);
+int RunCompare(int argc, char** argv, int first);
 int RunInspect(int argc, char** argv, int first);
 int RunServe(int argc, char** argv, int first);
 int RunImgDiff(int argc, char** argv, int first);

@@ -279,6 +279,25 @@ TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
     ExpectRefused("evolve " + Path("n.json") + " --out " + Path("bad"), "nsga2 needs a population that is a multiple of 4 (got 10; try 12)");
 }
 
+TEST_F(SearchCli, CompareRunsEveryContenderWithTheSameSeedsToTheSameBudget) {
+    const std::string ga = SmallGa(10, 1, true), cmaes = SmallOptimizer("cmaes", 10);
+    const Result r = Run("compare " + ga + " " + cmaes + " --seeds 2 --evaluations 20 --out " + Path("cmp"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = app::ParseCsv(Slurp(dir_ / "cmp" / "comparison.csv"));
+    ASSERT_EQ(rows.size(), 5u);  // header + 2 contenders x 2 seeds
+    for (size_t k = 1; k < rows.size(); ++k) {
+        EXPECT_GE(std::stoi(rows[k][2]), 20) << rows[k][0];
+        EXPECT_LT(std::stoi(rows[k][2]), 20 + 10) << rows[k][0] << ": stops at the first generation past the budget";
+    }
+    // Each run is an ordinary results folder, seeded 1, 2, ...
+    EXPECT_EQ(nlohmann::json::parse(Slurp(dir_ / "cmp" / "o" / "seed_2" / "experiment.json"))["seed"], 2);
+    ExpectPicture(dir_ / "cmp" / "comparison.png");
+    EXPECT_THAT(Slurp(dir_ / "cmp" / "report.md"), HasSubstr("| o (cmaes) | 2 |"));
+    // Contenders must share one problem and one objective.
+    ExpectRefused("compare " + ga + " " + SmallOptimizer("nsga2", 2) + " --out " + Path("bad"), "compare draws one objective's best");
+    ExpectRefused("compare " + ga + " --out " + Path("bad"), "compare needs two or more experiment files");
+}
+
 TEST_F(SearchCli, SweepResumedAfterAKillEndsLikeAnUninterruptedRun) {
     const std::string experiment = SmallSweep();
     ASSERT_EQ(Run("sweep " + experiment + " --out " + Path("whole") + " --threads 1").exitCode, 0);
@@ -444,16 +463,17 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     // Parsing happens before any work: a missing --out is reported only after the file was read.
     int files = 0;
     for (const auto& folder : {fs::path(ACTUATOR_ASSETS_DIR) / "experiments", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "shell",
-                               fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers"})
+                               fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers" / "compare"})
         for (const auto& entry : fs::directory_iterator(folder)) {
             if (entry.is_directory()) continue;
             const std::string name = entry.path().filename().string();
-            const std::string command = name.find("5.") <= 1 || name[0] == 'O' ? "evolve " : "sweep ";
+            const bool optimizers = folder.string().find("optimizers") != std::string::npos;
+            const std::string command = name.find("5.") <= 1 || optimizers ? "evolve " : "sweep ";
             const Result r = Run(command + entry.path().string());
             EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
             ++files;
         }
-    EXPECT_EQ(files, 10 + 10 + 3) << "the thesis's experiments, part 2's under the shell model, and the optimizers'";
+    EXPECT_EQ(files, 10 + 10 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparison's";
 }
 
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
@@ -461,7 +481,7 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string report = Slurp(dir_ / "thesis" / "report.md");
     for (const char* section : {"## 4.1 ", "## 4.2 ", "## 4.3 ", "## 5.1 ", "## 5.2 ", "## 5.3 ", "## 5.4 ", "## 5.5 ", "## 6.1 ", "## 6.2 ", "## S4.1 ",
-                                "## S5.4 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**"})
+                                "## S5.4 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**", "# Part 3: optimizers compared"})
         EXPECT_THAT(report, HasSubstr(section));
     const auto comparison = app::ParseCsv(Slurp(dir_ / "thesis" / "comparison" / "comparison.csv"));
     EXPECT_EQ(comparison.size(), 10u) << "a row per experiment of part 2 that re-runs one of part 1 (the header, 7 isotropic, 2 with fibres)";
