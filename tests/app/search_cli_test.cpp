@@ -222,6 +222,27 @@ TEST_F(SearchCli, OptimizerRunsGiveTheSameBytesWhateverTheThreadsAndResumeExactl
     }
 }
 
+TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
+    for (const std::string algorithm : {"cmaes", "xnes", "de", "sade", "pso", "nsga2", "moead"})
+        for (const bool shell : {false, true}) {
+            const bool multi = algorithm == "nsga2" || algorithm == "moead";
+            const std::string model = shell ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2}},)"
+                                            : R"("sim": {"iterations": 2000},)";
+            const std::string objectives = shell ? (multi ? R"(["contraction", "blocking_force"])" : R"(["contraction"])")
+                                                 : (multi ? R"(["thesis_fitness", "contraction"])" : R"(["thesis_fitness"])");
+            const std::string name = algorithm + (shell ? "_shell" : "_thesis");
+            Write(name + ".json", R"({"id": ")" + name + R"(", "seed": 3, )" + model + R"( "render": {"figures": false, "thumbnails": false},
+                "optimizer": {"algorithm": ")" + algorithm + R"(", "population": 12, "generations": 2, "objectives": )" + objectives + R"(,
+                              "genome": {"family": "sine", "amplitude": [0.5, 4], "phase_end": [2, 3.1]}}})");
+            const Result r = Run("evolve " + Path(name + ".json") + " --out " + Path(name));
+            ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+            EXPECT_THAT(r.out, HasSubstr("stopped by generations")) << name;
+            const auto logbook = app::ParseCsv(Slurp(dir_ / name / "run_1" / "logbook.csv"));
+            EXPECT_EQ(logbook.size(), 4u) << name;
+            EXPECT_TRUE(fs::exists(dir_ / name / "run_1" / (multi ? "pareto_front.csv" : "halloffame.csv"))) << name;
+        }
+}
+
 TEST_F(SearchCli, ParetoFrontsAreNonDominatedAndPictured) {
     const Result r = Run("evolve " + SmallOptimizer("nsga2", 4) + " --out " + Path("pareto"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
