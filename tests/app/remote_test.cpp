@@ -98,6 +98,17 @@ TEST_F(Remote, TwoServersGiveTheSameResultsAsALocalRun) {
     for (const char* file : {"logbook.csv", "halloffame.csv", "best_per_generation.csv"})
         EXPECT_EQ(Slurp(dir_ / "ga-remote" / "run_1" / file), Slurp(dir_ / "ga-local" / "run_1" / file)) << file;
     EXPECT_EQ(Slurp(dir_ / "ga-remote" / "evaluations.csv"), Slurp(dir_ / "ga-local" / "evaluations.csv"));
+
+    // A pagmo optimizer's batches go through the same pool: NSGA-II under the shell model.
+    Write("nsga2.json", R"({"id": "remote-nsga2", "seed": 5, "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2}},
+        "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 2, "objectives": ["contraction", "max_stretch"],
+                      "genome": {"family": "bspline", "splines": 1, "control_points": 5}},
+        "render": {"figures": false, "thumbnails": false}})");
+    ASSERT_EQ(Run("evolve " + Path("nsga2.json") + " --out " + Path("o-local")).exitCode, 0);
+    const Result optimizer = Run("evolve " + Path("nsga2.json") + " --out " + Path("o-remote") + workers + ",local");
+    ASSERT_EQ(optimizer.exitCode, 0) << optimizer.err;
+    for (const char* file : {"run_1/logbook.csv", "run_1/pareto_front.csv", "evaluations.csv"})
+        EXPECT_EQ(Slurp(dir_ / "o-remote" / file), Slurp(dir_ / "o-local" / file)) << file;
 }
 
 // 5,000 points against one server: more than a call may carry (the server says so in info()), so
