@@ -16,6 +16,7 @@ packages=(
   libfmt-dev                 # number formatting (app)
   nlohmann-json3-dev         # JSON: experiment files, outputs, checkpoints (app)
   libgtest-dev libgmock-dev  # tests
+  libpagmo-dev               # optimizers: CMA-ES, DE, PSO, NSGA-II, ... (sim_optimize; brings Boost and TBB)
   libbenchmark-dev           # benchmarks
 )
 
