@@ -53,6 +53,8 @@ std::string SummaryJson(const Experiment& e, const ExperimentOutcome& o) {
 
 }  // namespace
 
+fs::path RunFolder(const RunContext& c, int run) { return c.dir / ("run_" + std::to_string(run)); }
+
 ExperimentOutcome RunExperiment(const Experiment& e, const fs::path& out, const RunOptions& options) {
     CheckOrRecordExperiment(e, out, options.resume);
     ExperimentOutcome outcome;

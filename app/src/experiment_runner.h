@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "errors.h"
 #include "evaluator.h"
 #include "experiment.h"
+#include "files.h"
 #include "recorder.h"
 #include "results_folder.h"
 
@@ -54,6 +56,15 @@ struct RunContext {
     ExperimentOutcome& outcome;
 };
 
+// A GA or optimizer run's folder, DIR/run_K (1-based).
+std::filesystem::path RunFolder(const RunContext& c, int run);
+
+// Resume of runs that checkpoint after every generation: each run's DIR/run_K/checkpoint.json read
+// by `parse(text, path)` (which checks it), a gap before the newest refused, and the archive cut back
+// to the newest checkpoint's `archiveCount`. Without --resume: no checkpoints, the archive untouched.
+template <class Checkpoint, class Parse>
+std::vector<std::optional<Checkpoint>> ResumeRuns(RunContext& c, int runs, const Parse& parse);
+
 void RunSweep(RunContext& c);
 void RunList(RunContext& c);
 void RunEvolution(RunContext& c);
@@ -64,5 +75,23 @@ void RunOptimization(RunContext& c);
 // contraction-pressure curve. A turntable when the experiment asks.
 void WriteBestFigures(RunContext& c, const std::filesystem::path& folder, const sim::EvalJob& job, const sim::SimResult& inflated,
                       const std::string& title, int turntableFrames, bool listInOutcome);
+
+template <class Checkpoint, class Parse>
+std::vector<std::optional<Checkpoint>> ResumeRuns(RunContext& c, int runs, const Parse& parse) {
+    std::vector<std::optional<Checkpoint>> saved(static_cast<size_t>(runs));
+    if (!c.options.resume) return saved;
+    int newest = 0;  // 1-based run of the newest checkpoint; 0: none
+    for (int r = 1; r <= runs; ++r) {
+        const std::filesystem::path path = RunFolder(c, r) / "checkpoint.json";
+        std::error_code ec;
+        if (!std::filesystem::exists(path, ec)) continue;
+        saved[r - 1] = parse(ReadInputFile(path.string()), path.string());
+        newest = r;
+    }
+    for (int r = 1; r < newest; ++r)
+        if (!saved[r - 1]) throw UsageError("--resume: " + Quote(RunFolder(c, r).string()) + " has no checkpoint, yet a later run has one");
+    c.recorder.RollBack(newest ? saved[newest - 1]->archiveCount : 0);
+    return saved;
+}
 
 }  // namespace app

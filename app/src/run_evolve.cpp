@@ -133,23 +133,11 @@ std::string GenomeSummary(const Experiment& e, const sim::Genome& genome) {
 
 void RunEvolution(RunContext& c) {
     const Experiment& e = c.e;
-    auto runDir = [&](int r) { return c.dir / ("run_" + std::to_string(r)); };
+    auto runDir = [&](int r) { return RunFolder(c, r); };
 
     // Resume: every run up to the newest checkpoint; the archive is cut back to that checkpoint.
-    std::vector<std::optional<RunCheckpoint>> saved(static_cast<size_t>(e.runs));
-    int newest = 0;  // 1-based run of the newest checkpoint; 0: none
-    if (c.options.resume) {
-        for (int r = 1; r <= e.runs; ++r) {
-            const fs::path path = runDir(r) / "checkpoint.json";
-            std::error_code ec;
-            if (!fs::exists(path, ec)) continue;
-            saved[r - 1] = ParseCheckpoint(ReadInputFile(path.string()), path.string(), e);
-            newest = r;
-        }
-        for (int r = 1; r < newest; ++r)
-            if (!saved[r - 1]) throw UsageError("--resume: " + Quote(runDir(r).string()) + " has no checkpoint, yet a later run has one");
-        c.recorder.RollBack(newest ? saved[newest - 1]->archiveCount : 0);
-    }
+    std::vector<std::optional<RunCheckpoint>> saved =
+        ResumeRuns<RunCheckpoint>(c, e.runs, [&](const std::string& text, const std::string& path) { return ParseCheckpoint(text, path, e); });
 
     std::vector<RunCheckpoint> runs;
     std::vector<std::unique_ptr<GenomeCache>> caches;
@@ -164,7 +152,7 @@ void RunEvolution(RunContext& c) {
         std::unique_ptr<render::MeshRenderer> sheetRenderer;
         Progress progress(fmt::format("evolve {} run {}/{}", ExperimentTitle(e), r, e.runs), c.options.progress);
         RunCheckpoint checkpoint;
-        if (r <= newest) {
+        if (saved[r - 1]) {
             checkpoint = std::move(*saved[r - 1]);
             cache.Restore(c.recorder.Existing());
         } else {

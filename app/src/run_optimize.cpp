@@ -206,23 +206,11 @@ std::string Caption(const sim::DesignScore& s) {
 void RunOptimization(RunContext& c) {
     const Experiment& e = c.e;
     const sim::OptimizerDef& def = e.optimizer;
-    auto runDir = [&](int r) { return c.dir / ("run_" + std::to_string(r)); };
+    auto runDir = [&](int r) { return RunFolder(c, r); };
 
     // Resume: the newest checkpoint of each run; the archive is cut back to the newest of all.
-    std::vector<std::optional<OptimizerCheckpoint>> saved(static_cast<size_t>(e.runs));
-    int newest = 0;
-    if (c.options.resume) {
-        for (int r = 1; r <= e.runs; ++r) {
-            const fs::path path = runDir(r) / "checkpoint.json";
-            std::error_code ec;
-            if (!fs::exists(path, ec)) continue;
-            saved[r - 1] = ParseOptimizerCheckpoint(ReadInputFile(path.string()), path.string(), e);
-            newest = r;
-        }
-        for (int r = 1; r < newest; ++r)
-            if (!saved[r - 1]) throw UsageError("--resume: " + Quote(runDir(r).string()) + " has no checkpoint, yet a later run has one");
-        c.recorder.RollBack(newest ? saved[newest - 1]->archiveCount : 0);
-    }
+    const std::vector<std::optional<OptimizerCheckpoint>> saved = ResumeRuns<OptimizerCheckpoint>(
+        c, e.runs, [&](const std::string& text, const std::string& path) { return ParseOptimizerCheckpoint(text, path, e); });
 
     std::vector<RunState> runs;
     std::unique_ptr<render::MeshRenderer> sheetRenderer;
@@ -234,7 +222,7 @@ void RunOptimization(RunContext& c) {
         RunState state;
         state.cache = std::make_unique<DesignCache>(c, r);
         DesignCache& cache = *state.cache;
-        const std::optional<OptimizerCheckpoint> before = r <= newest ? saved[r - 1] : std::nullopt;
+        const std::optional<OptimizerCheckpoint> before = saved[r - 1];
         if (before) cache.Restore(c.recorder.Existing());
         state.checkpoint.seed = before ? before->seed : sim::DeriveSeed(e.seed, static_cast<std::uint64_t>(r - 1));
         const double secondsBefore = before ? before->seconds : 0;
