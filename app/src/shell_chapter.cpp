@@ -219,9 +219,12 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     md += fmt::format("Of {} isotropic designs (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium", evaluated, model,
                       first.shell.load.pressureKpa, ok);
     if (contracting == 0)
-        md += " and every one of them lengthened: none contracts. The thesis's premise, that shaping an isotropic tube makes it contract "
-              "when inflated, does not hold in a model with equilibrium and units. Shaped tubes of one isotropic silicone balloon and "
-              "lengthen; contraction needs what SHELL.md names: stiff fibres (McKibben and pleated muscles) or vacuum.";
+        md += " and every one of them lengthened: none of them contracts. The thesis's premise, that shaping an isotropic tube makes a "
+              "contracting actuator, is not borne out in a model with equilibrium and units: shaped tubes of one isotropic silicone balloon "
+              "and lengthen. These runs are samples, not a proof: a search aimed at contraction alone (`actuator evolve "
+              "assets/experiments/optimizers/O5.2_cmaes_shell.json`, CMA-ES) finds thin-necked spindles that shorten by about a tenth of a "
+              "percent, the same at twice and three times the mesh. Useful contraction needs what SHELL.md names: stiff fibres (McKibben and "
+              "pleated muscles) or vacuum.";
     else
         md += fmt::format("; {} of them contracted, the best by {:.2f} % (experiment {}).", contracting, bestOverall, bestWhere);
     md += fmt::format(" Of the thesis model's {} best designs, {} reach equilibrium here; the others are refused or fail as the table says "
