@@ -84,23 +84,38 @@ std::string DesignKey(const Experiment& e, const sim::EvalJob& job) {
     return key;
 }
 
-sim::DesignScore ScoreOf(const Experiment& e, const sim::SimResult& r) {
+// The objectives of a design from its inflation and, when an objective asks for it, its stretch
+// test; a failed stretch test fails the design.
+sim::DesignScore ScoreOf(const Experiment& e, const sim::SimResult& inflated, const sim::SimResult* stretched) {
     sim::DesignScore s;
-    s.status = r.status;
-    for (const sim::Objective& o : e.optimizer.objectives) s.values.push_back(sim::ObjectiveValue(o.kind, r));
+    s.status = inflated.status == sim::Status::Ok && stretched ? stretched->status : inflated.status;
+    for (const sim::Objective& o : e.optimizer.objectives) s.values.push_back(sim::ObjectiveValue(o.kind, inflated, stretched));
     return s;
 }
 
-// Evaluates genome vectors through the recorder, each distinct design once per run.
+// A result without its meshes: what scores need.
+sim::SimResult WithoutMeshes(sim::SimResult r) {
+    r.initial = {};
+    r.final = {};
+    r.shell.steps.clear();
+    return r;
+}
+
+// Evaluates genome vectors through the recorder, each distinct design once per run (with its
+// stretch test under the thesis model when an objective needs it: two evaluations, one id each).
 class DesignCache {
 public:
-    DesignCache(RunContext& c, int run) : c_(c), run_(run) {}
+    DesignCache(RunContext& c, int run) : c_(c), run_(run), stretch_(sim::NeedsStretchTest(c.e.optimizer.objectives)) {}
 
     void Restore(const std::vector<ArchiveRecord>& records) {
         for (const ArchiveRecord& r : records) {
             if (r.role != Role::Individual || r.run != run_) continue;
             const std::string key = DesignKey(c_.e, r.job);
-            scores_.emplace(key, ScoreOf(c_.e, r.result));
+            if (IsStretchTest(r.job)) {
+                stretched_.emplace(key, WithoutMeshes(r.result));
+                continue;
+            }
+            inflated_.emplace(key, WithoutMeshes(r.result));
             ids_.emplace(key, r.id);
         }
     }
@@ -109,32 +124,52 @@ public:
     std::vector<sim::DesignScore> operator()(const std::vector<std::vector<double>>& xs) {
         std::vector<sim::EvalJob> jobs;
         std::vector<EvaluationTag> tags;
-        std::vector<std::string> keys, newKeys;
+        std::vector<std::string> keys, jobKeys;
         for (const auto& x : xs) {
             sim::EvalJob job = JobOfVector(c_.e, x);
-            keys.push_back(DesignKey(c_.e, job));
+            const std::string key = DesignKey(c_.e, job);
+            keys.push_back(key);
             // Two vectors that round to one design are simulated once.
-            if (scores_.count(keys.back()) || std::find(newKeys.begin(), newKeys.end(), keys.back()) != newKeys.end()) continue;
-            newKeys.push_back(keys.back());
+            if (inflated_.count(key) || std::find(jobKeys.begin(), jobKeys.end(), key) != jobKeys.end()) continue;
+            const std::string label = fmt::format("run {} generation {}", run_, generation_);
+            if (stretch_) {
+                sim::EvalJob stretched = job;
+                stretched.params.load = sim::Load::Stretch;
+                jobs.push_back(std::move(job));
+                jobs.push_back(std::move(stretched));
+                tags.push_back({Role::Individual, run_, generation_, label});
+                tags.push_back({Role::Individual, run_, generation_, label + " stretch test"});
+                jobKeys.insert(jobKeys.end(), {key, key});
+                continue;
+            }
             jobs.push_back(std::move(job));
-            tags.push_back({Role::Individual, run_, generation_, fmt::format("run {} generation {}", run_, generation_)});
+            tags.push_back({Role::Individual, run_, generation_, label});
+            jobKeys.push_back(key);
         }
         c_.recorder.Evaluate(jobs, tags, [&](std::uint64_t id, size_t k, sim::SimResult&& r) {
-            scores_.emplace(newKeys[k], ScoreOf(c_.e, r));
-            ids_.emplace(newKeys[k], id);
+            if (IsStretchTest(jobs[k])) {
+                stretched_.emplace(jobKeys[k], WithoutMeshes(std::move(r)));
+                return;
+            }
+            inflated_.emplace(jobKeys[k], WithoutMeshes(std::move(r)));
+            ids_.emplace(jobKeys[k], id);
         });
         std::vector<sim::DesignScore> out;
-        for (const auto& key : keys) out.push_back(scores_.at(key));
+        for (const auto& key : keys) out.push_back(ScoreOf(c_.e, inflated_.at(key), stretch_ ? &stretched_.at(key) : nullptr));
         return out;
     }
 
+    // The design's inflation's evaluation id.
     std::uint64_t IdOf(const std::vector<double>& x) const { return ids_.at(DesignKey(c_.e, JobOfVector(c_.e, x))); }
 
 private:
+    bool IsStretchTest(const sim::EvalJob& job) const { return stretch_ && job.model == sim::ModelKind::Thesis && job.params.load == sim::Load::Stretch; }
+
     RunContext& c_;
     int run_;
+    bool stretch_;
     int generation_ = 0;
-    std::unordered_map<std::string, sim::DesignScore> scores_;
+    std::unordered_map<std::string, sim::SimResult> inflated_, stretched_;
     std::unordered_map<std::string, std::uint64_t> ids_;
 };
 
@@ -324,7 +359,7 @@ void RunOptimization(RunContext& c) {
     if (!Multi(e)) {
         std::vector<RunCurve> curves;
         for (int r = 0; r < e.runs; ++r) {
-            RunCurve curve{fmt::format("run {}", r + 1), {}};
+            RunCurve curve{fmt::format("run {}", r + 1), {}, {}};
             for (const auto& row : runs[r].run.logbook) {
                 curve.logbook.push_back({row.generation, static_cast<int>(row.evaluations), row.best, row.worst, row.mean, row.stddev, row.invalid});
                 curve.bestSoFar.push_back(row.bestSoFar);

@@ -16,23 +16,29 @@ bool MaximisedByDefault(ObjectiveKind kind) { return kind != ObjectiveKind::MaxS
 
 std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
     const bool thesis = model == ModelKind::Thesis;
-    if (kind == ObjectiveKind::ThesisFitness && !thesis)
-        return fmt::format("objective thesis_fitness is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
+    if ((kind == ObjectiveKind::ThesisFitness || kind == ObjectiveKind::StretchFitness) && !thesis)
+        return fmt::format("objective {} is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
                            "max_stretch and volume_change",
-                           Name(model));
-    if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness)
-        return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness and contraction (use the "
+                           Name(kind), Name(model));
+    if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness && kind != ObjectiveKind::StretchFitness)
+        return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness, stretch_fitness and contraction (use the "
                            "membrane or shell model)",
                            Name(kind));
     return "";
 }
 
-double ObjectiveValue(ObjectiveKind kind, const SimResult& r) {
+bool NeedsStretchTest(const std::vector<Objective>& objectives) {
+    return std::any_of(objectives.begin(), objectives.end(), [](const Objective& o) { return o.kind == ObjectiveKind::StretchFitness; });
+}
+
+double ObjectiveValue(ObjectiveKind kind, const SimResult& r, const SimResult* stretched) {
     if (r.status != Status::Ok) return NAN;
+    if (kind == ObjectiveKind::StretchFitness) return stretched && stretched->status == Status::Ok ? stretched->fitness : NAN;
     const ShellOutputs& s = r.shell;
     switch (kind) {
         case ObjectiveKind::Contraction: return r.contractionPercent;
         case ObjectiveKind::ThesisFitness: return r.fitness;
+        case ObjectiveKind::StretchFitness: return NAN;
         case ObjectiveKind::BlockingForce: return s.blockingForceN;
         case ObjectiveKind::AxialStiffness: return s.axialStiffnessNPerMm;
         case ObjectiveKind::MaxStretch: return s.maxStretch;
@@ -45,6 +51,7 @@ const char* ObjectiveUnit(ObjectiveKind kind) {
     switch (kind) {
         case ObjectiveKind::Contraction: return "contraction, %";
         case ObjectiveKind::ThesisFitness: return "thesis fitness, mesh units";
+        case ObjectiveKind::StretchFitness: return "stretch test fitness, mesh units";
         case ObjectiveKind::BlockingForce: return "blocking force, N";
         case ObjectiveKind::AxialStiffness: return "axial stiffness, N/mm";
         case ObjectiveKind::MaxStretch: return "largest stretch";

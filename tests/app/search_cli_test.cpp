@@ -229,7 +229,7 @@ TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
             const std::string model = shell ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2}},)"
                                             : R"("sim": {"iterations": 2000},)";
             const std::string objectives = shell ? (multi ? R"(["contraction", "blocking_force"])" : R"(["contraction"])")
-                                                 : (multi ? R"(["thesis_fitness", "contraction"])" : R"(["thesis_fitness"])");
+                                                 : (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])");
             const std::string name = algorithm + (shell ? "_shell" : "_thesis");
             Write(name + ".json", R"({"id": ")" + name + R"(", "seed": 3, )" + model + R"( "render": {"figures": false, "thumbnails": false},
                 "optimizer": {"algorithm": ")" + algorithm + R"(", "population": 12, "generations": 2, "objectives": )" + objectives + R"(,
@@ -288,7 +288,7 @@ TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
     ExpectRefused(with("\"cmaes\"", "\"nsga2\""), "nsga2 optimises several objectives");
     ExpectRefused(with("\"population\": 8", "\"population\": 3"), "cmaes needs a population of at least 5 (got 3)");
     ExpectRefused(with("\"control\": [0, 8]", "\"control\": [8, 0]"), "low end above high end");
-    ExpectRefused(with("[\"thesis_fitness\"]", "[\"blocking_force\"]"), "the thesis model gives only thesis_fitness and contraction");
+    ExpectRefused(with("[\"thesis_fitness\"]", "[\"blocking_force\"]"), "the thesis model gives only thesis_fitness, stretch_fitness and contraction");
     ExpectRefused(with("\"population\": 8", "\"population\": 8, \"parameters\": {\"sigma\": 0.2}"), "cmaes has no parameter 'sigma' (valid: sigma0, cc, cs, c1, cmu)");
     ExpectRefused(with("\"generations\": 2", "\"generation\": 2"), "did you mean 'optimizer.generations'?");
     ExpectRefused(with("\"generations\": 2", "\"generations\": 2, \"stop\": {\"stagnation\": -1}"), "'optimizer.stop.stagnation': '-1' is out of range (0 to 100000)");
@@ -494,7 +494,7 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
             EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
             ++files;
         }
-    EXPECT_EQ(files, 10 + 10 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparison's";
+    EXPECT_EQ(files, 10 + 10 + 4 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparison's";
 }
 
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {

@@ -35,6 +35,8 @@ bool IsMultiObjective(Algorithm algorithm);
 enum class ObjectiveKind {
     Contraction,     // percent at the target pressure, + shorter (every model)
     ThesisFitness,   // the thesis model's fitness, mesh units (thesis model)
+    StretchFitness,  // the thesis's stretch test (chapter 6): fitness under the pull load instead of
+                     // inflation, mesh units, + less elongation (thesis model; a second simulation)
     BlockingForce,   // N, + pulls on the supports (membrane, shell)
     AxialStiffness,  // N/mm at the free equilibrium (membrane, shell)
     MaxStretch,      // largest principal stretch of the wall (membrane, shell)
@@ -48,8 +50,11 @@ struct Objective {
 bool MaximisedByDefault(ObjectiveKind kind);
 // Empty when the model produces this objective; otherwise why not.
 std::string ObjectiveError(ObjectiveKind kind, ModelKind model);
-// The objective's value in a result (NaN when the result's status is not Ok).
-double ObjectiveValue(ObjectiveKind kind, const SimResult& result);
+// The objective's value in a result (NaN when the result's status is not Ok); StretchFitness reads
+// `stretched`, the same design's stretch test (NaN without one).
+double ObjectiveValue(ObjectiveKind kind, const SimResult& result, const SimResult* stretched = nullptr);
+// True when an objective needs the stretch test besides the inflation.
+bool NeedsStretchTest(const std::vector<Objective>& objectives);
 // "contraction, %" and the like, for axes and column headers.
 const char* ObjectiveUnit(ObjectiveKind kind);
 
@@ -179,8 +184,9 @@ struct EnumNames<Algorithm> {
 };
 template <>
 struct EnumNames<ObjectiveKind> {
-    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 6> table{{{ObjectiveKind::Contraction, "contraction"},
+    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 7> table{{{ObjectiveKind::Contraction, "contraction"},
                                                                                  {ObjectiveKind::ThesisFitness, "thesis_fitness"},
+                                                                                 {ObjectiveKind::StretchFitness, "stretch_fitness"},
                                                                                  {ObjectiveKind::BlockingForce, "blocking_force"},
                                                                                  {ObjectiveKind::AxialStiffness, "axial_stiffness"},
                                                                                  {ObjectiveKind::MaxStretch, "max_stretch"},
