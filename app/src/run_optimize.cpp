@@ -84,12 +84,14 @@ std::string DesignKey(const Experiment& e, const sim::EvalJob& job) {
     return key;
 }
 
-// The objectives of a design from its inflation and, when an objective asks for it, its stretch
-// test; a failed stretch test fails the design.
-sim::DesignScore ScoreOf(const Experiment& e, const sim::SimResult& inflated, const sim::SimResult* stretched) {
+// The objectives of a design from its inflation and, when an objective asks for one, its second
+// evaluation. A failed stretch test fails the design; an inflation to twice the target may well
+// end at a limit point (that is what it measures), and only leaves the margin unknown otherwise.
+sim::DesignScore ScoreOf(const Experiment& e, const sim::SimResult& inflated, const sim::SimResult* second) {
     sim::DesignScore s;
-    s.status = inflated.status == sim::Status::Ok && stretched ? stretched->status : inflated.status;
-    for (const sim::Objective& o : e.optimizer.objectives) s.values.push_back(sim::ObjectiveValue(o.kind, inflated, stretched));
+    const bool stretchTest = sim::SecondEvaluationOf(e.optimizer.objectives) == sim::SecondEvaluation::StretchTest;
+    s.status = inflated.status == sim::Status::Ok && second && stretchTest ? second->status : inflated.status;
+    for (const sim::Objective& o : e.optimizer.objectives) s.values.push_back(sim::ObjectiveValue(o.kind, inflated, second));
     return s;
 }
 
@@ -102,17 +104,17 @@ sim::SimResult WithoutMeshes(sim::SimResult r) {
 }
 
 // Evaluates genome vectors through the recorder, each distinct design once per run (with its
-// stretch test under the thesis model when an objective needs it: two evaluations, one id each).
+// second evaluation when an objective needs one: two evaluations, one id each).
 class DesignCache {
 public:
-    DesignCache(RunContext& c, int run) : c_(c), run_(run), stretch_(sim::NeedsStretchTest(c.e.optimizer.objectives)) {}
+    DesignCache(RunContext& c, int run) : c_(c), run_(run), second_(sim::SecondEvaluationOf(c.e.optimizer.objectives)) {}
 
     void Restore(const std::vector<ArchiveRecord>& records) {
         for (const ArchiveRecord& r : records) {
             if (r.role != Role::Individual || r.run != run_) continue;
             const std::string key = DesignKey(c_.e, r.job);
-            if (IsStretchTest(r.job)) {
-                stretched_.emplace(key, WithoutMeshes(r.result));
+            if (IsSecond(r.job)) {
+                seconds_.emplace(key, WithoutMeshes(r.result));
                 continue;
             }
             inflated_.emplace(key, WithoutMeshes(r.result));
@@ -132,13 +134,13 @@ public:
             // Two vectors that round to one design are simulated once.
             if (inflated_.count(key) || std::find(jobKeys.begin(), jobKeys.end(), key) != jobKeys.end()) continue;
             const std::string label = fmt::format("run {} generation {}", run_, generation_);
-            if (stretch_) {
-                sim::EvalJob stretched = job;
-                stretched.params.load = sim::Load::Stretch;
+            if (second_ != sim::SecondEvaluation::None) {
+                sim::EvalJob second = SecondJob(job);
                 jobs.push_back(std::move(job));
-                jobs.push_back(std::move(stretched));
+                jobs.push_back(std::move(second));
                 tags.push_back({Role::Individual, run_, generation_, label});
-                tags.push_back({Role::Individual, run_, generation_, label + " stretch test"});
+                tags.push_back({Role::Individual, run_, generation_,
+                                label + (second_ == sim::SecondEvaluation::StretchTest ? " stretch test" : " to twice the pressure")});
                 jobKeys.insert(jobKeys.end(), {key, key});
                 continue;
             }
@@ -147,15 +149,16 @@ public:
             jobKeys.push_back(key);
         }
         c_.recorder.Evaluate(jobs, tags, [&](std::uint64_t id, size_t k, sim::SimResult&& r) {
-            if (IsStretchTest(jobs[k])) {
-                stretched_.emplace(jobKeys[k], WithoutMeshes(std::move(r)));
+            if (IsSecond(jobs[k])) {
+                seconds_.emplace(jobKeys[k], WithoutMeshes(std::move(r)));
                 return;
             }
             inflated_.emplace(jobKeys[k], WithoutMeshes(std::move(r)));
             ids_.emplace(jobKeys[k], id);
         });
         std::vector<sim::DesignScore> out;
-        for (const auto& key : keys) out.push_back(ScoreOf(c_.e, inflated_.at(key), stretch_ ? &stretched_.at(key) : nullptr));
+        for (const auto& key : keys)
+            out.push_back(ScoreOf(c_.e, inflated_.at(key), second_ != sim::SecondEvaluation::None ? &seconds_.at(key) : nullptr));
         return out;
     }
 
@@ -163,13 +166,25 @@ public:
     std::uint64_t IdOf(const std::vector<double>& x) const { return ids_.at(DesignKey(c_.e, JobOfVector(c_.e, x))); }
 
 private:
-    bool IsStretchTest(const sim::EvalJob& job) const { return stretch_ && job.model == sim::ModelKind::Thesis && job.params.load == sim::Load::Stretch; }
+    // The stretch test (thesis model), or the inflation to twice the target in as many steps again.
+    sim::EvalJob SecondJob(sim::EvalJob job) const {
+        if (second_ == sim::SecondEvaluation::StretchTest) job.params.load = sim::Load::Stretch;
+        else {
+            job.shell.load.pressureKpa *= 2;
+            job.shell.load.steps *= 2;
+        }
+        return job;
+    }
+    bool IsSecond(const sim::EvalJob& job) const {
+        if (second_ == sim::SecondEvaluation::StretchTest) return job.model == sim::ModelKind::Thesis && job.params.load == sim::Load::Stretch;
+        return second_ == sim::SecondEvaluation::TwiceThePressure && job.shell.load.pressureKpa != c_.e.shell.load.pressureKpa;
+    }
 
     RunContext& c_;
     int run_;
-    bool stretch_;
+    sim::SecondEvaluation second_;
     int generation_ = 0;
-    std::unordered_map<std::string, sim::SimResult> inflated_, stretched_;
+    std::unordered_map<std::string, sim::SimResult> inflated_, seconds_;
     std::unordered_map<std::string, std::uint64_t> ids_;
 };
 

@@ -18,7 +18,7 @@ std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
     const bool thesis = model == ModelKind::Thesis;
     if ((kind == ObjectiveKind::ThesisFitness || kind == ObjectiveKind::StretchFitness) && !thesis)
         return fmt::format("objective {} is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
-                           "max_stretch and volume_change",
+                           "max_stretch, volume_change and limit_margin",
                            Name(kind), Name(model));
     if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness && kind != ObjectiveKind::StretchFitness)
         return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness, stretch_fitness and contraction (use the "
@@ -27,18 +27,30 @@ std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
     return "";
 }
 
-bool NeedsStretchTest(const std::vector<Objective>& objectives) {
-    return std::any_of(objectives.begin(), objectives.end(), [](const Objective& o) { return o.kind == ObjectiveKind::StretchFitness; });
+SecondEvaluation SecondEvaluationOf(const std::vector<Objective>& objectives) {
+    for (const Objective& o : objectives) {
+        if (o.kind == ObjectiveKind::StretchFitness) return SecondEvaluation::StretchTest;
+        if (o.kind == ObjectiveKind::LimitMargin) return SecondEvaluation::TwiceThePressure;
+    }
+    return SecondEvaluation::None;
 }
 
-double ObjectiveValue(ObjectiveKind kind, const SimResult& r, const SimResult* stretched) {
+double ObjectiveValue(ObjectiveKind kind, const SimResult& r, const SimResult* second) {
     if (r.status != Status::Ok) return NAN;
-    if (kind == ObjectiveKind::StretchFitness) return stretched && stretched->status == Status::Ok ? stretched->fitness : NAN;
+    if (kind == ObjectiveKind::StretchFitness) return second && second->status == Status::Ok ? second->fitness : NAN;
+    if (kind == ObjectiveKind::LimitMargin) {
+        // The pressure maximum met on the way to twice the target; none met: a margin of 1 (or more).
+        if (!second) return NAN;
+        const double target = r.shell.targetPressureKpa;
+        if (std::isfinite(second->shell.limitPressureKpa) && target > 0) return std::min(1.0, second->shell.limitPressureKpa / target - 1.0);
+        return second->status == Status::Ok ? 1.0 : NAN;
+    }
     const ShellOutputs& s = r.shell;
     switch (kind) {
         case ObjectiveKind::Contraction: return r.contractionPercent;
         case ObjectiveKind::ThesisFitness: return r.fitness;
-        case ObjectiveKind::StretchFitness: return NAN;
+        case ObjectiveKind::StretchFitness:
+        case ObjectiveKind::LimitMargin: return NAN;
         case ObjectiveKind::BlockingForce: return s.blockingForceN;
         case ObjectiveKind::AxialStiffness: return s.axialStiffnessNPerMm;
         case ObjectiveKind::MaxStretch: return s.maxStretch;
@@ -52,6 +64,7 @@ const char* ObjectiveUnit(ObjectiveKind kind) {
         case ObjectiveKind::Contraction: return "contraction, %";
         case ObjectiveKind::ThesisFitness: return "thesis fitness, mesh units";
         case ObjectiveKind::StretchFitness: return "stretch test fitness, mesh units";
+        case ObjectiveKind::LimitMargin: return "limit pressure margin, fraction of the target";
         case ObjectiveKind::BlockingForce: return "blocking force, N";
         case ObjectiveKind::AxialStiffness: return "axial stiffness, N/mm";
         case ObjectiveKind::MaxStretch: return "largest stretch";

@@ -228,7 +228,7 @@ TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
             const bool multi = algorithm == "nsga2" || algorithm == "moead";
             const std::string model = shell ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2}},)"
                                             : R"("sim": {"iterations": 2000},)";
-            const std::string objectives = shell ? (multi ? R"(["contraction", "blocking_force"])" : R"(["contraction"])")
+            const std::string objectives = shell ? (multi ? (algorithm == "nsga2" ? R"(["contraction", "blocking_force"])" : R"(["contraction", "limit_margin"])") : R"(["contraction"])")
                                                  : (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])");
             const std::string name = algorithm + (shell ? "_shell" : "_thesis");
             Write(name + ".json", R"({"id": ")" + name + R"(", "seed": 3, )" + model + R"( "render": {"figures": false, "thumbnails": false},

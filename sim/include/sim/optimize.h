@@ -41,6 +41,8 @@ enum class ObjectiveKind {
     AxialStiffness,  // N/mm at the free equilibrium (membrane, shell)
     MaxStretch,      // largest principal stretch of the wall (membrane, shell)
     VolumeChange,    // percent of the rest volume at the target pressure (membrane, shell)
+    LimitMargin,     // how far the pressure maximum lies above the target, as a fraction of it, from a
+                     // second inflation to twice the target: 1 when none is met by then (membrane, shell)
 };
 
 struct Objective {
@@ -50,11 +52,13 @@ struct Objective {
 bool MaximisedByDefault(ObjectiveKind kind);
 // Empty when the model produces this objective; otherwise why not.
 std::string ObjectiveError(ObjectiveKind kind, ModelKind model);
-// The objective's value in a result (NaN when the result's status is not Ok); StretchFitness reads
-// `stretched`, the same design's stretch test (NaN without one).
-double ObjectiveValue(ObjectiveKind kind, const SimResult& result, const SimResult* stretched = nullptr);
-// True when an objective needs the stretch test besides the inflation.
-bool NeedsStretchTest(const std::vector<Objective>& objectives);
+// The objective's value in a result (NaN when the result's status is not Ok). StretchFitness and
+// LimitMargin read `second`, the design's second evaluation (NaN without one): its stretch test, or
+// its inflation to twice the target pressure.
+double ObjectiveValue(ObjectiveKind kind, const SimResult& result, const SimResult* second = nullptr);
+// Which second evaluation of every design an objective needs.
+enum class SecondEvaluation { None, StretchTest, TwiceThePressure };
+SecondEvaluation SecondEvaluationOf(const std::vector<Objective>& objectives);
 // "contraction, %" and the like, for axes and column headers.
 const char* ObjectiveUnit(ObjectiveKind kind);
 
@@ -184,13 +188,14 @@ struct EnumNames<Algorithm> {
 };
 template <>
 struct EnumNames<ObjectiveKind> {
-    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 7> table{{{ObjectiveKind::Contraction, "contraction"},
+    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 8> table{{{ObjectiveKind::Contraction, "contraction"},
                                                                                  {ObjectiveKind::ThesisFitness, "thesis_fitness"},
                                                                                  {ObjectiveKind::StretchFitness, "stretch_fitness"},
                                                                                  {ObjectiveKind::BlockingForce, "blocking_force"},
                                                                                  {ObjectiveKind::AxialStiffness, "axial_stiffness"},
                                                                                  {ObjectiveKind::MaxStretch, "max_stretch"},
-                                                                                 {ObjectiveKind::VolumeChange, "volume_change"}}};
+                                                                                 {ObjectiveKind::VolumeChange, "volume_change"},
+                                                                                 {ObjectiveKind::LimitMargin, "limit_margin"}}};
 };
 template <>
 struct EnumNames<VectorFamily> {
