@@ -243,6 +243,26 @@ TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
         }
 }
 
+// Every algorithm killed mid-run with one thread and resumed with two ends as an uninterrupted run
+// with two threads (the thesis model: quick; several objectives with the stretch test).
+TEST_F(SearchCli, EveryAlgorithmResumesExactlyAfterAKillWhateverTheThreads) {
+    for (const std::string algorithm : {"xnes", "de", "sade", "pso", "moead"}) {
+        SCOPED_TRACE(algorithm);
+        const bool multi = algorithm == "moead";
+        Write(algorithm + ".json", R"({"id": "k", "seed": 8, "sim": {"iterations": 3000}, "render": {"thumbnails": false},
+            "optimizer": {"algorithm": ")" + algorithm + R"(", "population": 12, "generations": 8, "objectives": )" +
+                                       (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])") + R"(,
+                          "genome": {"family": "bspline", "splines": 1, "control_points": 6}}})");
+        const fs::path whole = dir_ / (algorithm + "_whole"), killed = dir_ / (algorithm + "_killed");
+        ASSERT_EQ(Run("evolve " + Path(algorithm + ".json") + " --threads 2 --out " + whole.string()).exitCode, 0);
+        KillWhen({ACTUATOR_BIN, "evolve", Path(algorithm + ".json"), "--threads", "1", "--out", killed.string()},
+                 [&] { return Generation(killed / "run_1" / "checkpoint.json") >= 3; });
+        const Result resumed = Run("evolve --resume " + killed.string() + " --threads 2");
+        ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+        ExpectSameOutputs(whole, killed);
+    }
+}
+
 TEST_F(SearchCli, ParetoFrontsAreNonDominatedAndPictured) {
     const Result r = Run("evolve " + SmallOptimizer("nsga2", 4) + " --out " + Path("pareto"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
