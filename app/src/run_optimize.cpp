@@ -354,8 +354,8 @@ void RunOptimization(RunContext& c) {
         }
         c.outcome.rows.push_back({fmt::format("run {} best {}", r + 1, sim::Name(def.objectives[0].kind)), best,
                                   r < static_cast<int>(e.thesisResult.runBest.size()) ? e.thesisResult.runBest[r] : NAN});
-        c.outcome.details.push_back(fmt::format("run {} (seed {}): {} generations, {} designs evaluated, stopped by {}{}", r + 1, runs[r].checkpoint.seed,
-                                                run.logbook.back().generation, run.evaluated.size(), run.stopReason,
+        c.outcome.details.push_back(fmt::format("run {} (seed {}): {} generations, {} designs evaluated ({} not foreseen, so evaluated alone), stopped by {}{}",
+                                                r + 1, runs[r].checkpoint.seed, run.logbook.back().generation, run.evaluated.size(), run.unforeseen, run.stopReason,
                                                 Multi(e) ? fmt::format(", front of {} designs, hypervolume {:.4g}", run.front.size(), run.logbook.back().hypervolume)
                                                          : std::string()));
         if (std::isnan(best)) continue;
