@@ -192,8 +192,13 @@ void RunEvolution(RunContext& c) {
             WriteGenerationSheet(c, dir, r, cache, checkpoint.state, sheetRenderer);
             checkpoint.archiveCount = c.recorder.Count();
             WriteRunFiles(dir, checkpoint);
-            progress.Update(checkpoint.state.generation, e.ga.generations, c.recorder.Simulated(),
-                            fmt::format("best {:.4f}, generation", checkpoint.state.logbook.back().best));
+            // Progress by evaluations when an evaluation budget ends the run first (compare's runs).
+            long long evaluated = 0;
+            for (const auto& row : checkpoint.state.logbook) evaluated += row.evaluations;
+            const long long budget = e.ga.stop.evaluations;
+            const bool byBudget = budget > 0 && budget < static_cast<long long>(e.ga.generations + 1) * e.ga.population;
+            progress.Update(byBudget ? std::min(evaluated, budget) : checkpoint.state.generation, byBudget ? budget : e.ga.generations,
+                            c.recorder.Simulated(), fmt::format("best {:.4f}, {}", checkpoint.state.logbook.back().best, byBudget ? "evaluations" : "generation"));
         }
         runs.push_back(std::move(checkpoint));
     }

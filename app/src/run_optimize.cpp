@@ -313,9 +313,13 @@ void RunOptimization(RunContext& c) {
             WriteFileAtomically((dir / "checkpoint.json").string(), FormatOptimizerCheckpoint(checkpoint, e));
             state.checkpoint = checkpoint;
             const auto& row = run.logbook.back();
-            progress.Update(generation, def.generations, c.recorder.Simulated(),
-                            Multi(e) ? fmt::format("hypervolume {:.4g}, front {}, generation", row.hypervolume, row.frontSize)
-                                     : fmt::format("best {:.4f}, generation", row.bestSoFar));
+            // Progress by evaluations when an evaluation budget ends the run first (compare's runs).
+            const long long budget = def.stop.evaluations;
+            const bool byBudget = budget > 0 && budget < static_cast<long long>(def.generations + 1) * def.population;
+            const std::string unit = byBudget ? "evaluations" : "generation";
+            progress.Update(byBudget ? std::min(row.evaluations, budget) : generation, byBudget ? budget : def.generations, c.recorder.Simulated(),
+                            Multi(e) ? fmt::format("hypervolume {:.4g}, front {}, {}", row.hypervolume, row.frontSize, unit)
+                                     : fmt::format("best {:.4f}, {}", row.bestSoFar, unit));
             return timeLeft;
         };
         state.run = sim::RunOptimizer(def, DesignMesh(e), state.checkpoint.seed, evaluate, onGeneration);
