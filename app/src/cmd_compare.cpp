@@ -42,9 +42,11 @@ int RunCompare(int argc, char** argv, int first) {
     if (mode == FolderMode::Resume && files.empty()) {
         if (!fs::exists(saved, ec)) throw UsageError("--resume: " + Quote(dir) + " holds no comparison (no contenders.json)");
         const auto j = nlohmann::ordered_json::parse(ReadInputFile(saved.string()), nullptr, false);
-        if (j.is_discarded() || !j.contains("files") || !j.contains("seeds") || !j.contains("evaluations"))
+        if (j.is_discarded() || !j.contains("files") || !j.contains("sets") || !j.contains("seeds") || !j.contains("evaluations"))
             throw UsageError(saved.string() + ": not a comparison's record");
+        if (!o.sets.empty()) throw UsageError("--set: a resumed comparison keeps the --set it was started with (" + saved.string() + ")");
         files = j["files"].get<std::vector<std::string>>();
+        o.sets = j["sets"].get<std::vector<std::string>>();
         def.seeds = j["seeds"].get<int>();
         def.budget = j["evaluations"].get<long long>();
     }
@@ -53,7 +55,7 @@ int RunCompare(int argc, char** argv, int first) {
     CheckContenders(contenders);
     const auto evaluator = MakeEvaluator(cli, o);
     ResultsFolder folder(dir, mode, "compare");
-    record = {{"files", files}, {"seeds", def.seeds}, {"evaluations", def.budget}};
+    record = {{"files", files}, {"sets", o.sets}, {"seeds", def.seeds}, {"evaluations", def.budget}};
     WriteFileAtomically(saved.string(), record.dump(2) + "\n");
     const ComparisonResult result = CompareOptimizers(contenders, def, dir, *evaluator, &folder, mode == FolderMode::Resume, true);
     WriteFileAtomically((fs::path(dir) / "report.md").string(), "# Optimizers compared\n\n" + result.markdown);

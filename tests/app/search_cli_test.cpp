@@ -334,6 +334,17 @@ TEST_F(SearchCli, CompareRunsEveryContenderWithTheSameSeedsToTheSameBudget) {
     EXPECT_EQ(nlohmann::json::parse(Slurp(dir_ / "cmp" / "o" / "seed_2" / "experiment.json"))["seed"], 2);
     ExpectPicture(dir_ / "cmp" / "comparison.png");
     EXPECT_THAT(Slurp(dir_ / "cmp" / "report.md"), HasSubstr("| o (cmaes) | 2 |"));
+    // Killed mid-way and resumed (with the --set it was started with): the same numbers, and the run
+    // that was cut off ends as it would have.
+    const std::vector<std::string> args{ACTUATOR_BIN, "compare", ga, cmaes, "--seeds", "2", "--evaluations", "20", "--set", "sim.iterations=2500",
+                                        "--out", Path("cut")};
+    ASSERT_EQ(Run("compare " + ga + " " + cmaes + " --seeds 2 --evaluations 20 --set sim.iterations=2500 --out " + Path("whole")).exitCode, 0);
+    KillWhen(args, [&] { return fs::exists(dir_ / "cut" / "o" / "seed_1" / "evaluations.csv"); });
+    const Result resumed = Run("compare --resume " + Path("cut"));
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_EQ(Slurp(dir_ / "cut" / "comparison.csv"), Slurp(dir_ / "whole" / "comparison.csv"));
+    ExpectSameOutputs(dir_ / "whole" / "o" / "seed_1", dir_ / "cut" / "o" / "seed_1");
+    ExpectRefused("compare --resume " + Path("cut") + " --set seed=3", "a resumed comparison keeps the --set it was started with");
     // Contenders must share one problem and one objective.
     ExpectRefused("compare " + ga + " " + SmallOptimizer("nsga2", 2) + " --out " + Path("bad"), "compare draws one objective's best");
     ExpectRefused("compare " + ga + " --out " + Path("bad"), "compare needs two or more experiment files");
