@@ -170,4 +170,41 @@ std::string HallOfFameCsv(const sim::GaState& state) {
     return csv;
 }
 
+namespace {
+constexpr int kOptimizerCheckpointVersion = 1;
+}  // namespace
+
+std::string FormatOptimizerCheckpoint(const OptimizerCheckpoint& c, const Experiment& e) {
+    const Json j{{"kind", "optimizer checkpoint"},    {"version", kOptimizerCheckpointVersion}, {"algorithm", sim::Name(e.optimizer.algorithm)},
+                 {"seed", c.seed},                    {"generation", c.generation},             {"archive_count", c.archiveCount},
+                 {"stop_reason", c.stopReason},       {"seconds", c.seconds},                   {"experiment_hash", ExperimentHash(e)},
+                 {"experiment", e.document}};
+    return j.dump(2) + "\n";
+}
+
+OptimizerCheckpoint ParseOptimizerCheckpoint(const std::string& text, const std::string& path, const Experiment& e) {
+    try {
+        const Json j = Json::parse(text);
+        if (j.at("kind") != "optimizer checkpoint" || j.at("version") != kOptimizerCheckpointVersion)
+            throw std::runtime_error("not an optimizer checkpoint of this version");
+        if (j.at("experiment_hash").get<std::string>() != ExperimentHash(e)) {
+            const std::string what = ExperimentDifference(j.at("experiment"), e.document);
+            throw UsageError(path + ": made with another experiment (" + (what.empty() ? "it was edited" : what) +
+                             "); resume needs the experiment the run started with");
+        }
+        OptimizerCheckpoint c;
+        c.seed = j.at("seed").get<std::uint64_t>();
+        c.generation = j.at("generation").get<int>();
+        c.archiveCount = j.at("archive_count").get<std::uint64_t>();
+        c.stopReason = j.at("stop_reason").get<std::string>();
+        c.seconds = j.at("seconds").get<double>();
+        if (c.generation < 0 || c.generation > 1000000 || !(c.seconds >= 0)) throw std::runtime_error("values out of range");
+        return c;
+    } catch (const UsageError&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw UsageError(path + ": not a usable optimizer checkpoint (" + error.what() + "); remove the folder or use --overwrite");
+    }
+}
+
 }  // namespace app

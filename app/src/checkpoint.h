@@ -32,4 +32,18 @@ std::string LogbookCsv(const sim::GaState& state);
 std::string BestPerGenerationCsv(const sim::GaState& state);
 std::string HallOfFameCsv(const sim::GaState& state);
 
+// An optimizer run's state on disk. No optimizer state: a resume replays the run from its seed with
+// the archive's results as answers (run_optimize.cpp), so the generation, the archive's length, the
+// stop reason and the experiment are all it needs.
+struct OptimizerCheckpoint {
+    std::uint64_t seed = 0;
+    int generation = -1;             // generations completed (0: the initial population)
+    std::uint64_t archiveCount = 0;  // evaluations in the archive when written
+    std::string stopReason;          // set once the run has ended
+    double seconds = 0;              // wall time spent so far; kept only under a seconds stop criterion
+};
+std::string FormatOptimizerCheckpoint(const OptimizerCheckpoint& checkpoint, const Experiment& experiment);
+// Throws UsageError like ParseCheckpoint.
+OptimizerCheckpoint ParseOptimizerCheckpoint(const std::string& text, const std::string& path, const Experiment& experiment);
+
 }  // namespace app

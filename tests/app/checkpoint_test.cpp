@@ -79,3 +79,29 @@ TEST(Checkpoint, ARunResumedUnderAnEditedExperimentIsRefusedNamingTheChange) {
         EXPECT_THAT(error.what(), HasSubstr("sim"));
     }
 }
+
+TEST(OptimizerCheckpoint, RoundTripsAndRefusesHostileOrEditedContents) {
+    const char* experiment = R"({"id": "o", "optimizer": {"algorithm": "cmaes", "population": 8, "objectives": ["thesis_fitness"],
+                                "genome": {"family": "sine"}}})";
+    const app::Experiment e = app::ParseExperiment(experiment, "o.json");
+    const app::OptimizerCheckpoint c{7, 3, 40, "", 0};
+    const app::OptimizerCheckpoint back = app::ParseOptimizerCheckpoint(app::FormatOptimizerCheckpoint(c, e), "c.json", e);
+    EXPECT_EQ(std::tie(back.seed, back.generation, back.archiveCount, back.stopReason), std::tie(c.seed, c.generation, c.archiveCount, c.stopReason));
+    auto refusal = [&](const std::function<void(Json&)>& edit) {
+        Json j = Json::parse(app::FormatOptimizerCheckpoint(c, e));
+        edit(j);
+        try {
+            app::ParseOptimizerCheckpoint(j.dump(), "c.json", e);
+        } catch (const app::UsageError& error) {
+            return std::string(error.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_THAT(refusal([](Json& j) { j["generation"] = -4; }), HasSubstr("values out of range"));
+    EXPECT_THAT(refusal([](Json& j) { j["seed"] = "x"; }), HasSubstr("not a usable optimizer checkpoint"));
+    EXPECT_THAT(refusal([](Json& j) { j["kind"] = "checkpoint"; }), HasSubstr("not an optimizer checkpoint"));
+    EXPECT_THROW(app::ParseOptimizerCheckpoint("{", "c.json", e), app::UsageError);
+    const app::Experiment edited = app::ParseExperiment(experiment, "o.json", {{"optimizer.population", "12"}});
+    EXPECT_THAT(refusal([&](Json& j) { j = Json::parse(app::FormatOptimizerCheckpoint(c, edited)); }),
+                HasSubstr("optimizer.population: '12' -> '8'"));
+}
