@@ -16,7 +16,7 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
 struct RunCurve {
     std::string title;  // e.g. "run 2"
     std::vector<sim::LogbookRow> logbook;
-    std::vector<double> bestSoFar;  // optimizers that may lose their best (CMA-ES): per generation; empty for the GA
+    std::vector<double> bestSoFar{};  // optimizers that may lose their best (CMA-ES): per generation; empty for the GA
 };
 render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
 

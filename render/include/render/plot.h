@@ -19,7 +19,7 @@ struct LineSeries {
     bool markers = false;
     bool lines = true;                    // false: markers alone (a scatter plot)
     float alpha = 1;                      // < 1: faint, e.g. every design behind a Pareto front
-    std::vector<std::string> pointLabels; // drawn beside the markers (e.g. front numbers); may be shorter than x
+    std::vector<std::string> pointLabels{}; // drawn beside the markers (e.g. front numbers); may be shorter than x
 };
 
 struct Band {                    // a filled range, e.g. mean +/- std
