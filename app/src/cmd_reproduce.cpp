@@ -112,7 +112,7 @@ int RunReproduce(int argc, char** argv, int first) {
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     WriteFileAtomically((fs::path(dir) / "report.md").string(),
-                        ReportMarkdown(entries, quick, seconds, evaluator->Describe(), ChapterMarkdown(chapter, quick) + optimizers));
+                        ReportMarkdown(entries, quick, seconds, evaluator->Describe(), ChapterMarkdown(chapter, quick), optimizers));
     results.FirstResultDone();
     std::cout << nlohmann::ordered_json{{"report", (fs::path(dir) / "report.md").string()}, {"experiments", entries.size()}, {"seconds", seconds}}.dump()
               << "\n";

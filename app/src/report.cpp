@@ -36,7 +36,8 @@ namespace {
 
 }  // namespace
 
-std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator, const std::string& chapter) {
+std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator, const std::string& chapter,
+                           const std::string& closing) {
     long long simulations = 0, evaluations = 0;
     for (const auto& entry : entries) {
         simulations += entry.outcome.simulations;
@@ -66,6 +67,7 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
         }
         md += "- [" + entry.experiment.id + " " + entry.experiment.title + "](#" + entry.folder + ")\n";
     }
+    if (!closing.empty()) md += "- [Part 3: optimizers compared](#optimizers)\n";
     md += "\n";
 
     bool chapterWritten = false;
@@ -101,7 +103,7 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
                   (e.explanation.empty() ? std::string("no explanation recorded for this experiment.") : e.explanation) + "\n\n";
         for (const auto& figure : o.figures) md += "![" + e.id + " " + figure + "](" + entry.folder + "/" + figure + ")\n\n";
     }
-    return md;
+    return md + closing;
 }
 
 }  // namespace app

@@ -17,9 +17,10 @@ struct ReportEntry {
 };
 
 // `chapter`, when given, is inserted before the first experiment that re-runs another under a
-// physical model ("compare"): reproduce's part 2.
+// physical model ("compare"): reproduce's part 2. `closing` ends the report (reproduce's part 3,
+// anchored "optimizers").
 std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator,
-                           const std::string& chapter = "");
+                           const std::string& chapter = "", const std::string& closing = "");
 
 // One sentence on the experiment's model and its settings (units included).
 std::string ModelDescription(const Experiment& e);
