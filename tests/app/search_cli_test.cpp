@@ -515,7 +515,8 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     // Parsing happens before any work: a missing --out is reported only after the file was read.
     int files = 0;
     for (const auto& folder : {fs::path(ACTUATOR_ASSETS_DIR) / "experiments", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "shell",
-                               fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers" / "compare"})
+                               fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers", fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers" / "compare",
+                               fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "optimizers" / "compare_shell"})
         for (const auto& entry : fs::directory_iterator(folder)) {
             if (entry.is_directory()) continue;
             const std::string name = entry.path().filename().string();
@@ -525,7 +526,7 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
             EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
             ++files;
         }
-    EXPECT_EQ(files, 10 + 10 + 4 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparison's";
+    EXPECT_EQ(files, 10 + 10 + 4 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparisons'";
 }
 
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
