@@ -1,5 +1,7 @@
 // `actuator reproduce`: every experiment file of a folder (the thesis's chapters 4 to 6) into
 // DIR/<id>/, then DIR/report.md with our numbers beside the thesis's.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -90,26 +92,32 @@ int RunReproduce(int argc, char** argv, int first) {
     if (std::any_of(entries.begin(), entries.end(), [](const ReportEntry& e) { return !e.experiment.compare.empty(); }))
         std::cerr << "reproduce: comparing part 2 with part 1\n";
     const Chapter chapter = CompareChapters(entries, dir, *evaluator);
-    // Part 3: optimizers side by side on one of the thesis's problems (the files in optimizers/compare/).
+    // Part 3: optimizers side by side on one of the thesis's problems, under the thesis model
+    // (optimizers/compare/) and the shell model (optimizers/compare_shell/, fewer seeds: it costs more).
     std::string optimizers;
-    const fs::path compareFolder = folder / "optimizers" / "compare";
-    if (part != Part::Physical && fs::is_directory(compareFolder, ec)) {
+    const std::pair<const char*, ComparisonDef> comparisons[] = {{"compare", ComparisonDef{5, 300, ""}}, {"compare_shell", ComparisonDef{3, 120, ""}}};
+    for (const auto& [name, given] : comparisons) {
+        const fs::path compareFolder = folder / "optimizers" / name;
+        if (part == Part::Physical || !fs::is_directory(compareFolder, ec)) continue;
         std::vector<Experiment> contenders;
-        for (const auto& [file, name] : filesIn(compareFolder, "")) contenders.push_back(LoadExperiment(file.string(), overrides));
-        if (contenders.size() >= 2) {
-            ComparisonDef def;
-            if (quick) {
-                def.seeds = 2;
-                def.budget = 24;
-                for (auto& contender : contenders) contender = QuickVersion(contender);
-            }
-            def.linkPrefix = "optimizers/";
-            std::cerr << "reproduce: optimizers compared\n";
-            const ComparisonResult compared =
-                CompareOptimizers(contenders, def, fs::path(dir) / "optimizers", *evaluator, &results, results.Mode() == FolderMode::Resume, true);
-            optimizers = "<a id=\"optimizers\"></a>\n\n# Part 3: optimizers compared on 5.2's problem\n\n" + compared.markdown + "\n";
+        for (const auto& [file, stem] : filesIn(compareFolder, "")) contenders.push_back(LoadExperiment(file.string(), overrides));
+        if (contenders.size() < 2) continue;
+        ComparisonDef def = given;
+        if (quick) {
+            def.seeds = 2;
+            def.budget = 24;
+            for (auto& contender : contenders) contender = QuickVersion(contender);
         }
+        const std::string sub = std::string("optimizers/") + name;
+        def.linkPrefix = sub + "/";
+        std::cerr << "reproduce: optimizers compared (" << name << ")\n";
+        const ComparisonResult compared = CompareOptimizers(contenders, def, fs::path(dir) / sub, *evaluator, &results, results.Mode() == FolderMode::Resume, true);
+        optimizers += fmt::format("## Under the {} model\n\n", sim::Name(contenders.front().model)) + compared.markdown + "\n";
     }
+    if (!optimizers.empty())
+        optimizers = "<a id=\"optimizers\"></a>\n\n# Part 3: optimizers compared on 5.2's problem\n\n"
+                     "The thesis GA, CMA-ES and DE on one B-spline over the middle with 8 control points (0-8), the same seeds and the same "
+                     "evaluation budget each.\n\n" + optimizers;
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     WriteFileAtomically((fs::path(dir) / "report.md").string(),
                         ReportMarkdown(entries, quick, seconds, evaluator->Describe(), ChapterMarkdown(chapter, quick), optimizers));

@@ -534,7 +534,8 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string report = Slurp(dir_ / "thesis" / "report.md");
     for (const char* section : {"## 4.1 ", "## 4.2 ", "## 4.3 ", "## 5.1 ", "## 5.2 ", "## 5.3 ", "## 5.4 ", "## 5.5 ", "## 6.1 ", "## 6.2 ", "## S4.1 ",
-                                "## S5.4 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**", "# Part 3: optimizers compared"})
+                                "## S5.4 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**", "# Part 3: optimizers compared",
+                                "## Under the thesis model", "## Under the shell model"})
         EXPECT_THAT(report, HasSubstr(section));
     const auto comparison = app::ParseCsv(Slurp(dir_ / "thesis" / "comparison" / "comparison.csv"));
     EXPECT_EQ(comparison.size(), 10u) << "a row per experiment of part 2 that re-runs one of part 1 (the header, 7 isotropic, 2 with fibres)";
