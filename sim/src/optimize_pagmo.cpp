@@ -24,9 +24,10 @@
 namespace sim {
 namespace {
 
-// What the problem's fitness calls go to. Answering: from the results so far, else evaluated on
-// the spot (one design: the foresight missed it). Recording: every design asked for is noted and
-// answered with zeros; the copy that was recorded is then thrown away.
+// What the problem's fitness calls go to, shared by every copy of the problem. Answering: from the
+// results so far, else evaluated on the spot (one design: the foresight missed it). Recording
+// (while a copy of the generation is run ahead): every new design asked for is noted and answered
+// with zeros; that copy is then thrown away.
 struct Oracle {
     const OptimizerDef* def = nullptr;
     const VectorEvaluator* evaluate = nullptr;
@@ -99,7 +100,6 @@ pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) {
     return pagmo::algorithm{};
 }
 
-void SetOracle(pagmo::population& pop, std::shared_ptr<Oracle> oracle) { pop.get_problem().extract<DesignProblem>()->oracle = std::move(oracle); }
 
 // The statistics of a generation and of the run so far.
 OptimizerLogRow LogRow(const OptimizerDef& def, const OptimizerRun& run, const pagmo::population& pop, const std::map<std::vector<double>, size_t>& known,
@@ -139,22 +139,21 @@ OptimizerLogRow LogRow(const OptimizerDef& def, const OptimizerRun& run, const p
     return row;
 }
 
-bool Valid(const OptimizerDef& def, const EvaluatedDesign& d) {
-    if (d.score.status != Status::Ok) return false;
-    for (double v : MinimisedForm(def, d.score))
-        if (v >= kFailedPenalty) return false;
-    return true;
+// A design that counts: status Ok and every objective known (no penalty in its minimised form).
+bool Counts(const std::vector<double>& minimised) {
+    return std::all_of(minimised.begin(), minimised.end(), [](double v) { return v < kFailedPenalty; });
 }
 
 // Front and hypervolume of every valid design so far (several objectives); the hall of fame (one).
 void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& row) {
     std::vector<size_t> valid;
     std::vector<std::vector<double>> points;
-    for (size_t k = 0; k < run.evaluated.size(); ++k)
-        if (Valid(def, run.evaluated[k])) {
-            valid.push_back(k);
-            points.push_back(MinimisedForm(def, run.evaluated[k].score));
-        }
+    for (size_t k = 0; k < run.evaluated.size(); ++k) {
+        std::vector<double> minimised = MinimisedForm(def, run.evaluated[k].score);  // failed: all penalty
+        if (!Counts(minimised)) continue;
+        valid.push_back(k);
+        points.push_back(std::move(minimised));
+    }
     if (def.objectives.size() == 1) {
         std::vector<size_t> order(valid.size());
         for (size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -164,11 +163,11 @@ void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& ro
         for (size_t k = 0; k < order.size() && run.hallOfFame.size() < 10; ++k) run.hallOfFame.push_back(valid[order[k]]);
         return;
     }
+    // The front by its first objective (indices into `points`, then into `evaluated`).
+    std::vector<size_t> front = NonDominated(points);
+    std::stable_sort(front.begin(), front.end(), [&](size_t a, size_t b) { return points[a][0] < points[b][0]; });
     run.front.clear();
-    for (size_t k : NonDominated(points)) run.front.push_back(valid[k]);
-    std::stable_sort(run.front.begin(), run.front.end(), [&](size_t a, size_t b) {
-        return MinimisedForm(def, run.evaluated[a].score)[0] < MinimisedForm(def, run.evaluated[b].score)[0];
-    });
+    for (size_t k : front) run.front.push_back(valid[k]);
     row.frontSize = static_cast<int>(run.front.size());
     // The reference point: fixed once there are valid designs, 10 % beyond the worst of them in
     // each objective (and a little beyond when all are equal), so that hypervolumes compare across
@@ -185,8 +184,8 @@ void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& ro
         }
     }
     std::vector<pagmo::vector_double> inside;
-    for (size_t k : run.front) {
-        const auto p = MinimisedForm(def, run.evaluated[k].score);
+    for (size_t k : front) {
+        const auto& p = points[k];
         bool in = !run.referencePoint.empty();
         for (size_t m = 0; in && m < p.size(); ++m) in = p[m] < run.referencePoint[m];
         if (in) inside.push_back(p);
@@ -221,37 +220,37 @@ OptimizerRun RunOptimizer(const OptimizerDef& def, const MeshDef& mesh, std::uin
     oracle->def = &def;
     oracle->evaluate = &evaluate;
     oracle->run = &run;
-    auto recorder = std::make_shared<Oracle>(*oracle);
-    recorder->recording = true;
 
     DesignProblem udp;
     std::tie(udp.lo, udp.hi) = VectorBounds(def.genome, mesh);
     udp.objectives = def.objectives.size();
-    udp.oracle = recorder;
+    udp.oracle = oracle;
     const pagmo::problem problem{udp};
+    // Runs `step` recording the designs it asks for, then evaluates them as one batch.
+    auto foresee = [&](const auto& step) {
+        oracle->recording = true;
+        oracle->asked.clear();
+        step();
+        oracle->recording = false;
+        oracle->EvaluateBatch(oracle->asked);
+    };
     const unsigned populationSeed = Seed32(seed, 0), algorithmSeed = Seed32(seed, 1);
     const auto size = static_cast<pagmo::population::size_type>(def.population);
 
     // Generation 0: the random population, recorded, evaluated as one batch, then made for real
     // (the same seed draws the same vectors).
-    { pagmo::population foreseen{problem, size, populationSeed}; }
-    oracle->EvaluateBatch(recorder->asked);
-    pagmo::problem answering = problem;
-    answering.extract<DesignProblem>()->oracle = oracle;
-    pagmo::population pop{answering, size, populationSeed};
+    foresee([&] { pagmo::population foreseen{problem, size, populationSeed}; });
+    pagmo::population pop{problem, size, populationSeed};
     pagmo::algorithm algorithm = MakeAlgorithm(def, algorithmSeed);
 
     for (int generation = 0;; ++generation) {
         if (generation > 0) {
-            oracle->generation = recorder->generation = generation;
-            // Foresee: the same step on copies, asking a recorder; then one batch.
-            pagmo::algorithm ahead = algorithm;
-            pagmo::population copy = pop;
-            SetOracle(copy, recorder);
-            recorder->known = oracle->known;
-            recorder->asked.clear();
-            ahead.evolve(copy);
-            oracle->EvaluateBatch(recorder->asked);
+            oracle->generation = generation;
+            // The same step on copies first (their random streams advance, not the originals').
+            foresee([&] {
+                pagmo::algorithm ahead = algorithm;
+                ahead.evolve(pop);
+            });
             pop = algorithm.evolve(pop);
         }
         run.population = pop.get_x();
