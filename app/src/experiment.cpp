@@ -409,6 +409,27 @@ void ParseModel(ObjectReader model, Experiment& e) {
     if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
 }
 
+// A B-spline genome's "control": [min, max], whole numbers (the GA's and the optimizers').
+void ParseControlRange(ObjectReader& genome, sim::GenomeDef& g) {
+    const auto control = genome.Range("control", {g.controlMin, g.controlMax}, -1000, 1000);
+    if (control.first != std::floor(control.first) || control.second != std::floor(control.second)) genome.Fail("control points are whole numbers", "control");
+    g.controlMin = static_cast<int>(control.first);
+    g.controlMax = static_cast<int>(control.second);
+}
+
+// Fibre genes (membrane and shell models with fibres in the model block): how many angle genes,
+// on/off switches and the angles' range.
+void ParseFibreGenes(ObjectReader& genome, const Experiment& e, sim::GenomeDef& g) {
+    genome.Integer("fibre_angles", g.fibreAngles, 0, 64);
+    genome.Bool("fibre_switches", g.fibreSwitches);
+    const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
+    g.fibreAngleMin = fibreRange.first;
+    g.fibreAngleMax = fibreRange.second;
+    if (g.HasFibreGenes() && (e.model == sim::ModelKind::Thesis || e.shell.fibres.layout == sim::FibreLayout::None))
+        genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
+                    g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
+}
+
 // "stop": {"evaluations": 0, "seconds": 0, "target": 5, "stagnation": 0} of the GA and the optimizers.
 void ParseStop(ObjectReader stop, sim::StopDef& s) {
     stop.Integer("evaluations", s.evaluations, 0, 1ll << 40);
@@ -437,11 +458,7 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
         genome.Enum("region", g.region);
         genome.Integer("splines", g.splines, 1, 4);
         if (g.splines == 3) genome.Fail("must be 1, 2 or 4", "splines");
-        const auto control = genome.Range("control", {g.controlMin, g.controlMax}, -1000, 1000);
-        if (control.first != std::floor(control.first) || control.second != std::floor(control.second))
-            genome.Fail("control points are whole numbers", "control");
-        g.controlMin = static_cast<int>(control.first);
-        g.controlMax = static_cast<int>(control.second);
+        ParseControlRange(genome, g);
         const auto length = genome.Range("length", {g.lengthMin, g.lengthMax}, 4, 1000);
         if (length.first != std::floor(length.first) || length.second != std::floor(length.second)) genome.Fail("lengths are whole numbers", "length");
         g.lengthMin = static_cast<int>(length.first);
@@ -451,16 +468,8 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
         genome.Number("sigma", g.sigma, 0, 100);
         genome.Number("bound", g.bound, 1e-9, 100);
     }
-    // Fibre genes (membrane and shell models with fibres in the model block).
-    genome.Integer("fibre_angles", g.fibreAngles, 0, 64);
-    genome.Bool("fibre_switches", g.fibreSwitches);
-    const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
-    g.fibreAngleMin = fibreRange.first;
-    g.fibreAngleMax = fibreRange.second;
-    genome.Number("fibre_sigma_deg", g.fibreSigmaDeg, 0, 180);
-    if (g.HasFibreGenes() && (e.model == sim::ModelKind::Thesis || e.shell.fibres.layout == sim::FibreLayout::None))
-        genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
-                    g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
+    ParseFibreGenes(genome, e, g);
+    genome.Number("fibre_sigma_deg", g.fibreSigmaDeg, 0, 180);  // the GA's mutation only
     genome.Finish();
     evolve.Finish();
     if (const std::string error = sim::GaDefError(ga, DesignMesh(e)); !error.empty()) evolve.Fail(error);
@@ -534,11 +543,7 @@ void ParseOptimizer(ObjectReader block, Experiment& e) {
             genome.Enum("region", g.region);
             genome.Integer("splines", g.splines, 1, 4);
             genome.Integer("control_points", v.controlPoints, 4, 64);
-            const auto control = genome.Range("control", {g.controlMin, g.controlMax}, -1000, 1000);
-            if (control.first != std::floor(control.first) || control.second != std::floor(control.second))
-                genome.Fail("control points are whole numbers", "control");
-            g.controlMin = static_cast<int>(control.first);
-            g.controlMax = static_cast<int>(control.second);
+            ParseControlRange(genome, g);
             break;
         }
         case sim::VectorFamily::FreeXY:
@@ -546,14 +551,7 @@ void ParseOptimizer(ObjectReader block, Experiment& e) {
             genome.Number("bound", g.bound, 1e-9, 100);
             break;
     }
-    genome.Integer("fibre_angles", g.fibreAngles, 0, 64);
-    genome.Bool("fibre_switches", g.fibreSwitches);
-    const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
-    g.fibreAngleMin = fibreRange.first;
-    g.fibreAngleMax = fibreRange.second;
-    if (g.HasFibreGenes() && (e.model == sim::ModelKind::Thesis || e.shell.fibres.layout == sim::FibreLayout::None))
-        genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
-                    g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
+    ParseFibreGenes(genome, e, g);
     genome.Finish();
     block.Finish();
     e.ga.genome = g;  // JobOfGenome and GenomeOfJob read the genes from here
