@@ -18,4 +18,15 @@ Rgb ViridisColor(double t) {
             kStops[i][2] * (1 - u) + kStops[i + 1][2] * u};
 }
 
+Rgb DivergingColor(double t) {
+    static constexpr Rgb kStops[] = {{0.230f, 0.299f, 0.754f}, {0.552f, 0.690f, 0.996f}, {0.865f, 0.865f, 0.865f}, {0.958f, 0.604f, 0.482f}, {0.706f, 0.016f, 0.150f}};
+    if (!std::isfinite(t)) t = 0.5;
+    t = std::clamp(t, 0.0, 1.0) * 4;
+    const int k = std::min(3, static_cast<int>(t));
+    const float f = static_cast<float>(t - k);
+    const Rgb& a = kStops[k];
+    const Rgb& b = kStops[k + 1];
+    return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
+}
+
 }  // namespace render

@@ -11,4 +11,8 @@ struct Rgb {
 // values outside are clamped, non-finite ones read as 0.
 Rgb ViridisColor(double t);
 
+// A diverging map for signed values (Moreland's cool-warm, sampled): blue below the middle, light
+// grey at it, red above; a map centred on 0 keeps "contracts" and "lengthens" apart at a glance.
+Rgb DivergingColor(double t);
+
 }  // namespace render

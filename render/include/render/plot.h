@@ -45,6 +45,13 @@ struct Heatmap {
     std::vector<double> values;            // yValues.size() rows of xValues.size(); NaN: failed (grey)
     std::optional<size_t> highlight;       // index into values, ringed
     std::string highlightLabel;
+    // Points drawn over the cells at their (x, y) values, e.g. the thesis's own numbers.
+    struct Mark {
+        double x = 0, y = 0;
+        std::string label;
+    };
+    std::vector<Mark> marks;
+    std::string marksLegend;               // one line under the plot saying what the marks are
 };
 
 // Drawn by the GL backend module, loaded on first use like MeshRenderer.

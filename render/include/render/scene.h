@@ -72,6 +72,10 @@ struct Scene {
     std::shared_ptr<const sim::Surface> surface;  // the panels' triangles and edges
     std::vector<Panel> panels;           // side by side, one camera, one scale
     int columns = 0;                     // > 0: panels fill a grid this many wide (contact sheets)
+    // A grid laid out on two parameters (a 2-D sweep): a label per column above it and per row at
+    // its left, and each axis's title. Empty: no labels.
+    std::vector<std::string> columnLabels, rowLabels;
+    std::string columnTitle, rowTitle;
     std::string title;
     std::vector<std::string> lines;      // overlay text under the title
     std::optional<Framing> framing;      // default: frame every panel

@@ -266,10 +266,28 @@ Image MeshRendererGl::Render(const Scene& scene) {
     // Layout: text band on top, captions below, colour bar strip on the right.
     const bool coloured = colorBy != ColorBy::Shading;
     const float fontSize = overlay.FontSize();
-    const float top = def.overlay ? fontSize * (2.2f + 1.25f * scene.lines.size()) : 0.0f;
+    // A long title wraps onto more lines (never cut mid-number): the text band grows with it.
+    const float titleExtra = def.overlay ? std::max(0.0f, overlay.WrapTitle(fontSize * 1.37f, width - 1.4f * fontSize, scene.title).Height() - fontSize * 1.37f) : 0.0f;
+    const float top = def.overlay ? fontSize * (2.2f + 1.25f * scene.lines.size()) + titleExtra : 0.0f;
     const float bottom = def.overlay ? fontSize * 1.8f : 0.0f;
     const float barStrip = def.overlay && coloured ? std::max(width * 0.11f, fontSize * 6.0f) : 0.0f;
-    const Rect panelArea{0, top, width - barStrip, float(height) - bottom};
+    // A grid on two parameters keeps a band above for the column labels and one at the left for the
+    // row labels, each under its axis title.
+    const bool axisLabels = def.overlay && (!scene.columnLabels.empty() || !scene.rowLabels.empty());
+    float rowBand = 0;
+    if (axisLabels) {
+        float labels = 0, title = 0;
+        for (const std::string& label : scene.rowLabels) labels = std::max(labels, overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, label.c_str()).x);
+        for (size_t at = 0; at <= scene.rowTitle.size();) {  // the title is drawn one word per line
+            const size_t end = std::min(scene.rowTitle.find(' ', at), scene.rowTitle.size());
+            const std::string word = scene.rowTitle.substr(at, end - at);
+            title = std::max(title, overlay.TitleFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, word.c_str()).x);
+            at = end + 1;
+        }
+        rowBand = labels + title + fontSize * 1.4f;
+    }
+    const float columnBand = axisLabels ? fontSize * 2.7f : 0.0f;
+    const Rect panelArea{rowBand, top + columnBand, width - barStrip, float(height) - bottom};
     const int panelCount = std::max<int>(1, scene.panels.size());
     // Panels fill a grid: one row by default, `columns` wide for contact sheets. In a grid each
     // cell keeps a caption band of its own; a single row has its captions under the panel area.
@@ -427,11 +445,32 @@ Image MeshRendererGl::Render(const Scene& scene) {
         ImDrawList* draw = overlay.Begin(width, height);
         const ImU32 ink = IM_COL32(25, 25, 25, 255), grey = IM_COL32(70, 70, 70, 255);
         const float margin = fontSize * 0.7f;
-        overlay.DrawTitle(draw, fontSize * 1.37f, ImVec2(margin, margin * 0.8f), width - 2 * margin, ink, scene.title);
-        float y = margin * 0.8f + fontSize * 1.7f;
+        const float titleHeight = overlay.DrawTitle(draw, fontSize * 1.37f, ImVec2(margin, margin * 0.8f), width - 2 * margin, ink, scene.title);
+        float y = margin * 0.8f + fontSize * 0.33f + std::max(titleHeight, fontSize * 1.37f);
         for (const std::string& line : scene.lines) {
             draw->AddText(overlay.TextFont(), fontSize, ImVec2(margin, y), grey, line.c_str());
             y += fontSize * 1.25f;
+        }
+        if (axisLabels) {
+            const ImU32 axisInk = IM_COL32(40, 40, 40, 255);
+            const float w = panelArea.Width() / columns, h = panelArea.Height() / rows;
+            const ImVec2 titleSize = overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, scene.columnTitle.c_str());
+            draw->AddText(overlay.TitleFont(), fontSize, ImVec2((panelArea.x0 + panelArea.x1 - titleSize.x) / 2, top), axisInk, scene.columnTitle.c_str());
+            for (int c = 0; c < int(scene.columnLabels.size()) && c < columns; ++c) {
+                const ImVec2 size = overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, scene.columnLabels[c].c_str());
+                draw->AddText(overlay.TextFont(), fontSize, ImVec2(panelArea.x0 + (c + 0.5f) * w - size.x / 2, top + fontSize * 1.35f), ink,
+                              scene.columnLabels[c].c_str());
+            }
+            // The row axis's title runs down the left edge, one word per line.
+            std::string rowTitle = scene.rowTitle;
+            for (char& ch : rowTitle)
+                if (ch == ' ') ch = '\n';
+            draw->AddText(overlay.TitleFont(), fontSize, ImVec2(fontSize * 0.3f, panelArea.y0), axisInk, rowTitle.c_str());
+            for (int r = 0; r < int(scene.rowLabels.size()) && r < rows; ++r) {
+                const ImVec2 size = overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, scene.rowLabels[r].c_str());
+                draw->AddText(overlay.TextFont(), fontSize, ImVec2(panelArea.x0 - size.x - fontSize * 0.4f, panelArea.y0 + (r + 0.5f) * h - size.y / 2), ink,
+                              scene.rowLabels[r].c_str());
+            }
         }
         for (int k = 0; k < int(scene.panels.size()); ++k) {
             const std::string& caption = scene.panels[k].caption;

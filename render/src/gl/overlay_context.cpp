@@ -60,16 +60,49 @@ void OverlayContext::End() {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-void OverlayContext::DrawTitle(ImDrawList* draw, float size, ImVec2 at, float maxWidth, ImU32 colour, const std::string& title) const {
-    float width = titleFont_->CalcTextSizeA(size, FLT_MAX, 0, title.c_str()).x;
-    if (width > maxWidth) size = std::max(size * 0.65f, size * maxWidth / width);
-    std::string text = title;
-    while (text.size() > 4 && titleFont_->CalcTextSizeA(size, FLT_MAX, 0, text.c_str()).x > maxWidth) {
-        text.resize(text.size() - 4);
-        while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80) text.pop_back();  // whole UTF-8 characters
-        text += "...";
+OverlayContext::WrappedTitle OverlayContext::WrapTitle(float size, float maxWidth, const std::string& title, int maxLines) const {
+    std::vector<std::string> words;
+    for (size_t at = 0; at < title.size();) {
+        const size_t space = title.find(' ', at);
+        const size_t end = space == std::string::npos ? title.size() : space;
+        if (end > at) words.push_back(title.substr(at, end - at));
+        at = end + 1;
     }
-    draw->AddText(titleFont_, size, at, colour, text.c_str());
+    auto widthOf = [&](float s, const std::string& text) { return titleFont_->CalcTextSizeA(s, FLT_MAX, 0, text.c_str()).x; };
+    // Greedy filling; a separator "-" between title parts stays with the word after it.
+    auto wrap = [&](float s) {
+        std::vector<std::string> lines;
+        for (const auto& word : words) {
+            if (!lines.empty() && widthOf(s, lines.back() + " " + word) <= maxWidth) lines.back() += " " + word;
+            else lines.push_back(word);
+        }
+        for (size_t k = 1; k < lines.size(); ++k)
+            if (lines[k - 1].size() > 2 && lines[k - 1].compare(lines[k - 1].size() - 2, 2, " -") == 0) {
+                lines[k - 1].resize(lines[k - 1].size() - 2);
+                lines[k] = "- " + lines[k];
+            }
+        return lines;
+    };
+    WrappedTitle wrapped{size, wrap(size)};
+    if (wrapped.lines.size() > 1) {
+        const float smaller = size * 0.8f;
+        auto fewer = wrap(smaller);
+        if (fewer.size() < wrapped.lines.size()) wrapped = {smaller, fewer};
+    }
+    if (static_cast<int>(wrapped.lines.size()) > maxLines) {
+        wrapped.lines.resize(static_cast<size_t>(maxLines));
+        std::string& last = wrapped.lines.back();
+        while (last.find(' ') != std::string::npos && widthOf(wrapped.size, last + " ...") > maxWidth) last.resize(last.rfind(' '));
+        last += " ...";
+    }
+    return wrapped;
+}
+
+float OverlayContext::DrawTitle(ImDrawList* draw, float size, ImVec2 at, float maxWidth, ImU32 colour, const std::string& title) const {
+    const WrappedTitle wrapped = WrapTitle(size, maxWidth, title);
+    for (size_t k = 0; k < wrapped.lines.size(); ++k)
+        draw->AddText(titleFont_, wrapped.size, ImVec2(at.x, at.y + wrapped.size * 1.12f * k), colour, wrapped.lines[k].c_str());
+    return wrapped.Height();
 }
 
 }  // namespace render

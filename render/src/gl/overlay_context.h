@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include <string>
+#include <vector>
 
 namespace render {
 
@@ -24,9 +25,17 @@ public:
     ImFont* TitleFont() const { return titleFont_; }
     float FontSize() const { return fontSize_; }  // body text size in frame-buffer pixels
 
-    // A title at (x, y) in the title font at `size`, shrunk (to 65 %) to fit `maxWidth`, then cut
-    // with "..." if it still does not: a long design name never runs off the picture.
-    void DrawTitle(ImDrawList* draw, float size, ImVec2 at, float maxWidth, ImU32 colour, const std::string& title) const;
+    // A title broken at spaces into lines that fit `maxWidth` (`size` shrunk to no less than 80 % first
+    // when that saves a line), at most `maxLines`; a title longer still ends its last line with "..."
+    // after a whole word. Never cut inside a word or a number.
+    struct WrappedTitle {
+        float size = 0;
+        std::vector<std::string> lines;
+        float Height() const { return lines.empty() ? 0.0f : size * (1.0f + 1.12f * (lines.size() - 1)); }
+    };
+    WrappedTitle WrapTitle(float size, float maxWidth, const std::string& title, int maxLines = 3) const;
+    // Draws WrapTitle's lines from (x, y); returns the height used.
+    float DrawTitle(ImDrawList* draw, float size, ImVec2 at, float maxWidth, ImU32 colour, const std::string& title) const;
 
 private:
     ImGuiContext* context_ = nullptr;

@@ -240,6 +240,14 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
     for (double v : h.values)
         if (std::isfinite(v)) { vMin = std::min(vMin, v); vMax = std::max(vMax, v); }
     if (!(vMax > vMin)) { vMin = std::isfinite(vMin) ? vMin - 0.5 : 0; vMax = vMin + 1; }
+    // Values of both signs: a diverging map centred on 0, so the sign reads at a glance.
+    const bool diverging = vMin < 0 && vMax > 0;
+    if (diverging) {
+        const double reach = std::max(-vMin, vMax);
+        vMin = -reach;
+        vMax = reach;
+    }
+    Rgb (*const map)(double) = diverging ? &DivergingColor : &ViridisColor;
 
     // Cells are centred on the grid values; the axes span half a cell beyond the outer ones.
     auto edges = [](const std::vector<double>& v) {
@@ -251,12 +259,12 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
         return e;
     };
     const auto xe = edges(h.xValues), ye = edges(h.yValues);
-    const float left = fs * 4.6f, right = fs * 9.0f, top = fs * 4.6f, bottom = fs * 4.2f;
+    const float left = fs * 4.6f, right = fs * 9.0f, top = fs * 4.6f, bottom = fs * (h.marksLegend.empty() ? 4.2f : 5.8f);
     Axes axes{{left, top, W - right, H - bottom}, xe.front(), xe.back(), ye.front(), ye.back()};
     for (size_t j = 0; j < ny; ++j)
         for (size_t i = 0; i < nx; ++i) {
             const double v = h.values[j * nx + i];
-            const ImU32 c = std::isfinite(v) ? Color(ViridisColor((v - vMin) / (vMax - vMin))) : IM_COL32(170, 170, 170, 255);
+            const ImU32 c = std::isfinite(v) ? Color(map((v - vMin) / (vMax - vMin))) : IM_COL32(170, 170, 170, 255);
             draw->AddRectFilled(ImVec2(axes.X(xe[i]), axes.Y(ye[j + 1])), ImVec2(axes.X(xe[i + 1]) + 0.5f, axes.Y(ye[j]) + 0.5f), c);
         }
     // Integer-valued axes (cycles) get one tick per value; continuous ones get nice ticks.
@@ -271,7 +279,20 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
         draw->AddRect(ImVec2(axes.X(xe[i]), axes.Y(ye[j + 1])), ImVec2(axes.X(xe[i + 1]), axes.Y(ye[j])), IM_COL32(220, 30, 30, 255), 0, 0, fs * 0.18f);
         draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(axes.box.x0, H - fs * 1.5f), IM_COL32(200, 30, 30, 255), h.highlightLabel.c_str());
     }
+    // Marks: a ringed dot at each point, its label beside it, and what they are under the plot.
+    for (const Heatmap::Mark& mark : h.marks) {
+        const ImVec2 at(axes.X(mark.x), axes.Y(mark.y));
+        draw->AddCircleFilled(at, fs * 0.32f, IM_COL32(255, 255, 255, 255));
+        draw->AddCircleFilled(at, fs * 0.22f, IM_COL32(20, 20, 20, 255));
+        const ImVec2 size = o.TextFont()->CalcTextSizeA(fs * 0.8f, FLT_MAX, 0, mark.label.c_str());
+        const float x = at.x + fs * 0.45f + size.x < axes.box.x1 ? at.x + fs * 0.45f : at.x - fs * 0.45f - size.x;
+        draw->AddRectFilled(ImVec2(x - fs * 0.12f, at.y - size.y / 2), ImVec2(x + size.x + fs * 0.12f, at.y + size.y / 2), IM_COL32(255, 255, 255, 210));
+        draw->AddText(o.TextFont(), fs * 0.8f, ImVec2(x, at.y - size.y / 2), IM_COL32(20, 20, 20, 255), mark.label.c_str());
+    }
+    if (!h.marksLegend.empty())
+        draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(axes.box.x0, H - fs * 2.9f), IM_COL32(20, 20, 20, 255), h.marksLegend.c_str());
     ColourBar bar;
+    bar.map = map;
     bar.x0 = W - right + fs * 1.6f;
     bar.x1 = bar.x0 + fs * 1.3f;
     bar.y0 = axes.box.y0;
