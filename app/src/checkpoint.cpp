@@ -83,7 +83,7 @@ std::string FormatCheckpoint(const RunCheckpoint& c) {
     for (const auto& row : c.state.logbook)
         j["logbook"].push_back(Json{{"generation", row.generation}, {"evaluations", row.evaluations}, {"best", NumberOrNull(row.best)},
                                     {"worst", NumberOrNull(row.worst)}, {"mean", NumberOrNull(row.mean)}, {"std", NumberOrNull(row.stddev)},
-                                    {"invalid", row.invalid}});
+                                    {"invalid", row.invalid}, {"q1", NumberOrNull(row.q1)}, {"median", NumberOrNull(row.median)}, {"q3", NumberOrNull(row.q3)}});
     j["best_per_generation"] = Json::array();
     for (const auto& individual : c.state.bestPerGeneration) j["best_per_generation"].push_back(IndividualJson(individual));
     j["hall_of_fame"] = Json::array();
@@ -126,7 +126,8 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
         for (const auto& row : j.at("logbook"))
             c.state.logbook.push_back(sim::LogbookRow{row.at("generation").get<int>(), row.at("evaluations").get<int>(), NumberOrNaN(row.at("best")),
                                                       NumberOrNaN(row.at("worst")), NumberOrNaN(row.at("mean")), NumberOrNaN(row.at("std")),
-                                                      row.at("invalid").get<int>()});
+                                                      row.at("invalid").get<int>(), NumberOrNaN(row.at("q1")), NumberOrNaN(row.at("median")),
+                                                      NumberOrNaN(row.at("q3"))});
         for (const auto& individual : j.at("best_per_generation")) c.state.bestPerGeneration.push_back(IndividualFrom(individual, e));
         for (const auto& individual : j.at("hall_of_fame")) c.state.hallOfFame.push_back(IndividualFrom(individual, e));
         if (static_cast<int>(c.state.population.size()) != e.ga.population)
@@ -145,11 +146,11 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
 }
 
 std::string LogbookCsv(const sim::GaState& state) {
-    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "std", "invalid", "stopped_by"});
+    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "std", "q1", "median", "q3", "invalid", "stopped_by"});
     for (size_t k = 0; k < state.logbook.size(); ++k) {
         const auto& r = state.logbook[k];
         csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
-                       CsvNumber(r.stddev), std::to_string(r.invalid), k + 1 == state.logbook.size() ? CsvField(state.stopReason) : ""});
+                       CsvNumber(r.stddev), CsvNumber(r.q1), CsvNumber(r.median), CsvNumber(r.q3), std::to_string(r.invalid), k + 1 == state.logbook.size() ? CsvField(state.stopReason) : ""});
     }
     return csv;
 }

@@ -57,6 +57,17 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
             plot.highlight = std::pair{axes[0].values[static_cast<size_t>(best)], fitness[static_cast<size_t>(best)]};
             plot.highlightLabel = bestText;
         }
+        // The thesis's own numbers where it gives them (Figure 4.1's peak).
+        render::LineSeries thesis{"", {}, {}, {0.85f, 0.45f, 0.10f}, true};
+        thesis.lines = false;
+        for (const auto& point : e.thesisResult.points)
+            for (const auto& [parameter, value] : point.at)
+                if (parameter == axes[0].parameter) {
+                    thesis.x.push_back(value);
+                    thesis.y.push_back(point.fitness);
+                    thesis.label += (thesis.label.empty() ? "thesis: " : ", ") + fmt::format("{:g} at {} = {:g}", point.fitness, sim::Name(parameter), value);
+                }
+        if (!thesis.x.empty()) plot.series.push_back(thesis);
         return plots->RenderLines(title, {plot});
     }
     // A short axis (a few pressures, say) reads better as one curve per value than as a heat map.
@@ -115,6 +126,17 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
         const bool anyFailed = std::any_of(fitness.begin(), fitness.end(), [](double f) { return !std::isfinite(f); });
         heatmap.highlightLabel = bestText + (anyFailed ? "  (grey cells: failed evaluations)" : "");
     }
+    // The designs the thesis names (Table 4.4), at their parameters.
+    for (size_t k = 0; k < e.thesisResult.points.size(); ++k) {
+        const auto& point = e.thesisResult.points[k];
+        render::Heatmap::Mark mark{NAN, NAN, fmt::format("T{}: {:g}", k + 1, point.fitness)};
+        for (const auto& [parameter, value] : point.at) {
+            if (parameter == axes[1].parameter) mark.x = value;
+            if (parameter == axes[0].parameter) mark.y = value;
+        }
+        if (std::isfinite(mark.x) && std::isfinite(mark.y)) heatmap.marks.push_back(mark);
+    }
+    if (!heatmap.marks.empty()) heatmap.marksLegend = "black dots: the thesis's own designs and fitness (T1, T2, ... in the order of its table)";
     return plots->RenderHeatmap(title, heatmap);
 }
 
@@ -126,28 +148,37 @@ render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& r
         plot.title = run.title;
         plot.xLabel = "generation";
         plot.yLabel = FitnessLabel(e);
-        render::LineSeries bestLine{"best", {}, {}, {0.10f, 0.55f, 0.20f}}, worstLine{"worst", {}, {}, {0.80f, 0.20f, 0.15f}},
-            meanLine{"mean", {}, {}, {0.13f, 0.35f, 0.75f}};
-        render::Band band{"mean +/- std", {}, {}, {}, {0.13f, 0.35f, 0.75f}};
+        // The whole population's spread (worst to best) and its middle half (interquartile range),
+        // with the best and the median: bands that cannot rise above the best line.
+        const render::Rgb blue{0.13f, 0.35f, 0.75f};
+        render::LineSeries bestLine{"best", {}, {}, {0.10f, 0.55f, 0.20f}}, medianLine{"median", {}, {}, blue};
+        render::Band range{"worst to best", {}, {}, {}, {0.55f, 0.60f, 0.70f}}, middle{"interquartile range", {}, {}, {}, blue};
         for (const auto& row : run.logbook) {
             const double g = row.generation;
             bestLine.x.push_back(g);
             bestLine.y.push_back(row.best);
-            worstLine.x.push_back(g);
-            worstLine.y.push_back(row.worst);
-            meanLine.x.push_back(g);
-            meanLine.y.push_back(row.mean);
-            band.x.push_back(g);
-            band.low.push_back(row.mean - row.stddev);
-            band.high.push_back(row.mean + row.stddev);
+            medianLine.x.push_back(g);
+            medianLine.y.push_back(row.median);
+            range.x.push_back(g);
+            range.low.push_back(std::min(row.worst, row.best));
+            range.high.push_back(std::max(row.worst, row.best));
+            middle.x.push_back(g);
+            middle.low.push_back(row.q1);
+            middle.high.push_back(row.q3);
         }
-        plot.bands = {band};
-        plot.series = {bestLine, meanLine, worstLine};
+        plot.bands = {range, middle};
+        plot.series = {bestLine, medianLine};
         if (!run.bestSoFar.empty()) {
             bestLine.label = "generation's best";
             render::LineSeries soFar{"best so far", {}, run.bestSoFar, {0.05f, 0.05f, 0.05f}};
             for (const auto& row : run.logbook) soFar.x.push_back(row.generation);
-            plot.series = {soFar, bestLine, meanLine, worstLine};
+            plot.series = {soFar, bestLine, medianLine};
+        }
+        if (std::isfinite(run.reference) && !run.logbook.empty()) {
+            // The thesis's number for this run, as a reference line across the generations.
+            render::LineSeries reference{run.referenceLabel, {double(run.logbook.front().generation), double(run.logbook.back().generation)},
+                                         {run.reference, run.reference}, {0.85f, 0.45f, 0.10f}};
+            plot.series.push_back(reference);
         }
         if (!run.logbook.empty()) {
             const auto& last = run.logbook.back();

@@ -17,6 +17,8 @@ struct RunCurve {
     std::string title;  // e.g. "run 2"
     std::vector<sim::LogbookRow> logbook;
     std::vector<double> bestSoFar{};  // optimizers that may lose their best (CMA-ES): per generation; empty for the GA
+    double reference = NAN;           // the thesis's best for this run, drawn as a line; NaN: none
+    std::string referenceLabel{};     // e.g. "thesis, Table 5.4: 1.13"
 };
 render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
 

@@ -159,11 +159,11 @@ std::vector<std::string> ObjectiveColumns(const Experiment& e) {
 
 std::string LogbookText(const sim::OptimizerRun& run) {
     std::string csv = CsvRow(
-        {"generation", "evaluations", "best", "worst", "mean", "stddev", "best_so_far", "invalid", "hypervolume", "front_size", "stopped_by"});
+        {"generation", "evaluations", "best", "worst", "mean", "stddev", "q1", "median", "q3", "best_so_far", "invalid", "hypervolume", "front_size", "stopped_by"});
     for (size_t k = 0; k < run.logbook.size(); ++k) {
         const auto& r = run.logbook[k];
         csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
-                       CsvNumber(r.stddev), CsvNumber(r.bestSoFar), std::to_string(r.invalid), CsvNumber(r.hypervolume), std::to_string(r.frontSize),
+                       CsvNumber(r.stddev), CsvNumber(r.q1), CsvNumber(r.median), CsvNumber(r.q3), CsvNumber(r.bestSoFar), std::to_string(r.invalid), CsvNumber(r.hypervolume), std::to_string(r.frontSize),
                        k + 1 == run.logbook.size() ? CsvField(run.stopReason) : ""});
     }
     return csv;
@@ -335,7 +335,8 @@ void RunOptimization(RunContext& c) {
         for (int r = 0; r < e.runs; ++r) {
             RunCurve curve{fmt::format("run {}", r + 1), {}, {}};
             for (const auto& row : runs[r].run.logbook) {
-                curve.logbook.push_back({row.generation, static_cast<int>(row.evaluations), row.best, row.worst, row.mean, row.stddev, row.invalid});
+                curve.logbook.push_back({row.generation, static_cast<int>(row.evaluations), row.best, row.worst, row.mean, row.stddev, row.invalid,
+                                         row.q1, row.median, row.q3});
                 curve.bestSoFar.push_back(row.bestSoFar);
             }
             curves.push_back(std::move(curve));

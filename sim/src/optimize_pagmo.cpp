@@ -131,6 +131,11 @@ OptimizerLogRow LogRow(const OptimizerDef& def, const OptimizerRun& run, const p
         row.stddev = std::sqrt(squares / static_cast<double>(values.size()));
         row.best = best;
         row.worst = worst;
+        std::vector<double> ascending = values;
+        std::sort(ascending.begin(), ascending.end());
+        row.q1 = SortedQuantile(ascending, 0.25);
+        row.median = SortedQuantile(ascending, 0.5);
+        row.q3 = SortedQuantile(ascending, 0.75);
     }
     for (const EvaluatedDesign& d : run.evaluated)
         if (d.score.status == Status::Ok && !d.score.values.empty() && std::isfinite(d.score.values[0]) &&

@@ -7,6 +7,15 @@
 
 namespace sim {
 
+double SortedQuantile(const std::vector<double>& ascending, double q) {
+    if (ascending.empty()) return std::nan("");
+    const double at = q * static_cast<double>(ascending.size() - 1);
+    const size_t low = static_cast<size_t>(std::floor(at));
+    const size_t high = std::min(low + 1, ascending.size() - 1);
+    return ascending[low] + (at - static_cast<double>(low)) * (ascending[high] - ascending[low]);
+}
+
+
 // ---------------------------------------------------------------------------------------------
 // Sweeps
 // ---------------------------------------------------------------------------------------------
@@ -81,6 +90,13 @@ Genome ShapeGenes(const Genome& genome, const GenomeDef& def) {
 
 Genome RandomShapeGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng);
 
+// Free-xy gene k (vertex k / 2's x or y offset) is searched unless the region is `middle` and the
+// vertex is clamped: the thesis's Table 3.3 gives the free-xy range as rows {2, h-2}, so the clamped
+// turns keep the plain cylinder's radius, as the middle B-splines do.
+bool FreeXYGeneMoves(const GenomeDef& def, const MeshDef& mesh, size_t k) {
+    return def.region != SplineRegion::Middle || !IsClamped(mesh, static_cast<int>(k / 2));
+}
+
 Genome RandomGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
     Genome genome = RandomShapeGenome(def, mesh, rng);
     if (def.HasFibreGenes()) genome.push_back(RandomFibreGenes(def, rng));
@@ -90,8 +106,9 @@ Genome RandomGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
 Genome RandomShapeGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng) {
     Genome genome;
     if (def.kind == GenomeKind::FreeXY) {
-        std::vector<double> offsets(2 * static_cast<size_t>(VertexCount(mesh)));
-        for (double& v : offsets) v = -def.initRange + 2 * def.initRange * rng.Uniform();
+        std::vector<double> offsets(2 * static_cast<size_t>(VertexCount(mesh)), 0.0);
+        for (size_t k = 0; k < offsets.size(); ++k)
+            if (FreeXYGeneMoves(def, mesh, k)) offsets[k] = -def.initRange + 2 * def.initRange * rng.Uniform();
         genome.push_back(std::move(offsets));
         return genome;
     }
@@ -107,14 +124,14 @@ Genome RandomShapeGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng)
 // probability INDPB; then, with probability INDPB each, a spline grows by one random gene (if below
 // its maximum length) and shrinks by its last gene (if above its minimum). Free-xy: each gene moves
 // by Gaussian noise with probability INDPB, clamped to the bounds.
-void Mutate(Genome& genome, const GaDef& def, Random& rng) {
+void Mutate(Genome& genome, const GaDef& def, const MeshDef& mesh, Random& rng) {
     const GenomeDef& g = def.genome;
     const size_t shapeLists = g.HasFibreGenes() ? genome.size() - 1 : genome.size();
     for (size_t list = 0; list < shapeLists; ++list) {
         auto& genes = genome[list];
         if (g.kind == GenomeKind::FreeXY) {
-            for (double& v : genes)
-                if (rng.Chance(def.indpb)) v = std::clamp(v + g.sigma * rng.Normal(), -g.bound, g.bound);
+            for (size_t k = 0; k < genes.size(); ++k)
+                if (FreeXYGeneMoves(g, mesh, k) && rng.Chance(def.indpb)) genes[k] = std::clamp(genes[k] + g.sigma * rng.Normal(), -g.bound, g.bound);
             continue;
         }
         for (double& c : genes)
@@ -200,6 +217,11 @@ void Record(GaState& state, int evaluations) {
         double squares = 0;
         for (const auto* individual : ranked) squares += (individual->fitness - row.mean) * (individual->fitness - row.mean);
         row.stddev = std::sqrt(squares / ranked.size());
+        std::vector<double> ascending;
+        for (auto it = ranked.rbegin(); it != ranked.rend(); ++it) ascending.push_back((*it)->fitness);
+        row.q1 = SortedQuantile(ascending, 0.25);
+        row.median = SortedQuantile(ascending, 0.5);
+        row.q3 = SortedQuantile(ascending, 0.75);
         state.bestPerGeneration.push_back(*ranked.front());
     } else {
         row.best = row.worst = row.mean = row.stddev = std::nan("");
@@ -315,7 +337,7 @@ GaState StartEvolution(const GaDef& def, const MeshDef& mesh, std::uint64_t seed
     return state;
 }
 
-bool EvolveOneGeneration(const GaDef& def, const MeshDef& /*mesh*/, GaState& state, const GenomeEvaluator& evaluate) {
+bool EvolveOneGeneration(const GaDef& def, const MeshDef& mesh, GaState& state, const GenomeEvaluator& evaluate) {
     const auto ranked = RankValid(state.population);
     if (ranked.empty()) return false;
 
@@ -334,7 +356,7 @@ bool EvolveOneGeneration(const GaDef& def, const MeshDef& /*mesh*/, GaState& sta
     }
     for (auto& individual : offspring) {
         if (state.rng.Chance(def.mutpb)) {
-            Mutate(individual.genome, def, state.rng);
+            Mutate(individual.genome, def, mesh, state.rng);
             individual.evaluated = false;
         }
     }

@@ -142,6 +142,7 @@ struct OptimizerLogRow {
     long long evaluations = 0;  // distinct designs evaluated so far (cumulative)
     // One objective, over the generation's valid members, natural units and direction:
     double best = NAN, worst = NAN, mean = NAN, stddev = NAN;
+    double q1 = NAN, median = NAN, q3 = NAN;  // quartiles of the first objective's valid values
     double bestSoFar = NAN;  // over every design evaluated so far
     int invalid = 0;         // members whose status is not Ok
     // Several objectives: the hypervolume of every valid design so far (against referencePoint) and

@@ -4,6 +4,8 @@
 // draw happens here, in a fixed order, from one checkpointable generator.
 #pragma once
 
+#include <cmath>
+
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -57,7 +59,7 @@ enum class GenomeKind {
 
 struct GenomeDef {
     GenomeKind kind = GenomeKind::BSpline;
-    SplineRegion region = SplineRegion::Middle;
+    SplineRegion region = SplineRegion::Middle;  // B-splines: where the splines apply; free-xy: middle leaves the clamped turns unmoved
     int splines = 1;        // B-spline sectors: 1, 2 or 4
     int controlMin = 0;     // control points are integers in [controlMin, controlMax] (thesis: 0-8)
     int controlMax = 8;
@@ -115,7 +117,11 @@ struct LogbookRow {
     int evaluations = 0;  // individuals evaluated this generation (DEAP's nevals)
     double best = 0, worst = 0, mean = 0, stddev = 0;  // over valid individuals; stddev with ddof 0
     int invalid = 0;      // individuals whose evaluation failed (nan or diverged)
+    double q1 = NAN, median = NAN, q3 = NAN;  // quartiles over valid individuals (linear interpolation, numpy's default)
 };
+
+// The q-quantile (0..1) of values sorted ascending, interpolating linearly between neighbours.
+double SortedQuantile(const std::vector<double>& ascending, double q);
 
 struct GaState {
     int generation = 0;  // generations completed; 0 once the initial population is evaluated
