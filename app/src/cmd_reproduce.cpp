@@ -98,7 +98,8 @@ int RunReproduce(int argc, char** argv, int first) {
     const std::pair<const char*, ComparisonDef> comparisons[] = {{"compare", ComparisonDef{5, 300, ""}}, {"compare_shell", ComparisonDef{3, 120, ""}}};
     for (const auto& [name, given] : comparisons) {
         const fs::path compareFolder = folder / "optimizers" / name;
-        if (part == Part::Physical || !fs::is_directory(compareFolder, ec)) continue;
+        // The shell model's comparison belongs to the physical part: `--part thesis` stays the thesis's.
+        if (part == Part::Physical || (part == Part::Thesis && std::string(name) == "compare_shell") || !fs::is_directory(compareFolder, ec)) continue;
         std::vector<Experiment> contenders;
         for (const auto& [file, stem] : filesIn(compareFolder, "")) contenders.push_back(LoadExperiment(file.string(), overrides));
         if (contenders.size() < 2) continue;

@@ -316,6 +316,7 @@ LabelledShape ParseListedShape(ObjectReader shape, size_t k, const sim::MeshDef&
     LabelledShape labelled;
     labelled.label = shape.String("label", "shape " + std::to_string(k));
     shape.Number("thesis_fitness", labelled.thesisFitness, -1e6, 1e6);
+    labelled.source = shape.String("source", "");
     if (!shape.Has("family")) shape.Fail("missing (required): cylinder, sine, abs-sine or bspline", "family");
     sim::ShapeKind family = sim::ShapeKind::Cylinder;
     shape.Enum("family", family);
@@ -464,6 +465,7 @@ void ParseGa(ObjectReader evolve, Experiment& e) {
         g.lengthMin = static_cast<int>(length.first);
         g.lengthMax = static_cast<int>(length.second);
     } else {
+        genome.Enum("region", g.region);
         genome.Number("init_range", g.initRange, 0, 100);
         genome.Number("sigma", g.sigma, 0, 100);
         genome.Number("bound", g.bound, 1e-9, 100);
@@ -558,7 +560,7 @@ void ParseOptimizer(ObjectReader block, Experiment& e) {
     if (const std::string error = sim::OptimizerDefError(o, e.model, DesignMesh(e)); !error.empty()) block.Fail(error);
 }
 
-void ParseThesisResult(ObjectReader result, ThesisResult& t) {
+void ParseThesisResult(ObjectReader result, ThesisResult& t, const sim::MeshDef& mesh) {
     result.Number("best_fitness", t.bestFitness, -1e6, 1e6);
     if (result.Has("best")) {
         ObjectReader best = result.Object("best");
@@ -572,16 +574,64 @@ void ParseThesisResult(ObjectReader result, ThesisResult& t) {
             ThesisResult::Point p;
             p.at = SweepPoint(point);
             p.fitness = point.Number("fitness", -1e6, 1e6);
+            p.source = point.String("source", "");
             point.Finish();
             t.points.push_back(p);
         }
     }
     if (result.Has("run_best"))
         for (const auto& v : result.Array("run_best", 0, 100, "a list of numbers")) t.runBest.push_back(result.NumberValue(v, "run_best", -1e6, 1e6));
+    result.Number("mean_best", t.meanBest, -1e6, 1e6);
+    t.meanBestSource = result.String("mean_best_source", "");
+    result.Number("minutes", t.minutes, 0, 1e6);
+    result.Number("seconds_per_simulation", t.secondsPerSimulation, 0, 1e6);
+    if (result.Has("specimens")) {
+        const Json& specimens = result.Array("specimens", 0, 100, "a list of designs");
+        for (size_t k = 0; k < specimens.size(); ++k) {
+            ObjectReader specimen(specimens[k], result.Child("specimens") + "[" + std::to_string(k) + "]", result.Origin());
+            ThesisResult::Specimen s;
+            specimen.Integer("run", s.run, 1, 100);
+            specimen.Integer("length", s.length, 1, 100000);
+            s.design = ParseListedShape(specimen, k, mesh);
+            const size_t genes = ControlPointCount(s.design.shape);
+            if (s.length && genes != static_cast<size_t>(s.length))
+                specimen.Fail(fmt::format("{} control points, but the table's length column says {}", genes, s.length), "control_points");
+            t.specimens.push_back(std::move(s));
+        }
+    }
     result.Finish();
 }
 
+std::vector<ThesisItem> ParseThesisItems(ObjectReader& top) {
+    std::vector<ThesisItem> items;
+    const Json& list = top.Array("thesis_items", 0, 1000, "a list of {\"item\": ..., \"quantity\": ...}");
+    for (size_t k = 0; k < list.size(); ++k) {
+        ObjectReader entry(list[k], top.Child("thesis_items") + "[" + std::to_string(k) + "]", top.Origin());
+        ThesisItem item;
+        item.item = entry.String("item", "");
+        if (item.item.empty()) entry.Fail("missing (required): the thesis table or figure, e.g. \"Figure 4.1\"", "item");
+        item.settings = entry.String("settings", "");
+        item.quantity = entry.String("quantity", "");
+        if (item.quantity.empty() == item.settings.empty()) entry.Fail("give either 'quantity' (our number it is compared with) or 'settings'");
+        item.claim = entry.String("claim", item.quantity);
+        entry.Number("thesis", item.thesis, -1e6, 1e6);
+        entry.Number("tolerance", item.tolerance, 0, 1e6);
+        entry.Bool("at_least", item.atLeast);
+        item.figure = entry.String("figure", "");
+        entry.Finish();
+        items.push_back(std::move(item));
+    }
+    return items;
+}
+
 }  // namespace
+
+size_t ControlPointCount(const sim::Shape& shape) {
+    size_t genes = 0;
+    if (const auto* b = std::get_if<sim::BSplineShape>(&shape))
+        for (const auto& spline : b->splines) genes += spline.size();
+    return genes;
+}
 
 Override ParseOverride(const std::string& text) {
     const size_t eq = text.find('=');
@@ -622,7 +672,6 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
     e.note = top.String("note", "");
     e.explanation = top.String("explanation", "");
     e.compare = top.String("compare", "");
-    if (top.Has("thesis_result")) ParseThesisResult(top.Object("thesis_result"), e.thesisResult);
     top.Integer("seed", e.seed, 0, (1ll << 53));
     for (const char* moved : {"iterations", "load", "precision"}) top.Moved(moved, std::string("\"sim\": {\"") + moved + "\": ...}");
     if (top.Has("model")) ParseModel(top.Object("model"), e);
@@ -643,6 +692,8 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
         if (static_cast<long long>(e.mesh.resolution) * e.mesh.turns > sim::kMaxVertices)
             mesh.Fail("more than " + std::to_string(sim::kMaxVertices) + " vertices");
     }
+    if (top.Has("thesis_result")) ParseThesisResult(top.Object("thesis_result"), e.thesisResult, e.mesh);
+    if (top.Has("thesis_items")) e.thesisItems = ParseThesisItems(top);
 
     const int kinds = top.Has("sweep") + top.Has("evolve") + top.Has("evaluate") + top.Has("optimizer");
     if (kinds != 1) top.Fail("needs exactly one of 'sweep', 'evolve', 'optimizer' or 'evaluate'");
@@ -799,7 +850,6 @@ Experiment QuickVersion(const Experiment& experiment) {
         optimizer["runs"] = 1;
         optimizer["generations"] = std::min(experiment.optimizer.generations, 2);
     }
-    if (document.contains("thesis_result")) document["thesis_result"].erase("points");
     if (document.contains("render")) document["render"]["turntable_frames"] = std::min(experiment.render.turntableFrames, 4);
     return ParseExperiment(document.dump(), experiment.path);
 }

@@ -39,6 +39,7 @@ struct LabelledShape {
     std::string label;
     sim::Shape shape;
     double thesisFitness = NAN;  // the thesis's number for it, when it reports one
+    std::string source;          // that number's table row as the thesis's text extraction has it
 };
 
 // What the thesis reports for an experiment, to set our numbers beside (all optional).
@@ -48,9 +49,38 @@ struct ThesisResult {
     struct Point {
         std::vector<std::pair<sim::SweepParameter, double>> at;  // e.g. amplitude 4, cycles 4
         double fitness = NAN;
+        std::string source;  // the table row as the thesis's text extraction has it
     };
     std::vector<Point> points;    // sweeps: named meshes of a table (Table 4.4)
     std::vector<double> runBest;  // GA: best fitness of each run
+    // GA: the designs a table prints (Tables 5.2, 5.4, 5.6, 5.8), evaluated in the run and set beside
+    // the thesis's number for them and our run's best.
+    struct Specimen {
+        LabelledShape design;  // label e.g. "Table 5.4 run 1"; thesisFitness the table's fitness
+        int run = 0;           // the table's run (mesh) number
+        int length = 0;        // the table's genome length column: checked against the genes
+    };
+    std::vector<Specimen> specimens;
+    double meanBest = NAN;        // GA: the mean best fitness the thesis's text states
+    std::string meanBestSource;   // and where
+    double minutes = NAN;               // sweeps: the thesis's time for the whole sweep
+    double secondsPerSimulation = NAN;  // and for one simulation (section 4.1: 6 s on a 2016 MacBook, one thread)
+};
+
+// Control points over all splines (0 for other shapes): the thesis's "genome length".
+size_t ControlPointCount(const sim::Shape& shape);
+
+// One claim of a thesis table or figure, set beside one of our numbers (a ComparisonRow's quantity)
+// in the comparison table at the top of the report. A settings table has `settings` instead.
+struct ThesisItem {
+    std::string item;      // "Figure 4.1", "Table 5.4"
+    std::string quantity;  // our row it is compared with, e.g. "best fitness"
+    std::string claim;     // what the thesis says, in words; default: the quantity
+    double thesis = NAN;   // default: the row's thesis value
+    double tolerance = NAN;  // reproduced when within it; default max(0.02, 5 % of the thesis's value)
+    bool atLeast = false;  // the thesis gives a lower bound ("surpassed 3.7"): reproduced when ours is at least it
+    std::string figure;    // our picture of it, relative to the experiment's folder
+    std::string settings;  // a table of settings: what it prescribes (followed; choices where silent are in the note)
 };
 
 struct Experiment {
@@ -62,6 +92,7 @@ struct Experiment {
     std::string explanation;  // why our numbers may differ from the thesis's (shown when they do)
     std::string compare;      // the id of the thesis-model experiment this one re-runs under another model
     ThesisResult thesisResult;
+    std::vector<ThesisItem> thesisItems;  // the thesis tables and figures this experiment reproduces
     sim::ModelKind model = sim::ModelKind::Thesis;  // the "model" block's name
     sim::MeshDef mesh;                              // thesis model: the "mesh" block
     sim::SimParams params;                          // thesis model: the "sim" block

@@ -22,6 +22,10 @@ struct ComparisonRow {
     std::string quantity;  // e.g. "best fitness", "best amplitude", "run 2 best fitness"
     double ours = NAN;
     double thesis = NAN;   // NaN when the thesis gives no number
+    // Why ours differs, computed from the run's own numbers (thesis_check.h's sentences), and whether
+    // that accounts for the difference.
+    std::string why;
+    bool explained = false;
 };
 
 struct ExperimentOutcome {
@@ -34,6 +38,7 @@ struct ExperimentOutcome {
     std::optional<sim::EvalJob> bestJob;  // the best design found (sweeps and GA runs), with its fitness
     double bestFitness = NAN;
     std::vector<std::string> details;   // lines such as the best genome of each run
+    std::string tables;                 // markdown tables beside the rows (the thesis's designs against ours)
     std::string summaryJson;            // what the command prints
 };
 

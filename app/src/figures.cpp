@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 std::string ShapeTitle(const sim::Shape& shape) {
     std::string title = sim::ShapeName(shape);
     auto sine = [&](double amplitude, double a, double b) {
-        title += fmt::format("  A = {:.4g}, phase {} to {}", amplitude, FormatRadians(a), FormatRadians(b));
+        title += fmt::format("  A = {:.3g}, phase {} to {}", amplitude, FormatRadians(a), FormatRadians(b));
     };
     if (const auto* s = std::get_if<sim::SineShape>(&shape)) sine(s->amplitude, s->phaseStart, s->phaseEnd);
     else if (const auto* a = std::get_if<sim::AbsSineShape>(&shape)) sine(a->amplitude, a->phaseStart, a->phaseEnd);
@@ -159,6 +159,49 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     return scene;
 }
 
+render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow,
+                         const sim::EvalJob& job) {
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    scene.lines = lines;
+    scene.columns = 2 * std::max(1, pairsPerRow);
+    std::vector<const sim::Positions*> framed;
+    for (const DesignPair& pair : pairs) {
+        const sim::SimResult& r = *pair.result;
+        scene.panels.push_back({r.initial, {}, pair.label + ": before", 0, {}, {}});
+        scene.panels.push_back(ColouredPanel(scene, r.final, r, job, Colouring::Auto, "after: " + FitnessCaption(r)));
+        framed.push_back(&r.initial);
+        if (r.status == sim::Status::Ok) framed.push_back(&r.final);
+    }
+    scene.framing = render::FrameMeshes(framed);
+    return scene;
+}
+
+render::Scene StagesScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<const sim::SimResult*>& stages,
+                          const sim::EvalJob& job) {
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    scene.lines = lines;
+    if (stages.empty()) return scene;
+    scene.panels.push_back({stages.front()->initial, {}, "before", 0, {}, {}});
+    std::vector<const sim::Positions*> framed{&stages.front()->initial};
+    for (const sim::SimResult* r : stages) {
+        scene.panels.push_back(ColouredPanel(scene, r->final, *r, job, Colouring::Auto, AfterCaption(*r, job) + ": " + FitnessCaption(*r)));
+        if (r->status == sim::Status::Ok) framed.push_back(&r->final);
+    }
+    scene.framing = render::FrameMeshes(framed);
+    return scene;
+}
+
+render::Image PairsImage(const render::Scene& scene) {
+    const int columns = scene.columns > 0 ? scene.columns : std::max<int>(1, scene.panels.size());  // no grid: one row
+    const int rows = static_cast<int>((scene.panels.size() + columns - 1) / columns);
+    const int width = std::clamp(columns * 240 + 140, 900, 3000), height = std::clamp(rows * 420 + 120 + 24 * static_cast<int>(scene.lines.size()), 500, 3000);
+    return MakeRenderer(width, height, 2, 0.9)->Render(scene);
+}
+
 render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, double angleDegrees, Colouring colouring) {
     render::Scene scene;
     scene.surface = SharedSurface(job);
@@ -218,10 +261,16 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
                                             int frameLevel) {
     std::vector<std::string> written;
     const std::pair<const char*, const sim::SimResult*> loads[] = {{"inflation", f.inflated}, {"stretch", f.stretched}};
+    // One design's figures share a camera: its "before" mesh is the same size in each.
+    std::vector<const sim::Positions*> framed;
+    for (const auto& [load, result] : loads)
+        if (result) framed.insert(framed.end(), {&result->initial, &result->final});
     for (const auto& [load, result] : loads) {
         if (!result) continue;
         const std::string name = f.prefix + load + ".png";
-        WritePng((folder / name).string(), renderer.Render(BeforeAfterScene(f.title + "  -  " + load, *result, f.job, f.colouring)), figureLevel);
+        render::Scene scene = BeforeAfterScene(f.title + "  -  " + load, *result, f.job, f.colouring);
+        if (f.inflated && f.stretched) scene.framing = render::FrameMeshes(framed);
+        WritePng((folder / name).string(), renderer.Render(scene), figureLevel);
         written.push_back(name);
     }
     if (f.job.model != sim::ModelKind::Thesis && f.inflated && !f.inflated->shell.curvePressureKpa.empty()) {
@@ -244,25 +293,70 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
     return written;
 }
 
+std::string EscapeWarning(const sim::SimResult& r) {
+    const sim::Positions& a = r.initial;
+    const sim::Positions& b = r.final;
+    if (a.Size() == 0 || b.Size() != a.Size()) return "";
+    double zMin = INFINITY, zMax = -INFINITY, radius = 0, moved = 0;
+    for (int i = 0; i < a.Size(); ++i) {
+        zMin = std::min(zMin, a.z[i]);
+        zMax = std::max(zMax, a.z[i]);
+        radius = std::max(radius, std::hypot(a.x[i], a.y[i]));
+        const double d = std::sqrt((b.x[i] - a.x[i]) * (b.x[i] - a.x[i]) + (b.y[i] - a.y[i]) * (b.y[i] - a.y[i]) + (b.z[i] - a.z[i]) * (b.z[i] - a.z[i]));
+        if (std::isfinite(d)) moved = std::max(moved, d);
+    }
+    const double size = std::max(zMax - zMin, 2 * radius);
+    if (!(moved > size)) return "";
+    return fmt::format("moved {:.3g} on a {:.3g}-unit mesh", moved, size);
+}
+
 void WriteContactSheet(const fs::path& path, const std::string& title, const std::vector<SheetEntry>& entries, const sim::EvalJob& job,
-                       std::unique_ptr<render::MeshRenderer>& renderer) {
+                       std::unique_ptr<render::MeshRenderer>& renderer, const SheetAxes& axes) {
     if (entries.empty()) return;
     // Actuators are about ten times taller than wide: many narrow columns, cells about 1:2.
-    const int columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(entries.size() * 3.0))));
+    const int columns = axes.columns > 0 ? axes.columns : std::max(1, static_cast<int>(std::ceil(std::sqrt(entries.size() * 3.0))));
     const int rows = static_cast<int>((entries.size() + columns - 1) / columns);
-    const int width = std::clamp(columns * 125 + 110, 800, 2600), height = std::clamp(rows * 250 + 110, 450, 2400);
-    if (!renderer || renderer->Def().width != width || renderer->Def().height != height) renderer = MakeRenderer(width, height, 1, 0.72);
+    const bool labelled = !axes.columnLabels.empty() || !axes.rowLabels.empty();
     render::Scene scene;
     scene.surface = SharedSurface(job);
     scene.title = title;
     scene.columns = columns;
+    scene.columnLabels = axes.columnLabels;
+    scene.rowLabels = axes.rowLabels;
+    scene.columnTitle = axes.columnTitle;
+    scene.rowTitle = axes.rowTitle;
+    scene.colorBy = render::ColorBy::Displacement;
     if (job.model != sim::ModelKind::Thesis) scene.colorLabel = "displacement\n(mm)";
-    std::vector<const sim::Positions*> all;
+    std::vector<const sim::Positions*> kept;
+    std::vector<std::vector<double>> keptValues;
+    int escaped = 0;
     for (const auto& entry : entries) {
-        scene.panels.push_back({entry.result->final, entry.result->initial, entry.caption, 0, {}, {}});
-        if (entry.result->status == sim::Status::Ok) all.push_back(&entry.result->final);
+        const bool escapes = !EscapeWarning(*entry.result).empty();
+        escaped += escapes;
+        scene.panels.push_back({entry.result->final, entry.result->initial, (escapes ? "! " : "") + entry.caption, 0, {}, {}});
+        if (entry.result->status != sim::Status::Ok || escapes) continue;
+        kept.push_back(&entry.result->final);
+        kept.push_back(&entry.result->initial);
+        keptValues.push_back(render::VertexValues(render::ColorBy::Displacement, *scene.surface, scene.panels.back()));
     }
-    if (!all.empty()) scene.framing = render::FrameMeshes(all);
+    // Cells shaped like what they hold (the framing cylinder seen from the side), so that meshes fill
+    // them and sit just above their captions.
+    double cellAspect = 0.5;  // height : width of the drawing area, before the caption
+    if (!kept.empty()) {
+        scene.framing = render::FrameMeshes(kept);
+        scene.colorMax = render::RobustColorMax(keptValues);
+        cellAspect = std::clamp((scene.framing->zMax - scene.framing->zMin) / (2.2 * scene.framing->radius), 0.6, 2.4);
+    }
+    const int cellWidth = 130, cellHeight = static_cast<int>(cellWidth * cellAspect) + 40;
+    const int width = std::clamp(columns * cellWidth + 150 + (labelled ? 110 : 0), 800, 2800);
+    const int height = std::clamp(rows * cellHeight + 130 + (labelled ? 50 : 0) + (escaped ? 20 : 0), 450, 2600);
+    // Body text 0.8 x 19 px = 15 px: captions readable at 100 %; rendered at twice the size and
+    // filtered down like the main figures.
+    if (!renderer || renderer->Def().width != width || renderer->Def().height != height) renderer = MakeRenderer(width, height, 2, 0.8);
+    if (escaped)
+        scene.lines.push_back(fmt::format("! {} of {} meshes moved farther than their own size: not a physical state; camera and colour scale "
+                                          "(98th percentile) are the other meshes'",
+                                          escaped, entries.size()));
     WritePng(path.string(), renderer->Render(scene), 1);
 }
 
@@ -271,10 +365,10 @@ ThumbnailWriter::ThumbnailWriter(fs::path folder) : folder_(std::move(folder)) {
     fs::create_directories(folder_, ec);
     if (!fs::is_directory(folder_, ec)) throw UsageError("cannot create folder " + Quote(folder_.string()));
     render::RenderDef def = render::DefaultRenderDef();
-    def.width = 240;
-    def.height = 180;
+    def.width = 300;
+    def.height = 200;
     def.supersample = 1;
-    def.overlay = false;
+    def.textScale = 0.6;  // 11 px: a label, not a caption
     renderer_ = MakeRenderer(def);
 }
 
@@ -283,6 +377,7 @@ std::string ThumbnailWriter::Name(std::uint64_t id) { return fmt::format("evalua
 void ThumbnailWriter::Write(std::uint64_t id, const sim::SimResult& result, const sim::EvalJob& job) {
     render::Scene scene;
     scene.surface = SharedSurface(job);
+    scene.title = fmt::format("#{}  {}", id, FitnessCaption(result));  // which evaluation, and how it did
     scene.panels = {{result.initial, {}, "", 0, {}, {}}, {result.final, result.initial, "", 0, {}, {}}};
     WritePng((folder_ / Name(id)).string(), renderer_->Render(scene), 1);
 }

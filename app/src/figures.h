@@ -44,6 +44,22 @@ render::Scene TurntableScene(const std::string& title, const sim::SimResult& res
 // BeforeAfterScene, on a fixed framing and scale given by the caller.
 render::Scene LoadStepScene(const std::string& title, const sim::SimResult& result, const sim::EvalJob& job, int step, Colouring colouring);
 
+// Several designs, each before and after, `pairsPerRow` pairs to a row, on one camera and one colour
+// scale (the report's "best of each run" and "the thesis's specimen beside ours"). Each pair is
+// captioned "<label>: before" and "after: <fitness or status>"; all results share `job`'s mesh.
+struct DesignPair {
+    const sim::SimResult* result;
+    std::string label;
+};
+render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow,
+                         const sim::EvalJob& job);
+// One design before and after each of several runs of the same load (e.g. 100 and 10,000 iterations:
+// the thesis's Figure 5.2), one camera and colour scale.
+render::Scene StagesScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<const sim::SimResult*>& stages,
+                          const sim::EvalJob& job);
+// The scenes above drawn at a size that gives each panel about 240 x 420 pixels.
+render::Image PairsImage(const render::Scene& scene);
+
 // Throws UsageError when no renderer can be made.
 std::unique_ptr<render::MeshRenderer> MakeRenderer(int width, int height, int supersample = 2, double textScale = 0);
 std::unique_ptr<render::MeshRenderer> MakeRenderer(const render::RenderDef& def);
@@ -85,9 +101,23 @@ struct SheetEntry {
     const sim::SimResult* result;
     std::string caption;
 };
-// `renderer` is kept between calls and made anew only when the sheet's size changes.
+// A sheet laid out on a 2-D sweep's axes: `columns` cells to a row, labelled along both axes.
+struct SheetAxes {
+    int columns = 0;  // 0: a near-square grid
+    std::vector<std::string> columnLabels, rowLabels;
+    std::string columnTitle, rowTitle;
+};
+// One camera and one colour scale for all, taken from the meshes that stay within their own size:
+// a mesh that moved farther (EscapeWarning) would otherwise shrink every other cell to a speck. Such
+// meshes are marked "!" and counted under the title. `renderer` is kept between calls and made
+// anew only when the sheet's size changes.
 void WriteContactSheet(const std::filesystem::path& path, const std::string& title, const std::vector<SheetEntry>& entries,
-                       const sim::EvalJob& job, std::unique_ptr<render::MeshRenderer>& renderer);
+                       const sim::EvalJob& job, std::unique_ptr<render::MeshRenderer>& renderer, const SheetAxes& axes = {});
+
+// Non-empty when some vertex moved farther than the mesh's own size (its rest height or diameter,
+// whichever is larger): "moved 57.7 on a 30-unit mesh". Such a result is not a physical state,
+// whatever its status; sheets mark it and sweeps' results.csv carry it as a warning.
+std::string EscapeWarning(const sim::SimResult& result);
 
 // Small before/after pictures of single evaluations, named by evaluation id.
 class ThumbnailWriter {

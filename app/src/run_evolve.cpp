@@ -17,6 +17,7 @@
 #include "files.h"
 #include "plots.h"
 #include "progress.h"
+#include "thesis_check.h"
 
 namespace app {
 namespace {
@@ -203,17 +204,74 @@ void RunEvolution(RunContext& c) {
         runs.push_back(std::move(checkpoint));
     }
 
+    // The thesis's own designs (its tables' genomes), evaluated here like any other design.
+    const auto& specimens = e.thesisResult.specimens;
+    std::vector<sim::SimResult> specimenResults(specimens.size());
+    {
+        std::vector<sim::EvalJob> jobs;
+        std::vector<EvaluationTag> tags;
+        for (const auto& specimen : specimens) {
+            jobs.push_back(JobOf(e, specimen.design.shape));
+            tags.push_back({Role::ThesisPoint, specimen.run, -1, "thesis specimen: " + specimen.design.label});
+        }
+        c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&& r) { specimenResults[k] = std::move(r); });
+    }
+    auto specimenOfRun = [&](int run) -> int {
+        for (size_t k = 0; k < specimens.size(); ++k)
+            if (specimens[k].run == run) return static_cast<int>(k);
+        return -1;
+    };
+    auto fitnessOf = [](const sim::SimResult& r) { return r.status == sim::Status::Ok ? r.fitness : NAN; };
+
     int bestRun = -1;
+    double sumBest = 0, sumThesisHere = 0;
+    int thesisHere = 0;
+    std::string table;
     for (int r = 0; r < e.runs; ++r) {
         const auto& s = runs[r].state;
         const double best = s.hallOfFame.empty() ? NAN : s.hallOfFame.front().fitness;
-        c.outcome.rows.push_back({fmt::format("run {} best fitness", r + 1), best,
-                                  r < static_cast<int>(e.thesisResult.runBest.size()) ? e.thesisResult.runBest[r] : NAN});
+        const double thesis = r < static_cast<int>(e.thesisResult.runBest.size()) ? e.thesisResult.runBest[r] : NAN;
+        ComparisonRow row{fmt::format("run {} best fitness", r + 1), best, thesis};
+        sumBest += best;
+        // Which holds for this run: does the model give the thesis's number for the thesis's own design?
+        const int k = specimenOfRun(r + 1);
+        if (k >= 0) {
+            const double here = fitnessOf(specimenResults[k]), reported = specimens[k].design.thesisFitness;
+            const double tolerance = DefaultTolerance(reported);
+            row.explained = WithinTolerance(here, reported, tolerance);
+            row.why = row.explained ? fmt::format("their genome evaluated here: {}; the model agrees on their design, and our GA's best ({}) is another design",
+                                                  CompareSentence(here, reported, tolerance), OrderSentence(best, reported))
+                                    : fmt::format("their genome evaluated here: {}; this model does not give the thesis's number for its own design",
+                                                  CompareSentence(here, reported, tolerance));
+            c.outcome.rows.push_back(row);
+            c.outcome.rows.push_back({fmt::format("run {} thesis genome", r + 1), here, reported});
+            sumThesisHere += here;
+            ++thesisHere;
+            const bool splines = e.ga.genome.kind == sim::GenomeKind::BSpline && !s.hallOfFame.empty();
+            table += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {} | {} |\n", r + 1, reported, here, best, ControlPointCount(specimens[k].design.shape),
+                                 splines ? std::to_string(ControlPointCount(JobOfGenome(e, s.hallOfFame.front().genome).shape)) : std::string("-"));
+        } else {
+            c.outcome.rows.push_back(row);
+        }
+        if (r == 0 && !s.logbook.empty()) c.outcome.rows.push_back({"run 1 generation 0 best", s.logbook.front().best, NAN});
         if (s.hallOfFame.empty()) continue;
         c.outcome.details.push_back(fmt::format("run {} (seed {}): best genome {}, stopped by {} after generation {}", r + 1, runs[r].seed,
                                                 GenomeSummary(e, s.hallOfFame.front().genome), s.stopReason, s.generation));
         if (bestRun < 0 || best > runs[bestRun].state.hallOfFame.front().fitness) bestRun = r;
     }
+    if (std::isfinite(e.thesisResult.meanBest)) {
+        ComparisonRow row{"mean best fitness", sumBest / e.runs, e.thesisResult.meanBest};
+        if (thesisHere == e.runs) {
+            const double here = sumThesisHere / thesisHere, tolerance = DefaultTolerance(e.thesisResult.meanBest);
+            row.explained = WithinTolerance(here, e.thesisResult.meanBest, tolerance);
+            row.why = fmt::format("their genomes' mean here: {}{}", CompareSentence(here, e.thesisResult.meanBest, tolerance),
+                                  row.explained ? "; the model agrees on their designs and our GA found others" : "; the model does not give their numbers for their designs");
+        }
+        c.outcome.rows.push_back(row);
+    }
+    if (!table.empty())
+        c.outcome.tables = "Each run of the thesis's table against its genome evaluated here and our GA's best (fitness; genome lengths in control points):\n\n"
+                           "| run | thesis reported | their genome here | our GA's best | their length | our best's length |\n|---:|---:|---:|---:|---:|---:|\n" + table + "\n";
     if (bestRun >= 0) {
         const auto& best = runs[bestRun].state.hallOfFame.front();
         c.outcome.bestJob = JobOfGenome(e, best.genome);
@@ -222,9 +280,52 @@ void RunEvolution(RunContext& c) {
     if (!e.render.figures) return;
 
     std::vector<RunCurve> curves;
-    for (int r = 0; r < e.runs; ++r) curves.push_back({fmt::format("run {}", r + 1), runs[r].state.logbook});
+    for (int r = 0; r < e.runs; ++r) {
+        curves.push_back({fmt::format("run {}", r + 1), runs[r].state.logbook});
+        if (r < static_cast<int>(e.thesisResult.runBest.size())) {
+            curves.back().reference = e.thesisResult.runBest[r];
+            curves.back().referenceLabel = fmt::format("thesis's best: {:g}", e.thesisResult.runBest[r]);
+        }
+    }
     WritePng((c.dir / "evolution.png").string(), EvolutionImage(e, curves), 6);
     c.outcome.figures.push_back("evolution.png");
+    // The best of each run before and after, beside the thesis's own design for that run where its
+    // table prints one (evaluated here): Figures 5.4, 5.6 and 5.8 and the tables' specimens.
+    {
+        std::vector<ArchiveRecord> bests;
+        std::vector<int> bestRuns;
+        for (int r = 0; r < e.runs; ++r) {
+            if (runs[r].state.hallOfFame.empty()) continue;
+            bests.push_back(c.recorder.ReadBack({caches[r]->IdOf(runs[r].state.hallOfFame.front().genome)}).at(0));
+            bestRuns.push_back(r + 1);
+        }
+        std::vector<DesignPair> pairs;
+        for (size_t b = 0; b < bests.size(); ++b) {
+            pairs.push_back({&bests[b].result, fmt::format("run {}, ours", bestRuns[b])});
+            if (const int k = specimenOfRun(bestRuns[b]); k >= 0)
+                pairs.push_back({&specimenResults[k], fmt::format("{} (thesis {:g})", specimens[k].design.label, specimens[k].design.thesisFitness)});
+        }
+        if (!pairs.empty()) {
+            const std::vector<std::string> lines{specimens.empty() ? "the best design of each run" : "each run's best (left) beside the thesis's design for that run, evaluated here (right)"};
+            WritePng((c.dir / "run_bests.png").string(),
+                     PairsImage(PairsScene(ExperimentTitle(e) + "  -  best of each run", lines, pairs, specimens.empty() ? std::min<int>(3, pairs.size()) : 2,
+                                           JobOf(e, e.sweep.base))),
+                     6);
+            c.outcome.figures.push_back("run_bests.png");
+        }
+    }
+    // Under the thesis model, the best after a hundred iterations beside the full run (Figure 5.2).
+    if (bestRun >= 0 && e.model == sim::ModelKind::Thesis) {
+        const ArchiveRecord full = c.recorder.ReadBack({caches[bestRun]->IdOf(runs[bestRun].state.hallOfFame.front().genome)}).at(0);
+        sim::EvalJob early = full.job;
+        early.params.iterations = std::min(100, full.job.params.iterations);
+        const sim::SimResult first = c.recorder.EvaluateOne(early, {Role::Figure, bestRun + 1, -1, "time lapse of the best"});
+        WritePng((c.dir / "best_time_lapse.png").string(),
+                 PairsImage(StagesScene(fmt::format("{}  -  best of run {}", ExperimentTitle(e), bestRun + 1), {"the same design after 100 and after the full run"},
+                                        {&first, &full.result}, full.job)),
+                 6);
+        c.outcome.figures.push_back("best_time_lapse.png");
+    }
     for (int r = 0; r < e.runs; ++r) {
         const std::string sheet = "run_" + std::to_string(r + 1) + "/" + SheetName(runs[r].state.generation);
         std::error_code ec;

@@ -7,6 +7,7 @@
 #include "experiment_runner.h"
 #include "files.h"
 #include "progress.h"
+#include "thesis_check.h"
 
 namespace app {
 
@@ -48,6 +49,30 @@ void RunList(RunContext& c) {
         c.outcome.figures.push_back(name);
     });
     WriteFileAtomically((c.dir / "results.csv").string(), csv);
+
+    // The thesis draws conclusions from the order of its numbers (6.1: "the actuator with the smallest
+    // radius outperforms the two larger ones"): how many pairs keep that order here.
+    std::vector<std::pair<double, double>> ranked;  // (ours, thesis) of the shapes the thesis gives a number for
+    for (const ComparisonRow& row : c.outcome.rows)
+        if (std::isfinite(row.thesis)) ranked.push_back({row.ours, row.thesis});
+    if (ranked.size() >= 2) {
+        int kept = 0, pairs = 0;
+        std::string flipped;
+        for (size_t a = 0; a < ranked.size(); ++a)
+            for (size_t b = a + 1; b < ranked.size(); ++b) {
+                if (ranked[a].second == ranked[b].second) continue;  // a tie in the thesis orders nothing
+                ++pairs;
+                if ((ranked[a].first > ranked[b].first) == (ranked[a].second > ranked[b].second)) {
+                    ++kept;
+                } else if (flipped.empty()) {
+                    flipped = fmt::format("shapes {} and {} swap: thesis {}, ours {}", a + 1, b + 1, OrderSentence(ranked[a].second, ranked[b].second),
+                                          OrderSentence(ranked[a].first, ranked[b].first));
+                }
+            }
+        ComparisonRow row{"pairs in the thesis's order", static_cast<double>(kept), static_cast<double>(pairs)};
+        row.why = flipped;
+        c.outcome.rows.push_back(row);
+    }
 }
 
 }  // namespace app

@@ -52,8 +52,9 @@ TEST_F(Runner, EveryKindRecordsEveryEvaluationUnderOneId) {
     ASSERT_EQ(records.size(), 4u);
     EXPECT_EQ(records[3].role, app::Role::ThesisPoint);
     EXPECT_EQ(std::get<sim::SineShape>(records[3].job.shape).amplitude, 2.5);
-    ASSERT_GE(sweep.rows.size(), 1u);
-    EXPECT_EQ(sweep.rows.back().thesis, 0.3);
+    const auto point = std::find_if(sweep.rows.begin(), sweep.rows.end(), [](const app::ComparisonRow& row) { return row.quantity == "fitness at amplitude 2.5"; });
+    ASSERT_NE(point, sweep.rows.end());
+    EXPECT_EQ(point->thesis, 0.3);
 
     const auto list = RunIn(kList, "list");
     EXPECT_EQ(list.simulations, 2);

@@ -8,6 +8,7 @@
 
 #include "cli_fixture.h"
 #include "csv.h"
+#include "thesis_report_check.h"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -144,7 +145,15 @@ TEST_F(SearchCli, EvolveImprovesAndLogsEveryGeneration) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto rows = app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "logbook.csv"));
     ASSERT_EQ(rows.size(), 12u);  // header + generations 0..10
-    EXPECT_EQ(rows[0], (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "invalid", "stopped_by"}));
+    EXPECT_EQ(rows[0], (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "q1", "median", "q3", "invalid", "stopped_by"}));
+    for (size_t g = 1; g < rows.size(); ++g) {
+        // The quartiles lie between the worst and the best, in order.
+        const double best = std::stod(rows[g][2]), worst = std::stod(rows[g][3]), q1 = std::stod(rows[g][6]), median = std::stod(rows[g][7]), q3 = std::stod(rows[g][8]);
+        EXPECT_LE(worst, q1);
+        EXPECT_LE(q1, median);
+        EXPECT_LE(median, q3);
+        EXPECT_LE(q3, best);
+    }
     EXPECT_EQ(rows.back().back(), "generations");
     EXPECT_EQ(rows[rows.size() - 2].back(), "");
     EXPECT_EQ(rows[1][1], "10");  // the initial population is evaluated whole
@@ -290,7 +299,9 @@ TEST_F(SearchCli, ParetoFrontsAreNonDominatedAndPictured) {
     }
     const auto logbook = app::ParseCsv(Slurp(dir_ / "pareto" / "run_1" / "logbook.csv"));
     ASSERT_EQ(logbook.size(), 6u);
-    for (size_t g = 2; g < logbook.size(); ++g) EXPECT_GE(std::stod(logbook[g][8]), std::stod(logbook[g - 1][8])) << "hypervolume fell";
+    const size_t hv = std::find(logbook[0].begin(), logbook[0].end(), "hypervolume") - logbook[0].begin();
+    ASSERT_LT(hv, logbook[0].size());
+    for (size_t g = 2; g < logbook.size(); ++g) EXPECT_GE(std::stod(logbook[g][hv]), std::stod(logbook[g - 1][hv])) << "hypervolume fell";
     for (const char* figure : {"pareto_front.png", "pareto_designs.png", "hypervolume.png", "best_inflation.png"}) ExpectPicture(dir_ / "pareto" / figure);
 }
 
@@ -426,7 +437,7 @@ TEST_F(SearchCli, OneEvaluationIdInTheArchiveTheLogTheThumbnailsAndRender) {
     const auto top = count("--top 3");
     ASSERT_EQ(top.size(), 3u);
     EXPECT_GE(top[0]["fitness"].get<double>(), top[1]["fitness"].get<double>());
-    EXPECT_EQ(count("--role figure").size(), 1u);  // the best design's stretch test
+    EXPECT_EQ(count("--role figure").size(), 2u);  // the best design's stretch test and its first hundred iterations
     // Complete records: every control point of every spline, with the region.
     EXPECT_EQ(records[0]["shape"]["region"], "middle");
     EXPECT_EQ(records[0]["shape"]["control_points"].size(), 2u);
@@ -550,6 +561,11 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
         ExpectPicture(dir_ / "thesis" / report.substr(at + 2, end - at - 2));
     }
     EXPECT_GE(images, 30u);
+    // Every table and figure of chapters 4-6 has a row and a verdict, and no reason contradicts the
+    // run's own numbers.
+    EXPECT_THAT(testing_support::ThesisReportProblems(report), ::testing::IsEmpty());
+    for (const char* figure : {"4.3_abs_sine_sweep/thesis_points.png", "5.2_bspline_middle/run_bests.png", "5.1_bspline_entire/best_time_lapse.png"})
+        ExpectPicture(dir_ / "thesis" / figure);
     EXPECT_TRUE(fs::exists(dir_ / "thesis" / "5.2_bspline_middle" / "thumbnails" / "evaluation_000001.png"));
     EXPECT_TRUE(fs::exists(dir_ / "thesis" / "4.1_amplitude_sweep" / "thumbnails" / "evaluation_000000.png"));
 }
