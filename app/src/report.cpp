@@ -96,7 +96,7 @@ std::string BesideMarkdown(const std::vector<ReportEntry>& entries) {
             thesisRank.push_back({thesisMean, e.id});
             if (ours) ourRank.push_back({ourMean, e.id});
             md += fmt::format("| [{}](#{}) | mean best fitness over {} run{} | {}{} | {} |\n", e.id, entry.folder, t.runBest.size(), t.runBest.size() > 1 ? "s" : "",
-                              Cell(thesisMean), std::isfinite(t.meanBest) ? fmt::format(" (text: {:g}; {})", t.meanBest, t.meanBestSource) : std::string(),
+                              Cell(thesisMean), std::isfinite(t.meanBest) ? fmt::format(" (its text: {:g}, {})", t.meanBest, t.meanBestSource) : std::string(),
                               ours ? Cell(ourMean) : std::string("-"));
         }
         if (std::isfinite(t.minutes))

@@ -260,11 +260,18 @@ void RunEvolution(RunContext& c) {
         if (bestRun < 0 || best > runs[bestRun].state.hallOfFame.front().fitness) bestRun = r;
     }
     if (std::isfinite(e.thesisResult.meanBest)) {
-        ComparisonRow row{"mean best fitness", sumBest / e.runs, e.thesisResult.meanBest};
+        // Against the mean of the thesis's table (its text's number is beside it in the report; for
+        // 5.4 the two disagree).
+        double thesisMean = e.thesisResult.meanBest;
+        if (!e.thesisResult.runBest.empty()) {
+            thesisMean = 0;
+            for (double v : e.thesisResult.runBest) thesisMean += v / static_cast<double>(e.thesisResult.runBest.size());
+        }
+        ComparisonRow row{"mean best fitness", sumBest / e.runs, thesisMean};
         if (thesisHere == e.runs) {
-            const double here = sumThesisHere / thesisHere, tolerance = DefaultTolerance(e.thesisResult.meanBest);
-            row.explained = WithinTolerance(here, e.thesisResult.meanBest, tolerance);
-            row.why = fmt::format("their genomes' mean here: {}{}", CompareSentence(here, e.thesisResult.meanBest, tolerance),
+            const double here = sumThesisHere / thesisHere, tolerance = DefaultTolerance(thesisMean);
+            row.explained = WithinTolerance(here, thesisMean, tolerance);
+            row.why = fmt::format("their genomes' mean here: {}{}", CompareSentence(here, thesisMean, tolerance),
                                   row.explained ? "; the model agrees on their designs and our GA found others" : "; the model does not give their numbers for their designs");
         }
         c.outcome.rows.push_back(row);

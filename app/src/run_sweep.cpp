@@ -225,9 +225,14 @@ void RunSweep(RunContext& c) {
     } else {
         for (const ArchiveRecord& r : records) entries.push_back({&r.result, PointLabel(grid[r.id], axes, false) + ": " + FitnessCaption(r.result)});
     }
+    std::string key;  // what a caption says, when the cells are not on labelled axes
+    if (sheetAxes.columns == 0) {
+        for (const auto& axis : axes) key += (key.empty() ? "" : " ") + std::string(sim::Name(axis.parameter));
+        key = "  (each cell: " + key + ": fitness)";
+    }
     std::unique_ptr<render::MeshRenderer> sheetRenderer;
     WriteContactSheet(c.dir / "contact_sheet.png",
-                      ExperimentTitle(e) + (step > 1 ? fmt::format("  -  every {}th grid point, inflated", step) : std::string("  -  every grid point, inflated")),
+                      ExperimentTitle(e) + (step > 1 ? fmt::format("  -  every {}th grid point, inflated", step) : std::string("  -  every grid point, inflated")) + key,
                       entries, grid.front(), sheetRenderer, sheetAxes);
     c.outcome.figures.push_back("contact_sheet.png");
 
