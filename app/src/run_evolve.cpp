@@ -241,8 +241,9 @@ void RunEvolution(RunContext& c) {
             row.explained = WithinTolerance(here, reported, tolerance);
             row.why = row.explained ? fmt::format("their genome evaluated here: {}; the model agrees on their design, and our GA's best ({}) is another design",
                                                   CompareSentence(here, reported, tolerance), OrderSentence(best, reported))
-                                    : fmt::format("their genome evaluated here: {}; this model does not give the thesis's number for its own design",
-                                                  CompareSentence(here, reported, tolerance));
+                                    : fmt::format("their genome evaluated here: {}; this model does not give the thesis's number for its own design, "
+                                                  "and our GA's best against their design here: {}",
+                                                  CompareSentence(here, reported, tolerance), OrderSentence(best, here));
             c.outcome.rows.push_back(row);
             c.outcome.rows.push_back({fmt::format("run {} thesis genome", r + 1), here, reported});
             sumThesisHere += here;
