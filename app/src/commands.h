@@ -13,5 +13,6 @@ int RunCompare(int argc, char** argv, int first);
 int RunInspect(int argc, char** argv, int first);
 int RunServe(int argc, char** argv, int first);
 int RunImgDiff(int argc, char** argv, int first);
+int RunExport(int argc, char** argv, int first);
 
 }  // namespace app

@@ -25,6 +25,7 @@ const Command kCommands[] = {
     {"sweep", "evaluate an experiment's grid of sine shapes or its list of shapes; landscape figure", app::RunSweepCommand},
     {"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", app::RunEvolveCommand},
     {"reproduce", "run every thesis experiment and write report.md with figures", app::RunReproduce},
+    {"export", "a design as solids to print and cast: the actuator's wall, a mold's core and two shells (STL, OBJ, PLY)", app::RunExport},
     {"compare", "optimizers side by side: same seeds, same budget, best so far against evaluations", app::RunCompare},
     {"inspect", "list, filter, sort and export the evaluations in an archive", app::RunInspect},
     {"serve", "run an evaluation server for --workers (Cap'n Proto RPC)", app::RunServe},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace sim {
 namespace {
@@ -113,6 +114,24 @@ double EvaluateBSpline(const std::vector<double>& c, double t) {
     const double b2 = (-3 * u3 + 3 * u2 + 3 * u + 1) / 6.0;
     const double b3 = u3 / 6.0;
     return b0 * c[s] + b1 * c[s + 1] + b2 * c[s + 2] + b3 * c[s + 3];
+}
+
+double DesignRadius(const Shape& shape, double t, double angle, double clampFraction) {
+    if (const auto* s = std::get_if<SineShape>(&shape)) return s->amplitude * std::sin(s->phaseStart + t * (s->phaseEnd - s->phaseStart));
+    if (const auto* a = std::get_if<AbsSineShape>(&shape))
+        return a->amplitude * std::fabs(std::sin(a->phaseStart + t * (a->phaseEnd - a->phaseStart)));
+    if (const auto* b = std::get_if<BSplineShape>(&shape)) {
+        const int sectors = static_cast<int>(b->splines.size());
+        double turn = angle / (2 * std::numbers::pi);
+        turn -= std::floor(turn);
+        const int sector = std::min(sectors - 1, static_cast<int>(turn * sectors));
+        if (b->region == SplineRegion::Entire) return EvaluateBSpline(b->splines[sector], t);
+        // Middle: the clamped rings keep the base radius; the spline spans the free part.
+        if (t < clampFraction - 1e-12 || t > 1 - clampFraction + 1e-12) return 1.0;
+        return EvaluateBSpline(b->splines[sector], std::clamp((t - clampFraction) / (1 - 2 * clampFraction), 0.0, 1.0));
+    }
+    if (std::holds_alternative<CylinderShape>(shape)) return 1.0;
+    return std::nan("");
 }
 
 Positions BuildInitialPositions(const Shape& shape, const MeshDef& def) {

@@ -38,24 +38,6 @@ void NumberUnknowns(ShellProblem& p, bool axialUnknown) {
 }
 constexpr int kFree = -3;  // marks a free coordinate before numbering
 
-// The design's radius (in units of the base radius) at height fraction t of the tube and angle.
-double RadiusProfile(const Shape& shape, double t, double angle, double clampFraction) {
-    if (const auto* s = std::get_if<SineShape>(&shape)) return s->amplitude * std::sin(s->phaseStart + t * (s->phaseEnd - s->phaseStart));
-    if (const auto* a = std::get_if<AbsSineShape>(&shape))
-        return a->amplitude * std::fabs(std::sin(a->phaseStart + t * (a->phaseEnd - a->phaseStart)));
-    if (const auto* b = std::get_if<BSplineShape>(&shape)) {
-        const int sectors = static_cast<int>(b->splines.size());
-        double turn = angle / (2 * std::numbers::pi);
-        turn -= std::floor(turn);
-        const int sector = std::min(sectors - 1, static_cast<int>(turn * sectors));
-        if (b->region == SplineRegion::Entire) return EvaluateBSpline(b->splines[sector], t);
-        // Middle: the clamped rings keep the base radius; the spline spans the free part.
-        if (t < clampFraction - 1e-12 || t > 1 - clampFraction + 1e-12) return 1.0;
-        return EvaluateBSpline(b->splines[sector], std::clamp((t - clampFraction) / (1 - 2 * clampFraction), 0.0, 1.0));
-    }
-    return 1.0;
-}
-
 }  // namespace
 
 void TubeTriangles(int R, int H, std::vector<std::array<int, 3>>& wall, std::vector<std::array<int, 3>>& caps) {
@@ -169,7 +151,7 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
                 p.rest.z[v] = mesh->positions.z[v];
                 continue;
             }
-            double rho = freeXY ? 1.0 : RadiusProfile(shape, z / g.lengthMm, angle, clampFraction);
+            double rho = freeXY ? 1.0 : DesignRadius(shape, z / g.lengthMm, angle, clampFraction);
             if (!(rho > 0))
                 return fail("the radius is " + std::to_string(rho * g.radiusMm) + " mm at height " + std::to_string(z) +
                             " mm: the shell models need a positive radius everywhere");

@@ -75,6 +75,12 @@ std::string ShapeError(const Shape& shape, const MeshDef& def);
 // Uniform cubic B-spline through control points at parameter t in [0, 1] (MODEL.md formula).
 double EvaluateBSpline(const std::vector<double>& controlPoints, double t);
 
+// A design's radius (in units of the base radius) at height fraction t (0..1) along the tube and at
+// `angle` (radians): the thesis's profiles read as functions, independent of any mesh. Middle-region
+// B-splines keep radius 1 over `clampFraction` of the length at each end and span the rest. NaN for
+// free-xy and mesh designs, which are defined per vertex only.
+double DesignRadius(const Shape& shape, double t, double angle, double clampFraction);
+
 // The initial (rest) mesh of a shape. Precondition: ShapeError(shape, def) is empty.
 Positions BuildInitialPositions(const Shape& shape, const MeshDef& def);
 

@@ -1,0 +1,70 @@
+// From a design to parts that can be printed and cast: the actuator's wall as a closed solid of a
+// given thickness around the design's rest surface, and a two-piece mold with a core. Every solid
+// is closed, 2-manifold and oriented outward by construction (the tests check it with CGAL). Pure
+// geometry in millimetres; app/ writes the files.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "sim/names.h"
+#include "sim/shape.h"
+
+namespace sim {
+
+struct TriangleMesh {
+    std::vector<std::array<double, 3>> vertices;  // mm
+    std::vector<std::array<int, 3>> triangles;     // counter-clockwise seen from outside the solid
+};
+
+double MeshVolume(const TriangleMesh& mesh);                  // mm^3, by the divergence theorem
+std::array<double, 6> MeshBounds(const TriangleMesh& mesh);   // x, y, z minimum then maximum, mm
+
+enum class WallSide {
+    Centred,  // half the wall inside the rest surface, half outside (the models' mid-surface)
+    Outward,  // the rest surface is the inside of the wall
+};
+
+// How a design becomes a part. Defaults are the shell models' geometry defaults.
+struct PartDef {
+    double radiusMm = 5;        // one design unit of radius
+    double lengthMm = 150;      // the tube between its end faces
+    double thicknessMm = 1;     // the wall, measured along the surface normal
+    WallSide wall = WallSide::Centred;
+    double clampFraction = 0;   // middle-region B-splines: the share of the length at each end kept at radius 1
+    int angularSamples = 120;   // around the tube; a multiple of 8 (the mold splits at 0 and 180 degrees, its block corners lie at 45)
+    int axialSamples = 121;     // along the tube, end rings included
+};
+
+// The mold: a block around the actuator split in two halves through the axis (the plane y = 0), and
+// a core that forms the inside, its ends reaching through the block as handles.
+struct MoldDef {
+    double marginMm = 5;    // block beyond the actuator's widest point, in x and y
+    double endWallMm = 5;   // block beyond each end face of the actuator
+    double handleMm = 15;   // core beyond the block at each end
+};
+
+struct PartSolids {
+    TriangleMesh actuator;  // the silicone wall
+    TriangleMesh core;      // the inner cavity with a handle at each end
+    TriangleMesh shellA;    // the block's half at y >= 0, less the actuator and the core's channels
+    TriangleMesh shellB;    // the half at y <= 0
+    double coreOutsideBlockMm3 = 0;  // the handles' parts beyond the block (the rest of the core fills the cavity)
+};
+
+// B-spline sectors meet in a step of radius that no wall of finite thickness can follow; the part
+// blends one sector's radius into the next over this angle either side of each boundary (radians).
+double SectorBlendRadians(const PartDef& part);
+
+// Builds every solid. Empty when the design can be made; otherwise one line naming where and why
+// (a radius that is not positive, a wall that would fold over itself at this thickness, a design
+// defined only per vertex), and `out` is left untouched.
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out);
+
+}  // namespace sim
+
+template <>
+struct sim::EnumNames<sim::WallSide> {
+    static constexpr std::array<std::pair<sim::WallSide, const char*>, 2> table{{{sim::WallSide::Centred, "centred"}, {sim::WallSide::Outward, "outward"}}};
+};

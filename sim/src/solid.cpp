@@ -1,0 +1,399 @@
+#include "sim/solid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+
+namespace sim {
+namespace {
+
+using Vec = std::array<double, 3>;
+
+Vec Sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec Cross(const Vec& a, const Vec& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double Dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::string Format(const char* format, double a, double b, double c = 0) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, a, b, c);
+    return text;
+}
+
+// Faces joined by exact coordinates: a point computed once (or by the same expression) and used by
+// several faces is one vertex, so the faces meet edge to edge.
+class Builder {
+public:
+    int Vertex(const Vec& p) {
+        const auto [it, inserted] = index_.try_emplace(p, static_cast<int>(mesh_.vertices.size()));
+        if (inserted) mesh_.vertices.push_back(p);
+        return it->second;
+    }
+    // a, b, c counter-clockwise seen from outside.
+    void Triangle(int a, int b, int c) { mesh_.triangles.push_back({a, b, c}); }
+    void Quad(int a, int b, int c, int d) {
+        Triangle(a, b, c);
+        Triangle(a, c, d);
+    }
+    // A triangle of a face whose outward normal is known: turned to face it.
+    void Facing(int a, int b, int c, const Vec& normal) {
+        const Vec n = Cross(Sub(mesh_.vertices[b], mesh_.vertices[a]), Sub(mesh_.vertices[c], mesh_.vertices[a]));
+        if (Dot(n, normal) < 0) std::swap(b, c);
+        Triangle(a, b, c);
+    }
+    // A convex polygon (in order around it) fanned from its first vertex.
+    void Fan(const std::vector<int>& polygon, const Vec& normal) {
+        for (size_t k = 1; k + 1 < polygon.size(); ++k) Facing(polygon[0], polygon[k], polygon[k + 1], normal);
+    }
+    const Vec& At(int v) const { return mesh_.vertices[v]; }
+    TriangleMesh Take() { return std::move(mesh_); }
+
+private:
+    TriangleMesh mesh_;
+    std::map<Vec, int> index_;
+};
+
+// Samples on rings of constant height: ring j (0 .. nz-1) from the bottom end, sample i around.
+struct Grid {
+    int nz = 0, nt = 0;
+    std::vector<Vec> p;
+    Vec& At(int j, int i) { return p[static_cast<size_t>(j) * nt + (i % nt)]; }
+    const Vec& At(int j, int i) const { return p[static_cast<size_t>(j) * nt + (i % nt)]; }
+};
+
+// cos and sin of sample i's angle, exact at the quarter turns (the mold's split plane and box
+// corners need points that lie exactly on y = 0 and on the diagonals' rays).
+std::pair<double, double> Direction(int i, int nt) {
+    const int k = i % nt;
+    if (k == 0) return {1, 0};
+    if (4 * k == nt) return {0, 1};
+    if (2 * k == nt) return {-1, 0};
+    if (4 * k == 3 * nt) return {0, -1};
+    const double angle = 2 * std::numbers::pi * k / nt;
+    return {std::cos(angle), std::sin(angle)};
+}
+
+double Degrees(int i, int nt) { return 360.0 * (i % nt) / nt; }
+
+}  // namespace
+
+double SectorBlendRadians(const PartDef& part) {
+    // Two wall thicknesses of arc at the base radius, and at least three samples.
+    return std::max(2 * part.thicknessMm / part.radiusMm, 3 * 2 * std::numbers::pi / part.angularSamples);
+}
+
+double MeshVolume(const TriangleMesh& mesh) {
+    double six = 0;
+    for (const auto& t : mesh.triangles) six += Dot(mesh.vertices[t[0]], Cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
+    return six / 6;
+}
+
+std::array<double, 6> MeshBounds(const TriangleMesh& mesh) {
+    std::array<double, 6> b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (const Vec& v : mesh.vertices)
+        for (int k = 0; k < 3; ++k) {
+            b[k] = std::min(b[k], v[k]);
+            b[k + 3] = std::max(b[k + 3], v[k]);
+        }
+    return b;
+}
+
+namespace {
+
+// The design's rest surface in millimetres; an error when it has no positive radius somewhere.
+std::string RestSurface(const Shape& shape, const PartDef& part, Grid* rest) {
+    if (std::holds_alternative<FreeXYShape>(shape) || std::holds_alternative<MeshShape>(shape))
+        return std::string(ShapeName(shape)) + " designs are defined per vertex of a simulation mesh, not as a surface; export takes cylinder, sine, "
+                                               "abs-sine and bspline designs";
+    rest->nz = part.axialSamples;
+    rest->nt = part.angularSamples;
+    rest->p.resize(static_cast<size_t>(rest->nz) * rest->nt);
+    // B-spline sectors meet in a step; a wall cannot follow a step's normals, so the radius is blended
+    // from one sector's to the next over SectorBlendRadians either side of each boundary.
+    const auto* spline = std::get_if<BSplineShape>(&shape);
+    const int sectors = spline ? static_cast<int>(spline->splines.size()) : 1;
+    const double blend = SectorBlendRadians(part);
+    auto radius = [&](double t, double angle) {
+        if (sectors < 2) return DesignRadius(shape, t, angle, part.clampFraction);
+        const double step = 2 * std::numbers::pi / sectors;
+        const double boundary = step * std::round(angle / step);
+        const double d = angle - boundary;
+        if (std::fabs(d) >= blend) return DesignRadius(shape, t, angle, part.clampFraction);
+        const double before = DesignRadius(shape, t, boundary - 0.5 * blend, part.clampFraction);
+        const double after = DesignRadius(shape, t, boundary + 0.5 * blend, part.clampFraction);
+        const double u = (d + blend) / (2 * blend);
+        const double w = u * u * (3 - 2 * u);  // smoothstep: level with each sector where it meets it
+        return (1 - w) * before + w * after;
+    };
+    for (int j = 0; j < rest->nz; ++j) {
+        const double t = static_cast<double>(j) / (rest->nz - 1);
+        for (int i = 0; i < rest->nt; ++i) {
+            const double rho = radius(t, 2 * std::numbers::pi * i / rest->nt);
+            if (!(rho > 0))
+                return Format("the design's radius is %.3g mm at z = %.4g mm, angle %.4g deg: a part needs a positive radius everywhere",
+                              rho * part.radiusMm, t * part.lengthMm, Degrees(i, rest->nt));
+            const auto [c, s] = Direction(i, rest->nt);
+            rest->At(j, i) = {part.radiusMm * rho * c, part.radiusMm * rho * s, j == rest->nz - 1 ? part.lengthMm : t * part.lengthMm};
+        }
+    }
+    return "";
+}
+
+// Unit normals of the rest surface from its samples (steep steps between B-spline sectors included),
+// kept horizontal on the end rings (the end faces stay flat) and in the plane y = 0 on the meridians
+// at 0 and 180 degrees (the mold's split plane).
+std::vector<Vec> Normals(const Grid& g) {
+    std::vector<Vec> normals(g.p.size());
+    for (int j = 0; j < g.nz; ++j)
+        for (int i = 0; i < g.nt; ++i) {
+            const Vec around = Sub(g.At(j, i + 1), g.At(j, i + g.nt - 1));
+            const Vec along = Sub(g.At(std::min(j + 1, g.nz - 1), i), g.At(std::max(j - 1, 0), i));
+            Vec n = Cross(around, along);
+            if (j == 0 || j == g.nz - 1) n[2] = 0;
+            if (i == 0 || 2 * i == g.nt) n[1] = 0;
+            const double length = std::sqrt(Dot(n, n));
+            normals[static_cast<size_t>(j) * g.nt + i] = length > 0 ? Vec{n[0] / length, n[1] / length, n[2] / length} : Vec{0, 0, 0};
+        }
+    return normals;
+}
+
+Grid Offset(const Grid& rest, const std::vector<Vec>& normals, double distance) {
+    Grid g = rest;
+    for (size_t k = 0; k < g.p.size(); ++k)
+        for (int c = 0; c < 3; ++c) g.p[k][c] += distance * normals[k][c];
+    return g;
+}
+
+// A wall surface that stays a graph over (angle, height): every sample off the axis, angles rising
+// around each ring, heights rising along each meridian, every cell positively oriented. Otherwise the
+// offset has folded over itself (a wall thicker than the surface's radius of curvature there).
+std::string FoldError(const Grid& g, const Grid& rest, const char* which, const PartDef& part) {
+    auto angle = [&](int j, int i) {
+        const Vec& p = g.At(j, i);
+        const double nominal = 2 * std::numbers::pi * i / g.nt;  // i may be nt: one turn on
+        return nominal + std::remainder(std::atan2(p[1], p[0]) - nominal, 2 * std::numbers::pi);
+    };
+    for (int j = 0; j < g.nz; ++j)
+        for (int i = 0; i < g.nt; ++i) {
+            const Vec& p = g.At(j, i);
+            const Vec& q = rest.At(j, i);
+            // Past the axis, the offset point lies on the other side of it from its rest point.
+            if (!(p[0] * q[0] + p[1] * q[1] > 1e-6 * part.radiusMm * std::hypot(q[0], q[1])) || !std::isfinite(p[0] + p[1] + p[2]))
+                return std::string("the ") + which +
+                       Format(" wall surface reaches the axis at z = %.4g mm, angle %.4g deg: the radius there is below the wall thickness", p[2],
+                              Degrees(i, g.nt));
+        }
+    for (int j = 0; j + 1 < g.nz; ++j)
+        for (int i = 0; i < g.nt; ++i) {
+            const double a0 = angle(j, i), a1 = angle(j, i + 1), b0 = angle(j + 1, i), b1 = angle(j + 1, i + 1);
+            const double z0 = g.At(j, i)[2], z1 = g.At(j, i + 1)[2], w0 = g.At(j + 1, i)[2], w1 = g.At(j + 1, i + 1)[2];
+            // Triangles (j,i) (j,i+1) (j+1,i+1) and (j,i) (j+1,i+1) (j+1,i) in the (angle, z) plane.
+            const double first = (a1 - a0) * (w1 - z0) - (z1 - z0) * (b1 - a0);
+            const double second = (b1 - a0) * (w0 - z0) - (w1 - z0) * (b0 - a0);
+            if (!(first > 0) || !(second > 0) || !(w0 > z0))
+                return std::string("the ") + which +
+                       Format(" wall surface folds over itself near z = %.4g mm, angle %.4g deg: a wall of %.3g mm is thicker than the surface's "
+                              "radius of curvature there (a thinner wall, or --wall outward, may fit)",
+                              g.At(j, i)[2], Degrees(i, g.nt), part.thicknessMm);
+        }
+    return "";
+}
+
+// The block's boundary point on the ray from the axis at sample i's angle, at height z.
+Vec BoxPoint(int i, int nt, double w, double z) {
+    const int k = i % nt;
+    if (8 * k % nt == 0) {  // the eighth turns: the split plane, the box's faces' middles and its corners
+        const int eighth = 8 * k / nt;
+        static constexpr double kX[] = {1, 1, 0, -1, -1, -1, 0, 1}, kY[] = {0, 1, 1, 1, 0, -1, -1, -1};
+        return {kX[eighth] * w, kY[eighth] * w, z};
+    }
+    const auto [c, s] = Direction(i, nt);
+    if (std::fabs(c) >= std::fabs(s)) return {std::copysign(w, c), std::copysign(w, c) * s / c, z};
+    return {std::copysign(w, s) * c / s, std::copysign(w, s), z};
+}
+
+// Which side of the box the ray at sample i meets: 0 x = +w, 1 y = +w, 2 x = -w, 3 y = -w; at a corner
+// both of its sides count.
+bool OnSide(int i, int nt, int side) {
+    const double degrees = Degrees(i, nt);
+    const double from = 90.0 * side - 45, to = 90.0 * side + 45;
+    return (degrees >= from && degrees <= to) || (degrees - 360 >= from && degrees - 360 <= to);
+}
+
+// One half of the mold's block (upper: y >= 0, samples 0 .. nt/2; else y <= 0, samples nt/2 .. nt)
+// less the actuator's outer solid and the core's channels through the end walls.
+TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold) {
+    const int nt = outer.nt, nz = outer.nz, half = nt / 2, first = upper ? 0 : half;
+    const double bottom = -mold.endWallMm, top = part.lengthMm + mold.endWallMm;
+    const Vec up{0, 0, 1}, down{0, 0, -1};
+    Builder b;
+    auto O = [&](int j, int k) { return b.Vertex(outer.At(j, first + k)); };
+    auto I = [&](int j, int k) { return b.Vertex(inner.At(j, first + k)); };
+    auto Channel = [&](bool atTop, int k) {  // the core's channel ring on the block's end face
+        const Vec& p = inner.At(atTop ? nz - 1 : 0, first + k);
+        return b.Vertex({p[0], p[1], atTop ? top : bottom});
+    };
+    auto towardAxis = [&](int v) {
+        const Vec& p = b.At(v);
+        return Vec{-p[0], -p[1], 0};
+    };
+    for (int k = 0; k < half; ++k) {
+        // The cavity's wall: the actuator's outer surface, facing the axis.
+        for (int j = 0; j + 1 < nz; ++j) b.Quad(O(j, k), O(j + 1, k), O(j + 1, k + 1), O(j, k + 1));
+        // The end walls' inner faces (the actuator's end faces) and the core's channels.
+        b.Facing(I(0, k), I(0, k + 1), O(0, k + 1), up);
+        b.Facing(I(0, k), O(0, k + 1), O(0, k), up);
+        b.Facing(I(nz - 1, k), O(nz - 1, k + 1), I(nz - 1, k + 1), down);
+        b.Facing(I(nz - 1, k), O(nz - 1, k), O(nz - 1, k + 1), down);
+        for (const bool atTop : {false, true}) {
+            const int j = atTop ? nz - 1 : 0;
+            const int c0 = Channel(atTop, k), c1 = Channel(atTop, k + 1), i0 = I(j, k), i1 = I(j, k + 1);
+            b.Facing(c0, c1, i1, towardAxis(c0));
+            b.Facing(c0, i1, i0, towardAxis(c0));
+            // The block's end face between the channel and the box, strip by strip along the rays.
+            const double z = atTop ? top : bottom;
+            const int b0 = b.Vertex(BoxPoint(first + k, nt, w, z)), b1 = b.Vertex(BoxPoint(first + k + 1, nt, w, z));
+            b.Facing(c0, c1, b1, atTop ? up : down);
+            b.Facing(c0, b1, b0, atTop ? up : down);
+        }
+    }
+    // The split face (y = 0) on each meridian: bands between the cavity's profile and the box's edge.
+    const Vec splitNormal{0, upper ? -1.0 : 1.0, 0};
+    std::map<int, std::vector<int>> lineOf;  // meridian sample -> the box edge's vertices on y = 0, upward
+    for (const int m : {0, half}) {
+        const int i = first + m;
+        const double x = (i % nt == 0) ? w : -w;
+        std::vector<int> line;
+        auto L = [&](double z) {
+            const int v = b.Vertex({x, 0, z});
+            if (line.empty() || line.back() != v) line.push_back(v);
+            return v;
+        };
+        const int lb = L(bottom);
+        b.Fan({lb, Channel(false, m), I(0, m), O(0, m), L(0)}, splitNormal);
+        for (int j = 0; j + 1 < nz; ++j) {
+            const int o0 = O(j, m), o1 = O(j + 1, m);
+            const int l0 = L(outer.At(j, i)[2]), l1 = L(outer.At(j + 1, i)[2]);
+            b.Facing(o0, o1, l1, splitNormal);
+            b.Facing(o0, l1, l0, splitNormal);
+        }
+        const int lt = b.Vertex({x, 0, top});
+        b.Fan({lt, L(part.lengthMm), O(nz - 1, m), I(nz - 1, m), Channel(true, m)}, splitNormal);
+        L(top);
+        lineOf[i % nt] = line;
+    }
+    // The box's sides in this half, each a rectangle fanned from its centre: its bottom and top edges
+    // carry the rays' points, an edge on the split plane carries that meridian's line.
+    for (int side = 0; side < 4; ++side) {
+        std::vector<int> samples;
+        for (int k = 0; k <= half; ++k)
+            if (OnSide(first + k, nt, side)) samples.push_back(first + k);
+        if (samples.size() < 2) continue;
+        std::vector<int> loop;
+        for (int i : samples) loop.push_back(b.Vertex(BoxPoint(i, nt, w, bottom)));
+        if (lineOf.count(samples.back() % nt))
+            for (int v : lineOf[samples.back() % nt]) loop.push_back(v);
+        for (auto it = samples.rbegin(); it != samples.rend(); ++it) loop.push_back(b.Vertex(BoxPoint(*it, nt, w, top)));
+        if (lineOf.count(samples.front() % nt)) {
+            const auto& line = lineOf[samples.front() % nt];
+            for (auto it = line.rbegin(); it != line.rend(); ++it) loop.push_back(*it);
+        }
+        // Drop repeats where the runs meet (a run's end is the next run's start).
+        std::vector<int> polygon;
+        for (int v : loop)
+            if (polygon.empty() || polygon.back() != v) polygon.push_back(v);
+        while (polygon.size() > 1 && polygon.front() == polygon.back()) polygon.pop_back();
+        Vec centre{0, 0, 0};
+        for (int v : polygon)
+            for (int c = 0; c < 3; ++c) centre[c] += b.At(v)[c] / polygon.size();
+        const Vec normal = side == 0 ? Vec{1, 0, 0} : side == 1 ? Vec{0, 1, 0} : side == 2 ? Vec{-1, 0, 0} : Vec{0, -1, 0};
+        centre[side % 2 == 0 ? 0 : 1] = normal[side % 2 == 0 ? 0 : 1] * w;  // exactly on the side's plane
+        const int middle = b.Vertex(centre);
+        for (size_t k = 0; k < polygon.size(); ++k) b.Facing(middle, polygon[k], polygon[(k + 1) % polygon.size()], normal);
+    }
+    return b.Take();
+}
+
+// Area enclosed by a ring of samples, projected on the xy plane (shoelace).
+double RingArea(const Grid& g, int j) {
+    double twice = 0;
+    for (int i = 0; i < g.nt; ++i) {
+        const Vec& a = g.At(j, i);
+        const Vec& c = g.At(j, i + 1);
+        twice += a[0] * c[1] - c[0] * a[1];
+    }
+    return twice / 2;
+}
+
+}  // namespace
+
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out) {
+    if (part.angularSamples < 8 || part.angularSamples % 8 != 0) return "the samples around the tube must be a multiple of 8, at least 8";
+    if (part.axialSamples < 3) return "at least 3 samples along the tube";
+    if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
+    if (!(mold.marginMm > 0) || !(mold.endWallMm > 0) || !(mold.handleMm > 0)) return "the mold's margin, end walls and handles must be positive";
+    Grid rest;
+    if (std::string error = RestSurface(shape, part, &rest); !error.empty()) return error;
+    const std::vector<Vec> normals = Normals(rest);
+    for (size_t k = 0; k < normals.size(); ++k)
+        if (Dot(normals[k], normals[k]) == 0)
+            return Format("the surface has no normal at z = %.4g mm, angle %.4g deg", rest.p[k][2], Degrees(static_cast<int>(k) % rest.nt, rest.nt));
+    const double h = part.thicknessMm;
+    const Grid outer = Offset(rest, normals, part.wall == WallSide::Centred ? h / 2 : h);
+    const Grid inner = part.wall == WallSide::Centred ? Offset(rest, normals, -h / 2) : rest;
+    for (const auto& [grid, which] : {std::pair{&outer, "outer"}, std::pair{&inner, "inner"}})
+        if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
+    const int nz = rest.nz, nt = rest.nt;
+
+    PartSolids solids;
+    {  // The wall: outer surface out, inner surface in, flat annuli at the ends.
+        Builder b;
+        for (int j = 0; j + 1 < nz; ++j)
+            for (int i = 0; i < nt; ++i) {
+                b.Quad(b.Vertex(outer.At(j, i)), b.Vertex(outer.At(j, i + 1)), b.Vertex(outer.At(j + 1, i + 1)), b.Vertex(outer.At(j + 1, i)));
+                b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j + 1, i)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j, i + 1)));
+            }
+        for (int i = 0; i < nt; ++i)
+            for (const int j : {0, nz - 1}) {
+                const Vec normal{0, 0, j == 0 ? -1.0 : 1.0};
+                const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j, i + 1)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j, i + 1));
+                b.Facing(o0, o1, i1, normal);
+                b.Facing(o0, i1, i0, normal);
+            }
+        solids.actuator = b.Take();
+    }
+    const double handleBottom = -mold.endWallMm - mold.handleMm, handleTop = part.lengthMm + mold.endWallMm + mold.handleMm;
+    {  // The core: the inner surface, each end ring drawn straight out through the block as a handle.
+        Builder b;
+        for (int j = 0; j + 1 < nz; ++j)
+            for (int i = 0; i < nt; ++i)
+                b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j, i + 1)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j + 1, i)));
+        for (const bool atTop : {false, true}) {
+            const int j = atTop ? nz - 1 : 0;
+            const double z = atTop ? handleTop : handleBottom;
+            const int centre = b.Vertex({0, 0, z});
+            for (int i = 0; i < nt; ++i) {
+                const Vec& p0 = inner.At(j, i);
+                const Vec& p1 = inner.At(j, i + 1);
+                const int r0 = b.Vertex(p0), r1 = b.Vertex(p1), e0 = b.Vertex({p0[0], p0[1], z}), e1 = b.Vertex({p1[0], p1[1], z});
+                const Vec outward{p0[0] + p1[0], p0[1] + p1[1], 0};
+                b.Facing(e0, e1, r1, outward);
+                b.Facing(e0, r1, r0, outward);
+                b.Facing(centre, e0, e1, Vec{0, 0, atTop ? 1.0 : -1.0});
+            }
+        }
+        solids.core = b.Take();
+        solids.coreOutsideBlockMm3 = (RingArea(inner, 0) + RingArea(inner, nz - 1)) * mold.handleMm;
+    }
+    // The block: the actuator's widest extent plus the margin, the same in x and y.
+    double reach = 0;
+    for (const Vec& p : outer.p) reach = std::max({reach, std::fabs(p[0]), std::fabs(p[1])});
+    const double w = reach + mold.marginMm;
+    solids.shellA = Shell(true, outer, inner, w, part, mold);
+    solids.shellB = Shell(false, outer, inner, w, part, mold);
+    *out = std::move(solids);
+    return "";
+}
+
+}  // namespace sim
