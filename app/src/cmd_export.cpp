@@ -104,6 +104,8 @@ int RunExport(int argc, char** argv, int first) {
     cli.Number("--margin-mm", mold.marginMm, "block beyond the actuator's widest point", 0.1, 1e4)->default_str("5");
     cli.Number("--end-wall-mm", mold.endWallMm, "block beyond each end of the actuator", 0.1, 1e4)->default_str("5");
     cli.Number("--handle-mm", mold.handleMm, "core beyond the block at each end, to hold and pull it", 0.1, 1e4)->default_str("15");
+    cli.Number("--sprue-deg", mold.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120)->default_str("24");
+    cli.Number("--vent-deg", mold.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60)->default_str("6");
     cli.Examples(
         "  actuator export --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
         "  actuator export --model shell --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
@@ -187,13 +189,16 @@ int RunExport(int argc, char** argv, int first) {
                                 {"density_kg_per_m3", material.densityKgPerM3},
                                 {"mass_g", silicone * 1e-9 * material.densityKgPerM3 * 1e3}};
     manifest["core_outside_block_mm3"] = solids.coreOutsideBlockMm3;
+    manifest["sprue_and_vents_mm3"] = solids.openingsMm3;  // the block = shells + actuator + core inside it + these
     manifest["part"] = Json{{"radius_mm", part.radiusMm},
                             {"length_mm", part.lengthMm},
                             {"wall_mm", part.thicknessMm},
                             {"wall", sim::Name(part.wall)},
                             {"samples_around", part.angularSamples},
                             {"samples_along", part.axialSamples}};
-    manifest["mold"] = Json{{"margin_mm", mold.marginMm}, {"end_wall_mm", mold.endWallMm}, {"handle_mm", mold.handleMm}};
+    manifest["mold"] = Json{{"margin_mm", mold.marginMm}, {"end_wall_mm", mold.endWallMm}, {"handle_mm", mold.handleMm},
+                            {"sprue_deg", mold.sprueDegrees}, {"vent_deg", mold.ventDegrees},
+                            {"sector_blend_deg", sim::SectorBlendRadians(part) * 180 / 3.141592653589793}};
     manifest["design"] = Json{{"shape", ShapeJson(job.shape)}, {"model", ModelJson(job)}};
     if (cli.Given("--from")) manifest["design"]["from"] = Json{{"archive", from}, {"index", index}};
     WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");

@@ -47,7 +47,23 @@ public:
         for (size_t k = 1; k + 1 < polygon.size(); ++k) Facing(polygon[0], polygon[k], polygon[k + 1], normal);
     }
     const Vec& At(int v) const { return mesh_.vertices[v]; }
-    TriangleMesh Take() { return std::move(mesh_); }
+    // The mesh, without vertices no triangle uses (points computed for a face that a slot removed).
+    TriangleMesh Take() {
+        std::vector<int> renumber(mesh_.vertices.size(), -1);
+        TriangleMesh out;
+        for (auto& t : mesh_.triangles)
+            for (int& v : t) {
+                if (renumber[v] < 0) {
+                    renumber[v] = static_cast<int>(out.vertices.size());
+                    out.vertices.push_back(mesh_.vertices[v]);
+                }
+                v = renumber[v];
+            }
+        out.triangles = std::move(mesh_.triangles);
+        mesh_ = {};
+        index_.clear();
+        return out;
+    }
 
 private:
     TriangleMesh mesh_;
@@ -223,7 +239,24 @@ bool OnSide(int i, int nt, int side) {
 
 // One half of the mold's block (upper: y >= 0, samples 0 .. nt/2; else y <= 0, samples nt/2 .. nt)
 // less the actuator's outer solid and the core's channels through the end walls.
-TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold) {
+// Whether the top end wall is open above sample cell i (from sample i to i + 1): the sprue, centred
+// at 90 degrees (shell A), and the vents at 225 and 315 degrees (shell B), each at least one cell.
+bool IsOpening(int i, int nt, const MoldDef& mold) {
+    const double cell = 360.0 / nt, middle = cell * ((i % nt) + 0.5);
+    auto within = [&](double centre, double width) { return std::fabs(middle - centre) < std::max(width, cell) / 2; };
+    return within(90, mold.sprueDegrees) || within(225, mold.ventDegrees) || within(315, mold.ventDegrees);
+}
+
+// The area between the inner and outer end rings over sample cell i (a slot's cross-section).
+double OpeningArea(const Grid& inner, const Grid& outer, int i) {
+    const int j = outer.nz - 1;
+    const Vec* corners[] = {&inner.At(j, i), &inner.At(j, i + 1), &outer.At(j, i + 1), &outer.At(j, i)};
+    double twice = 0;
+    for (int k = 0; k < 4; ++k) twice += (*corners[k])[0] * (*corners[(k + 1) % 4])[1] - (*corners[(k + 1) % 4])[0] * (*corners[k])[1];
+    return std::fabs(twice) / 2;
+}
+
+TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, double& openings) {
     const int nt = outer.nt, nz = outer.nz, half = nt / 2, first = upper ? 0 : half;
     const double bottom = -mold.endWallMm, top = part.lengthMm + mold.endWallMm;
     const Vec up{0, 0, 1}, down{0, 0, -1};
@@ -238,24 +271,62 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
         const Vec& p = b.At(v);
         return Vec{-p[0], -p[1], 0};
     };
+    // The top end wall's slots over the silicone's end face (the sprue and the vents), cell by cell.
+    auto Open = [&](int k) { return IsOpening(first + k, nt, mold); };
+    auto Rim = [&](int k) {  // the actuator's outer ring carried up to the block's top face
+        const Vec& p = outer.At(nz - 1, first + k);
+        return b.Vertex({p[0], p[1], top});
+    };
     for (int k = 0; k < half; ++k) {
+        const bool open = Open(k);
         // The cavity's wall: the actuator's outer surface, facing the axis.
         for (int j = 0; j + 1 < nz; ++j) b.Quad(O(j, k), O(j + 1, k), O(j + 1, k + 1), O(j, k + 1));
         // The end walls' inner faces (the actuator's end faces) and the core's channels.
         b.Facing(I(0, k), I(0, k + 1), O(0, k + 1), up);
         b.Facing(I(0, k), O(0, k + 1), O(0, k), up);
-        b.Facing(I(nz - 1, k), O(nz - 1, k + 1), I(nz - 1, k + 1), down);
-        b.Facing(I(nz - 1, k), O(nz - 1, k), O(nz - 1, k + 1), down);
+        if (!open) {
+            b.Facing(I(nz - 1, k), O(nz - 1, k + 1), I(nz - 1, k + 1), down);
+            b.Facing(I(nz - 1, k), O(nz - 1, k), O(nz - 1, k + 1), down);
+        }
         for (const bool atTop : {false, true}) {
             const int j = atTop ? nz - 1 : 0;
             const int c0 = Channel(atTop, k), c1 = Channel(atTop, k + 1), i0 = I(j, k), i1 = I(j, k + 1);
-            b.Facing(c0, c1, i1, towardAxis(c0));
-            b.Facing(c0, i1, i0, towardAxis(c0));
-            // The block's end face between the channel and the box, strip by strip along the rays.
             const double z = atTop ? top : bottom;
             const int b0 = b.Vertex(BoxPoint(first + k, nt, w, z)), b1 = b.Vertex(BoxPoint(first + k + 1, nt, w, z));
-            b.Facing(c0, c1, b1, atTop ? up : down);
-            b.Facing(c0, b1, b0, atTop ? up : down);
+            if (!atTop) {
+                b.Facing(c0, c1, i1, towardAxis(c0));
+                b.Facing(c0, i1, i0, towardAxis(c0));
+                // The block's end face between the channel and the box, strip by strip along the rays.
+                b.Facing(c0, c1, b1, down);
+                b.Facing(c0, b1, b0, down);
+                continue;
+            }
+            // At the top the face is split on the actuator's outer ring, so a slot can open its inner part.
+            const int r0 = Rim(k), r1 = Rim(k + 1);
+            b.Facing(r0, r1, b1, up);
+            b.Facing(r0, b1, b0, up);
+            if (!open) {
+                b.Facing(c0, c1, i1, towardAxis(c0));
+                b.Facing(c0, i1, i0, towardAxis(c0));
+                b.Facing(c0, c1, r1, up);
+                b.Facing(c0, r1, r0, up);
+                continue;
+            }
+            // A slot: its outer wall, and its ends where the closed cells begin.
+            const int o0 = O(nz - 1, k), o1 = O(nz - 1, k + 1);
+            b.Facing(o0, o1, r1, towardAxis(o0));
+            b.Facing(o0, r1, r0, towardAxis(o0));
+            const auto [c, s] = Direction(first + k, nt);
+            const auto [c2, s2] = Direction(first + k + 1, nt);
+            if (k == 0 || !Open(k - 1)) {
+                b.Facing(i0, o0, r0, Vec{-s, c, 0});
+                b.Facing(i0, r0, c0, Vec{-s, c, 0});
+            }
+            if (k + 1 == half || !Open(k + 1)) {
+                b.Facing(i1, o1, r1, Vec{s2, -c2, 0});
+                b.Facing(i1, r1, c1, Vec{s2, -c2, 0});
+            }
+            openings += OpeningArea(inner, outer, first + k) * mold.endWallMm;
         }
     }
     // The split face (y = 0) on each meridian: bands between the cavity's profile and the box's edge.
@@ -278,8 +349,9 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
             b.Facing(o0, o1, l1, splitNormal);
             b.Facing(o0, l1, l0, splitNormal);
         }
+        // The top band: from the actuator's end up to the block's top, whose edge carries the rim.
         const int lt = b.Vertex({x, 0, top});
-        b.Fan({lt, L(part.lengthMm), O(nz - 1, m), I(nz - 1, m), Channel(true, m)}, splitNormal);
+        b.Fan({O(nz - 1, m), I(nz - 1, m), Channel(true, m), Rim(m), lt, L(part.lengthMm)}, splitNormal);
         L(top);
         lineOf[i % nt] = line;
     }
@@ -333,6 +405,8 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     if (part.axialSamples < 3) return "at least 3 samples along the tube";
     if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
     if (!(mold.marginMm > 0) || !(mold.endWallMm > 0) || !(mold.handleMm > 0)) return "the mold's margin, end walls and handles must be positive";
+    if (!(mold.sprueDegrees >= 0 && mold.sprueDegrees <= 120) || !(mold.ventDegrees >= 0 && mold.ventDegrees <= 60))
+        return "the sprue spans 0 to 120 degrees and each vent 0 to 60";
     Grid rest;
     if (std::string error = RestSurface(shape, part, &rest); !error.empty()) return error;
     const std::vector<Vec> normals = Normals(rest);
@@ -390,8 +464,8 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     double reach = 0;
     for (const Vec& p : outer.p) reach = std::max({reach, std::fabs(p[0]), std::fabs(p[1])});
     const double w = reach + mold.marginMm;
-    solids.shellA = Shell(true, outer, inner, w, part, mold);
-    solids.shellB = Shell(false, outer, inner, w, part, mold);
+    solids.shellA = Shell(true, outer, inner, w, part, mold, solids.openingsMm3);
+    solids.shellB = Shell(false, outer, inner, w, part, mold, solids.openingsMm3);
     *out = std::move(solids);
     return "";
 }

@@ -43,6 +43,11 @@ struct MoldDef {
     double marginMm = 5;    // block beyond the actuator's widest point, in x and y
     double endWallMm = 5;   // block beyond each end face of the actuator
     double handleMm = 15;   // core beyond the block at each end
+    // Slots through the top end wall over the silicone's end face: the sprue to pour through (shell
+    // A, centred at 90 degrees) and two vents for the air (shell B, at 225 and 315 degrees). Each
+    // spans at least one sample cell.
+    double sprueDegrees = 24;
+    double ventDegrees = 6;
 };
 
 struct PartSolids {
@@ -51,6 +56,7 @@ struct PartSolids {
     TriangleMesh shellA;    // the block's half at y >= 0, less the actuator and the core's channels
     TriangleMesh shellB;    // the half at y <= 0
     double coreOutsideBlockMm3 = 0;  // the handles' parts beyond the block (the rest of the core fills the cavity)
+    double openingsMm3 = 0;          // the sprue and vents: block volume in neither shell nor part
 };
 
 // B-spline sectors meet in a step of radius that no wall of finite thickness can follow; the part
