@@ -189,7 +189,9 @@ int RunExport(int argc, char** argv, int first) {
                                 {"density_kg_per_m3", material.densityKgPerM3},
                                 {"mass_g", silicone * 1e-9 * material.densityKgPerM3 * 1e3}};
     manifest["core_outside_block_mm3"] = solids.coreOutsideBlockMm3;
-    manifest["sprue_and_vents_mm3"] = solids.openingsMm3;  // the block = shells + actuator + core inside it + these
+    // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).
+    manifest["sprue_and_vents_mm3"] = solids.openingsMm3;
+    manifest["pins_less_holes_mm3"] = solids.pinsLessHolesMm3;
     manifest["part"] = Json{{"radius_mm", part.radiusMm},
                             {"length_mm", part.lengthMm},
                             {"wall_mm", part.thicknessMm},
@@ -197,7 +199,7 @@ int RunExport(int argc, char** argv, int first) {
                             {"samples_around", part.angularSamples},
                             {"samples_along", part.axialSamples}};
     manifest["mold"] = Json{{"margin_mm", mold.marginMm}, {"end_wall_mm", mold.endWallMm}, {"handle_mm", mold.handleMm},
-                            {"sprue_deg", mold.sprueDegrees}, {"vent_deg", mold.ventDegrees},
+                            {"sprue_deg", mold.sprueDegrees}, {"vent_deg", mold.ventDegrees}, {"pin_clearance_mm", mold.pinClearanceMm},
                             {"sector_blend_deg", sim::SectorBlendRadians(part) * 180 / 3.141592653589793}};
     manifest["design"] = Json{{"shape", ShapeJson(job.shape)}, {"model", ModelJson(job)}};
     if (cli.Given("--from")) manifest["design"]["from"] = Json{{"archive", from}, {"index", index}};

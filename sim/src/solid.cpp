@@ -256,7 +256,23 @@ double OpeningArea(const Grid& inner, const Grid& outer, int i) {
     return std::fabs(twice) / 2;
 }
 
-TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, double& openings) {
+// The rows of bands each registration pin covers on each meridian: one pin near each end, about
+// half the margin long. None on meshes too short to hold them apart.
+std::vector<std::pair<int, int>> PinRows(int nz, int length) {
+    if (nz < 10 || 2 * length + 4 > nz) return {};
+    const int low = std::max(1, static_cast<int>(std::lround(0.12 * (nz - 1))));
+    const int high = std::min(nz - 2, static_cast<int>(std::lround(0.88 * (nz - 1))));
+    return {{low, low + length}, {high - length, high}};
+}
+
+bool InPin(int band, int nz, int length) {
+    for (const auto& [a, b] : PinRows(nz, length))
+        if (band >= a && band < b) return true;
+    return false;
+}
+
+TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, double& openings,
+                   double& pins) {
     const int nt = outer.nt, nz = outer.nz, half = nt / 2, first = upper ? 0 : half;
     const double bottom = -mold.endWallMm, top = part.lengthMm + mold.endWallMm;
     const Vec up{0, 0, 1}, down{0, 0, -1};
@@ -331,6 +347,8 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
     }
     // The split face (y = 0) on each meridian: bands between the cavity's profile and the box's edge.
     const Vec splitNormal{0, upper ? -1.0 : 1.0, 0};
+    // Pins about as long (along z) as they are wide: half the margin.
+    const int pinBands = std::max(1, static_cast<int>(std::lround(0.5 * mold.marginMm * (nz - 1) / part.lengthMm)));
     std::map<int, std::vector<int>> lineOf;  // meridian sample -> the box edge's vertices on y = 0, upward
     for (const int m : {0, half}) {
         const int i = first + m;
@@ -341,17 +359,55 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
             if (line.empty() || line.back() != v) line.push_back(v);
             return v;
         };
+        // Each band is cut at x1 and x2, the registration pins' sides, in the block's margin.
+        const double sign = x > 0 ? 1 : -1, x1 = sign * (w - 0.75 * mold.marginMm), x2 = sign * (w - 0.25 * mold.marginMm);
+        auto z = [&](int j) { return outer.At(j, i)[2]; };
+        auto P1 = [&](int j) { return b.Vertex({x1, 0, z(j)}); };
+        auto P2 = [&](int j) { return b.Vertex({x2, 0, z(j)}); };
         const int lb = L(bottom);
-        b.Fan({lb, Channel(false, m), I(0, m), O(0, m), L(0)}, splitNormal);
+        b.Fan({lb, Channel(false, m), I(0, m), O(0, m), P1(0), P2(0), L(0)}, splitNormal);
         for (int j = 0; j + 1 < nz; ++j) {
-            const int o0 = O(j, m), o1 = O(j + 1, m);
-            const int l0 = L(outer.At(j, i)[2]), l1 = L(outer.At(j + 1, i)[2]);
-            b.Facing(o0, o1, l1, splitNormal);
-            b.Facing(o0, l1, l0, splitNormal);
+            const int o0 = O(j, m), o1 = O(j + 1, m), a0 = P1(j), a1 = P1(j + 1), c0 = P2(j), c1 = P2(j + 1);
+            const int l0 = L(z(j)), l1 = L(z(j + 1));
+            b.Facing(o0, o1, a1, splitNormal);
+            b.Facing(o0, a1, a0, splitNormal);
+            b.Facing(c0, c1, l1, splitNormal);
+            b.Facing(c0, l1, l0, splitNormal);
+            if (!InPin(j, nz, pinBands)) {
+                b.Facing(a0, a1, c1, splitNormal);
+                b.Facing(a0, c1, c0, splitNormal);
+            }
+        }
+        // The pins (shell A, standing out of the face, their tops inset by the clearance so they
+        // find their holes) and the holes (shell B, sunk into the face, the pins' feet exactly).
+        for (const auto& [ja, jb] : PinRows(nz, pinBands)) {
+            const double depth = 0.5 * mold.marginMm, c = upper ? mold.pinClearanceMm : 0;
+            const double y = upper ? -depth : -depth;  // A's pins reach into y < 0; B's holes go as deep
+            const double inset = sign * c;
+            const int t1a = b.Vertex({x1 + inset, y, z(ja) + c}), t2a = b.Vertex({x2 - inset, y, z(ja) + c});
+            const int t1b = b.Vertex({x1 + inset, y, z(jb) - c}), t2b = b.Vertex({x2 - inset, y, z(jb) - c});
+            const double out = upper ? 1 : -1;  // faces point away from the pin's inside, or into the hole
+            const Vec towardAxisX{-sign * out, 0, 0}, awayAxisX{sign * out, 0, 0}, lower{0, 0, -out}, higher{0, 0, out};
+            b.Facing(t1a, t2a, t2b, Vec{0, -out, 0});
+            b.Facing(t1a, t2b, t1b, Vec{0, -out, 0});
+            for (int j = ja; j < jb; ++j) {
+                b.Facing(t1a, P1(j), P1(j + 1), towardAxisX);
+                b.Facing(t2a, P2(j), P2(j + 1), awayAxisX);
+            }
+            b.Facing(t1a, P1(jb), t1b, towardAxisX);
+            b.Facing(t2a, P2(jb), t2b, awayAxisX);
+            b.Facing(P1(ja), P2(ja), t2a, lower);
+            b.Facing(P1(ja), t2a, t1a, lower);
+            b.Facing(P1(jb), P2(jb), t2b, higher);
+            b.Facing(P1(jb), t2b, t1b, higher);
+            // Prismatoid: depth / 6 (base + 4 middle + top).
+            const double wx = std::fabs(x2 - x1), wz = z(jb) - z(ja);
+            const double volume = depth / 6 * (wx * wz + 4 * (wx - c) * (wz - c) + (wx - 2 * c) * (wz - 2 * c));
+            pins += upper ? volume : -volume;
         }
         // The top band: from the actuator's end up to the block's top, whose edge carries the rim.
         const int lt = b.Vertex({x, 0, top});
-        b.Fan({O(nz - 1, m), I(nz - 1, m), Channel(true, m), Rim(m), lt, L(part.lengthMm)}, splitNormal);
+        b.Fan({Rim(m), lt, L(part.lengthMm), P2(nz - 1), P1(nz - 1), O(nz - 1, m), I(nz - 1, m), Channel(true, m)}, splitNormal);
         L(top);
         lineOf[i % nt] = line;
     }
@@ -464,8 +520,8 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     double reach = 0;
     for (const Vec& p : outer.p) reach = std::max({reach, std::fabs(p[0]), std::fabs(p[1])});
     const double w = reach + mold.marginMm;
-    solids.shellA = Shell(true, outer, inner, w, part, mold, solids.openingsMm3);
-    solids.shellB = Shell(false, outer, inner, w, part, mold, solids.openingsMm3);
+    solids.shellA = Shell(true, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
+    solids.shellB = Shell(false, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
     *out = std::move(solids);
     return "";
 }

@@ -48,6 +48,9 @@ struct MoldDef {
     // spans at least one sample cell.
     double sprueDegrees = 24;
     double ventDegrees = 6;
+    // Registration: four square pins on shell A's split face (in the margin, near each end), tapered
+    // by this clearance at their tops, into holes of their feet's size in shell B.
+    double pinClearanceMm = 0.15;
 };
 
 struct PartSolids {
@@ -57,6 +60,7 @@ struct PartSolids {
     TriangleMesh shellB;    // the half at y <= 0
     double coreOutsideBlockMm3 = 0;  // the handles' parts beyond the block (the rest of the core fills the cavity)
     double openingsMm3 = 0;          // the sprue and vents: block volume in neither shell nor part
+    double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
 };
 
 // B-spline sectors meet in a step of radius that no wall of finite thickness can follow; the part
