@@ -16,54 +16,13 @@
 #include "files.h"
 #include "json_out.h"
 #include "model_options.h"
+#include "part_options.h"
 #include "shape_options.h"
 #include "solid_io.h"
 #include "sim/shell.h"
 #include "sim/solid.h"
 
 namespace app {
-
-namespace {
-
-// The parts side by side: the core, the actuator, and the block's halves with their split faces
-// (and so the cavity) turned to the camera, shell B turned half a turn about the axis to show its
-// own; one picture, each part its own colour.
-render::Scene ExplodedScene(const sim::PartSolids& solids, const std::string& title) {
-    const auto bounds = sim::MeshBounds(solids.shellA);
-    const double w = bounds[3], step = 2.7 * w;
-    struct Placed {
-        const sim::TriangleMesh* mesh;
-        double shiftX;
-        bool turned;
-    };
-    const Placed parts[] = {{&solids.actuator, 0, false}, {&solids.core, -step, false}, {&solids.shellA, step, false}, {&solids.shellB, 2 * step, true}};
-    auto surface = std::make_shared<sim::Surface>();
-    render::Panel panel;
-    for (int k = 0; k < 4; ++k) {
-        const auto& [mesh, shiftX, turned] = parts[k];
-        const int base = surface->vertexCount;
-        for (const auto& v : mesh->vertices) {
-            panel.positions.x.push_back((turned ? -v[0] : v[0]) + shiftX);
-            panel.positions.y.push_back(turned ? -v[1] : v[1]);
-            panel.positions.z.push_back(v[2]);
-            panel.values.push_back(k);
-        }
-        for (const auto& t : mesh->triangles) surface->triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-        surface->vertexCount += static_cast<int>(mesh->vertices.size());
-    }
-    render::Scene scene;
-    scene.surface = surface;
-    scene.title = title;
-    scene.lines = {"left to right: the core, the actuator, the block's halves A and B with their split faces turned to you"};
-    scene.panels = {std::move(panel)};
-    scene.colorBy = render::ColorBy::Values;
-    scene.colorMin = 0;
-    scene.colorMax = 3;
-    scene.colorLabel = "part: 0 actuator,\n1 core, 2 shell A,\n3 shell B";
-    return scene;
-}
-
-}  // namespace
 
 int RunExport(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
@@ -82,30 +41,14 @@ int RunExport(int argc, char** argv, int first) {
     cli.Group("Design from an archive");
     cli.Text("--from", from, "export a stored design: an archive (DIR/evaluations.capnp) with --index")->type_name("ARCHIVE");
     cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
-    sim::PartDef part;
-    sim::MoldDef mold;
-    double unitMm = 5, wallMm = part.thicknessMm;
-    int sampling = 4;
+    PartOptions partOptions;
     bool ascii = false;
     SolidFormat format = SolidFormat::Stl;
-    cli.Group("Part");
+    AddPartOptions(cli, partOptions);
+    cli.Group("Files");
     cli.Text("--out", out, "folder for the files; must be new or empty")->type_name("DIR");
-    cli.Enum("--wall", part.wall, "centred: half the wall each side of the rest surface; outward: the rest surface is the wall's inside");
-    cli.Number("--unit-mm", unitMm, "thesis-model designs: millimetres per design unit (radius 1, length 30 turns)", 1e-3, 1e4)->default_str("5");
-    cli.Number("--wall-mm", wallMm, "thesis-model designs: wall thickness, mm (membrane and shell: --thickness-mm)", 1e-3, 1e3)->default_str("1");
-    cli.Integer("--sampling", sampling,
-                "surface samples per simulation-mesh edge, around and along (smooth designs look faceted at 30 x 30); the helix's "
-                "--resolution stays the simulation mesh's",
-                1, 64)
-        ->default_str("4");
     cli.Enum("--format", format, "file format: binary STL (default), OBJ or binary PLY");
     cli.Flag("--ascii", ascii, "ASCII STL instead of binary");
-    cli.Group("Mold");
-    cli.Number("--margin-mm", mold.marginMm, "block beyond the actuator's widest point", 0.1, 1e4)->default_str("5");
-    cli.Number("--end-wall-mm", mold.endWallMm, "block beyond each end of the actuator", 0.1, 1e4)->default_str("5");
-    cli.Number("--handle-mm", mold.handleMm, "core beyond the block at each end, to hold and pull it", 0.1, 1e4)->default_str("15");
-    cli.Number("--sprue-deg", mold.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120)->default_str("24");
-    cli.Number("--vent-deg", mold.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60)->default_str("6");
     cli.Examples(
         "  actuator export --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
         "  actuator export --model shell --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
@@ -127,29 +70,9 @@ int RunExport(int argc, char** argv, int first) {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
         job = BuildJob(cli, shape, model);
     }
-    // The part's size: thesis designs in design units times --unit-mm; the shell models' geometry.
-    if (job.model == sim::ModelKind::Thesis) {
-        part.radiusMm = unitMm;
-        part.lengthMm = unitMm * job.mesh.turns;
-        part.thicknessMm = wallMm;
-        part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.mesh.turns;
-        part.angularSamples = 8 * ((job.mesh.resolution * sampling + 7) / 8);
-        part.axialSamples = job.mesh.turns * sampling + 1;
-    } else {
-        cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
-        cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
-        const sim::GeometryDef& g = job.shell.geometry;
-        const int rings = sim::RingCount(g);
-        part.radiusMm = g.radiusMm;
-        part.lengthMm = g.lengthMm;
-        part.thicknessMm = g.thicknessMm;
-        part.clampFraction = rings > 1 ? static_cast<double>(g.clampRings - 1) / (rings - 1) : 0;
-        part.angularSamples = 8 * ((g.ringVertices * sampling + 7) / 8);
-        part.axialSamples = (rings - 1) * sampling + 1;
-    }
-
-    sim::PartSolids solids;
-    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids); !error.empty()) throw UsageError("cannot make this design: " + error);
+    const sim::PartDef part = PartDefOf(cli, partOptions, job);
+    const sim::MoldDef& mold = partOptions.mold;
+    const sim::PartSolids solids = BuildSolids(job, part, mold);
 
     // The folder: new or empty, so that a part's files never mix with another's.
     std::error_code ec;
@@ -179,7 +102,7 @@ int RunExport(int argc, char** argv, int first) {
     {  // The exploded assembly, to look at before printing.
         auto renderer = MakeRenderer(1400, 1000);
         WritePng((fs::path(out) / "mold_assembly.png").string(),
-                 renderer->Render(ExplodedScene(solids, fmt::format("mold for {}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm))), 6);
+                 renderer->Render(ExplodedMoldScene(solids, fmt::format("mold for {}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm))), 6);
     }
     manifest["files"] = list;
     const double silicone = sim::MeshVolume(solids.actuator);

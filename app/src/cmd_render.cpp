@@ -22,6 +22,7 @@
 #include "progress.h"
 #include "render/backend.h"
 #include "model_options.h"
+#include "part_options.h"
 #include "shape_options.h"
 
 namespace app {
@@ -140,6 +141,13 @@ int RunRender(int argc, char** argv, int first) {
     cli.Text("--from", from, "draw a stored evaluation (DIR/evaluations.capnp) with --index, without simulating; no shape or model options")
         ->type_name("ARCHIVE");
     cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
+    PartOptions partOptions;
+    std::string solid;
+    cli.Group("Exported solids (no simulation)");
+    cli.Text("--solid", solid, "draw the solids `export` writes instead: cutaway (the wall cut along its axis, DIR/cutaway.png) or mold "
+                               "(the parts side by side, DIR/mold.png); with the part and mold options below")
+        ->type_name("cutaway|mold");
+    AddPartOptions(cli, partOptions);
     cli.Group("Picture options");
     cli.Text("--out", p.out, "folder for the images (created if missing); required")->type_name("DIR");
     cli.Text("--size", p.size, "image size in pixels")->type_name("WxH");
@@ -171,7 +179,8 @@ int RunRender(int argc, char** argv, int first) {
         "  actuator render --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n"
         "  actuator render --model shell --shape sine --amplitude 1.3 --pressure-kpa 4 --timelapse 8 --out figures/shell\n"
         "  actuator render --model shell --shape cylinder --color-by stress --out figures/tube\n"
-        "  actuator render --from runs/5.2/evaluations.capnp --index 17 --out figures/ --turntable 36   (no simulation)\n");
+        "  actuator render --from runs/5.2/evaluations.capnp --index 17 --out figures/ --turntable 36   (no simulation)\n"
+        "  actuator render --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --solid cutaway --wall-mm 1.5 --out figures/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     if (cli.Given("--turntable")) p.turntable = static_cast<int>(ParseInteger(turntable.empty() ? "60" : turntable, "--turntable", 1, 100000));
     if (cli.Given("--timelapse")) p.timelapse = static_cast<int>(ParseInteger(timelapse.empty() ? "30" : timelapse, "--timelapse", 2, 100000));
@@ -230,6 +239,24 @@ int RunRender(int argc, char** argv, int first) {
                                          p.timelapse, job.shell.load.steps, sim::Name(job.model)));
         if (!cli.Given("--steps") && !timelapse.empty()) job.shell.load.steps = p.timelapse;
         p.timelapse = job.shell.load.steps;
+    }
+    if (cli.Given("--solid")) {
+        if (solid != "cutaway" && solid != "mold") throw UsageError("--solid: unknown value " + Quote(solid) + " (choose cutaway or mold)");
+        for (const char* option : {"--turntable", "--timelapse", "--video"})
+            cli.RefuseIfGiven(option, "does not go with --solid (a picture of the exported solids, nothing is simulated)");
+        const sim::PartDef part = PartDefOf(cli, partOptions, job);
+        const sim::PartSolids solids = BuildSolids(job, part, partOptions.mold);
+        const fs::path out = p.out;
+        std::error_code ec;
+        fs::create_directories(out, ec);
+        if (!fs::is_directory(out, ec)) throw UsageError("--out: cannot create folder " + Quote(out.string()));
+        const std::string file = (out / (solid + ".png")).string();
+        CheckOutputPath(file, "--out");
+        RefuseOutputThatIsInput(file, "--out", {shape.meshFile, shape.offsets, from});
+        const std::string title = fmt::format("{}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm);
+        WritePng(file, MakeRenderer(p.def)->Render(solid == "mold" ? ExplodedMoldScene(solids, "mold for " + title) : CutawayScene(solids, title)), p.pngLevel);
+        std::cout << Json{{"image", file}, {"silicone_volume_mm3", sim::MeshVolume(solids.actuator)}}.dump() << "\n";
+        return 0;
     }
     const double snapshotBytes = double(p.timelapse) * SharedSurface(job)->vertexCount * 3 * sizeof(double);
     if (snapshotBytes > kMaxSnapshotBytes)

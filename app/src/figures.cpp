@@ -202,6 +202,64 @@ render::Image PairsImage(const render::Scene& scene) {
     return MakeRenderer(width, height, 2, 0.9)->Render(scene);
 }
 
+namespace {
+
+// Solids placed side by side as one panel over one surface, each vertex valued by its part's number.
+struct PlacedSolid {
+    const sim::TriangleMesh* mesh;
+    double shiftX;
+    bool turned;  // half a turn about the axis
+};
+render::Panel SolidsPanel(const std::vector<PlacedSolid>& solids, std::shared_ptr<sim::Surface>& surface) {
+    surface = std::make_shared<sim::Surface>();
+    render::Panel panel;
+    for (size_t k = 0; k < solids.size(); ++k) {
+        const auto& [mesh, shiftX, turned] = solids[k];
+        const int base = surface->vertexCount;
+        for (const auto& v : mesh->vertices) {
+            panel.positions.x.push_back((turned ? -v[0] : v[0]) + shiftX);
+            panel.positions.y.push_back(turned ? -v[1] : v[1]);
+            panel.positions.z.push_back(v[2]);
+            panel.values.push_back(static_cast<double>(k));
+        }
+        for (const auto& t : mesh->triangles) surface->triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        surface->vertexCount += static_cast<int>(mesh->vertices.size());
+    }
+    return panel;
+}
+
+}  // namespace
+
+render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title) {
+    const double w = sim::MeshBounds(solids.shellA)[3], step = 2.7 * w;
+    std::shared_ptr<sim::Surface> surface;
+    render::Scene scene;
+    scene.panels = {SolidsPanel({{&solids.actuator, 0, false}, {&solids.core, -step, false}, {&solids.shellA, step, false}, {&solids.shellB, 2 * step, true}},
+                                surface)};
+    scene.surface = surface;
+    scene.title = title;
+    scene.lines = {"core, actuator, shell A, shell B (split faces to you)"};
+    scene.colorBy = render::ColorBy::Values;
+    scene.colorMin = 0;
+    scene.colorMax = 3;
+    scene.colorLabel = "part: 0 actuator\n1 core, 2 shell A\n3 shell B";
+    return scene;
+}
+
+render::Scene CutawayScene(const sim::PartSolids& solids, const std::string& title) {
+    std::shared_ptr<sim::Surface> surface;
+    render::Scene scene;
+    // The half at y >= 0: its cut faces the camera, which looks from the y < 0 side.
+    scene.panels = {SolidsPanel({{&solids.actuatorCut, 0, false}}, surface)};
+    scene.surface = surface;
+    scene.title = title;
+    const auto bounds = sim::MeshBounds(solids.actuator);
+    scene.lines = {fmt::format("cut along the axis: {:.3g} mm long, {:.3g} mm across, {:.4g} mm^3", bounds[5] - bounds[2],
+                               bounds[3] - bounds[0], sim::MeshVolume(solids.actuator))};
+    scene.colorBy = render::ColorBy::Shading;
+    return scene;
+}
+
 render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, double angleDegrees, Colouring colouring) {
     render::Scene scene;
     scene.surface = SharedSurface(job);

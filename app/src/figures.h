@@ -13,6 +13,7 @@
 #include "render/mesh_renderer.h"
 #include "sim/batch.h"
 #include "sim/names.h"
+#include "sim/solid.h"
 
 namespace app {
 
@@ -59,6 +60,12 @@ render::Scene StagesScene(const std::string& title, const std::vector<std::strin
                           const sim::EvalJob& job);
 // The scenes above drawn at a size that gives each panel about 240 x 420 pixels.
 render::Image PairsImage(const render::Scene& scene);
+
+// An exported part's solids (sim/solid.h): the parts side by side with the mold's split faces turned
+// to the camera, each part its own colour; and the actuator's wall cut open along its axis, the cut
+// showing its thickness.
+render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title);
+render::Scene CutawayScene(const sim::PartSolids& solids, const std::string& title);
 
 // Throws UsageError when no renderer can be made.
 std::unique_ptr<render::MeshRenderer> MakeRenderer(int width, int height, int supersample = 2, double textScale = 0);

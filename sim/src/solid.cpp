@@ -493,6 +493,30 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
             }
         solids.actuator = b.Take();
     }
+    {  // The wall's half at y >= 0: the same faces over half the turn, closed by the two cut faces.
+        Builder b;
+        const int half = nt / 2;
+        for (int i = 0; i < half; ++i) {
+            for (int j = 0; j + 1 < nz; ++j) {
+                b.Quad(b.Vertex(outer.At(j, i)), b.Vertex(outer.At(j, i + 1)), b.Vertex(outer.At(j + 1, i + 1)), b.Vertex(outer.At(j + 1, i)));
+                b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j + 1, i)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j, i + 1)));
+            }
+            for (const int j : {0, nz - 1}) {
+                const Vec normal{0, 0, j == 0 ? -1.0 : 1.0};
+                const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j, i + 1)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j, i + 1));
+                b.Facing(o0, o1, i1, normal);
+                b.Facing(o0, i1, i0, normal);
+            }
+        }
+        for (const int i : {0, half})
+            for (int j = 0; j + 1 < nz; ++j) {
+                const Vec normal{0, -1, 0};
+                const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j + 1, i)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j + 1, i));
+                b.Facing(o0, o1, i1, normal);
+                b.Facing(o0, i1, i0, normal);
+            }
+        solids.actuatorCut = b.Take();
+    }
     const double handleBottom = -mold.endWallMm - mold.handleMm, handleTop = part.lengthMm + mold.endWallMm + mold.handleMm;
     {  // The core: the inner surface, each end ring drawn straight out through the block as a handle.
         Builder b;

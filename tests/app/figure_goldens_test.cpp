@@ -14,6 +14,7 @@
 #include "plots.h"
 #include "render/image.h"
 #include "sim/batch.h"
+#include "sim/solid.h"
 
 namespace fs = std::filesystem;
 
@@ -120,6 +121,28 @@ TEST(FigureGoldens, ContactSheetOnTheSweepAxes) {
     std::string error;
     ASSERT_TRUE(render::DecodePng(ReadBytes(path), &image, &error)) << error;
     ExpectMatchesGolden("contact_sheet_axes", image);
+}
+
+// The exported solids as `render --solid` draws them: a short sine tube cut along its axis, and its
+// mold pulled apart.
+sim::PartSolids GoldenSolids() {
+    sim::PartDef part;
+    part.radiusMm = 8;
+    part.lengthMm = 40;
+    part.thicknessMm = 1.5;
+    part.angularSamples = 48;
+    part.axialSamples = 25;
+    sim::PartSolids solids;
+    EXPECT_EQ(sim::BuildPartSolids(sim::SineShape{1.3, 0.5, 3.141592653589793 - 0.5}, part, {}, &solids), "");
+    return solids;
+}
+
+TEST(FigureGoldens, SolidCutaway) {
+    ExpectMatchesGolden("solid_cutaway", app::MakeRenderer(480, 360)->Render(app::CutawayScene(GoldenSolids(), "golden cut-away")));
+}
+
+TEST(FigureGoldens, SolidMoldExploded) {
+    ExpectMatchesGolden("solid_mold", app::MakeRenderer(640, 400)->Render(app::ExplodedMoldScene(GoldenSolids(), "golden mold")));
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "cli_fixture.h"
+#include "png.h"
 #include "solid_io.h"
 #include "sim/solid.h"
 
@@ -113,7 +114,7 @@ TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
     sim::PartSolids solids;
     ASSERT_EQ(sim::BuildPartSolids(c.shape, part, mold, &solids), "");
     const std::pair<const char*, const sim::TriangleMesh*> parts[] = {
-        {"actuator", &solids.actuator}, {"core", &solids.core}, {"shell A", &solids.shellA}, {"shell B", &solids.shellB}};
+        {"actuator", &solids.actuator}, {"core", &solids.core}, {"shell A", &solids.shellA}, {"shell B", &solids.shellB}, {"cut-away", &solids.actuatorCut}};
     for (const auto& [name, mesh] : parts) EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty()) << c.name << ": " << name;
     // The block is the two shells, the wall and the core's part inside it, to rounding.
     const auto a = sim::MeshBounds(solids.shellA), b = sim::MeshBounds(solids.shellB);
@@ -240,4 +241,19 @@ TEST_F(ExportCli, ShellModelGeometryAndOtherFormats) {
     r = Run("export --shape cylinder --ascii --out " + Path("ascii"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(Slurp(dir_ / "ascii" / "actuator.stl").rfind("solid ", 0), 0u);
+}
+
+TEST_F(ExportCli, RenderDrawsTheCutAwayAndTheMoldWithoutSimulating) {
+    Result r = Run("render --model shell --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --length-mm 40 --solid cutaway --size 400x300 --out " + Path("pics"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    testing_support::ExpectPicture(dir_ / "pics" / "cutaway.png");
+    r = Run("render --shape cylinder --solid mold --size 400x300 --out " + Path("pics"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    testing_support::ExpectPicture(dir_ / "pics" / "mold.png");
+    r = Run("render --shape cylinder --solid cutaway --turntable 4 --out " + Path("pics"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("does not go with --solid"));
+    r = Run("render --shape cylinder --solid section --out " + Path("pics"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("choose cutaway or mold"));
 }

@@ -55,6 +55,7 @@ struct MoldDef {
 
 struct PartSolids {
     TriangleMesh actuator;  // the silicone wall
+    TriangleMesh actuatorCut;  // its half at y >= 0, closed by the cut faces (pictures of the wall's thickness)
     TriangleMesh core;      // the inner cavity with a handle at each end
     TriangleMesh shellA;    // the block's half at y >= 0, less the actuator and the core's channels
     TriangleMesh shellB;    // the half at y <= 0

@@ -1,0 +1,58 @@
+#include "part_options.h"
+
+#include "errors.h"
+#include "sim/shell.h"
+
+namespace app {
+
+void AddPartOptions(Cli& cli, PartOptions& o) {
+    cli.Group("Part");
+    cli.Enum("--wall", o.part.wall, "centred: half the wall each side of the rest surface; outward: the rest surface is the wall's inside");
+    cli.Number("--unit-mm", o.unitMm, "thesis-model designs: millimetres per design unit (radius 1, length 30 turns)", 1e-3, 1e4)->default_str("5");
+    cli.Number("--wall-mm", o.wallMm, "thesis-model designs: wall thickness, mm (membrane and shell: --thickness-mm)", 1e-3, 1e3)->default_str("1");
+    cli.Integer("--sampling", o.sampling,
+                "surface samples per simulation-mesh edge, around and along (smooth designs look faceted at 30 x 30); the helix's "
+                "--resolution stays the simulation mesh's",
+                1, 64)
+        ->default_str("4");
+    cli.Group("Mold");
+    cli.Number("--margin-mm", o.mold.marginMm, "block beyond the actuator's widest point", 0.1, 1e4)->default_str("5");
+    cli.Number("--end-wall-mm", o.mold.endWallMm, "block beyond each end of the actuator", 0.1, 1e4)->default_str("5");
+    cli.Number("--handle-mm", o.mold.handleMm, "core beyond the block at each end, to hold and pull it", 0.1, 1e4)->default_str("15");
+    cli.Number("--sprue-deg", o.mold.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120)->default_str("24");
+    cli.Number("--vent-deg", o.mold.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60)->default_str("6");
+    cli.Number("--pin-clearance-mm", o.mold.pinClearanceMm, "the registration pins' taper: their tops this much inside their holes", 0, 10)
+        ->default_str("0.15");
+}
+
+sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
+    sim::PartDef part = o.part;
+    if (job.model == sim::ModelKind::Thesis) {
+        part.radiusMm = o.unitMm;
+        part.lengthMm = o.unitMm * job.mesh.turns;
+        part.thicknessMm = o.wallMm;
+        part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.mesh.turns;
+        part.angularSamples = 8 * ((job.mesh.resolution * o.sampling + 7) / 8);
+        part.axialSamples = job.mesh.turns * o.sampling + 1;
+        return part;
+    }
+    cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
+    cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
+    const sim::GeometryDef& g = job.shell.geometry;
+    const int rings = sim::RingCount(g);
+    part.radiusMm = g.radiusMm;
+    part.lengthMm = g.lengthMm;
+    part.thicknessMm = g.thicknessMm;
+    part.clampFraction = rings > 1 ? static_cast<double>(g.clampRings - 1) / (rings - 1) : 0;
+    part.angularSamples = 8 * ((g.ringVertices * o.sampling + 7) / 8);
+    part.axialSamples = (rings - 1) * o.sampling + 1;
+    return part;
+}
+
+sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold) {
+    sim::PartSolids solids;
+    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids); !error.empty()) throw UsageError("cannot make this design: " + error);
+    return solids;
+}
+
+}  // namespace app
