@@ -42,6 +42,11 @@ public:
         if (Dot(n, normal) < 0) std::swap(b, c);
         Triangle(a, b, c);
     }
+    // A quad a b c d (in order around it) as two triangles facing `normal`.
+    void FacingQuad(int a, int b, int c, int d, const Vec& normal) {
+        Facing(a, b, c, normal);
+        Facing(a, c, d, normal);
+    }
     // A convex polygon (in order around it) fanned from its first vertex.
     void Fan(const std::vector<int>& polygon, const Vec& normal) {
         for (size_t k = 1; k + 1 < polygon.size(); ++k) Facing(polygon[0], polygon[k], polygon[k + 1], normal);
@@ -310,37 +315,29 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
             const double z = atTop ? top : bottom;
             const int b0 = b.Vertex(BoxPoint(first + k, nt, w, z)), b1 = b.Vertex(BoxPoint(first + k + 1, nt, w, z));
             if (!atTop) {
-                b.Facing(c0, c1, i1, towardAxis(c0));
-                b.Facing(c0, i1, i0, towardAxis(c0));
+                b.FacingQuad(c0, c1, i1, i0, towardAxis(c0));
                 // The block's end face between the channel and the box, strip by strip along the rays.
-                b.Facing(c0, c1, b1, down);
-                b.Facing(c0, b1, b0, down);
+                b.FacingQuad(c0, c1, b1, b0, down);
                 continue;
             }
             // At the top the face is split on the actuator's outer ring, so a slot can open its inner part.
             const int r0 = Rim(k), r1 = Rim(k + 1);
-            b.Facing(r0, r1, b1, up);
-            b.Facing(r0, b1, b0, up);
+            b.FacingQuad(r0, r1, b1, b0, up);
             if (!open) {
-                b.Facing(c0, c1, i1, towardAxis(c0));
-                b.Facing(c0, i1, i0, towardAxis(c0));
-                b.Facing(c0, c1, r1, up);
-                b.Facing(c0, r1, r0, up);
+                b.FacingQuad(c0, c1, i1, i0, towardAxis(c0));
+                b.FacingQuad(c0, c1, r1, r0, up);
                 continue;
             }
             // A slot: its outer wall, and its ends where the closed cells begin.
             const int o0 = O(nz - 1, k), o1 = O(nz - 1, k + 1);
-            b.Facing(o0, o1, r1, towardAxis(o0));
-            b.Facing(o0, r1, r0, towardAxis(o0));
+            b.FacingQuad(o0, o1, r1, r0, towardAxis(o0));
             const auto [c, s] = Direction(first + k, nt);
             const auto [c2, s2] = Direction(first + k + 1, nt);
             if (k == 0 || !Open(k - 1)) {
-                b.Facing(i0, o0, r0, Vec{-s, c, 0});
-                b.Facing(i0, r0, c0, Vec{-s, c, 0});
+                b.FacingQuad(i0, o0, r0, c0, Vec{-s, c, 0});
             }
             if (k + 1 == half || !Open(k + 1)) {
-                b.Facing(i1, o1, r1, Vec{s2, -c2, 0});
-                b.Facing(i1, r1, c1, Vec{s2, -c2, 0});
+                b.FacingQuad(i1, o1, r1, c1, Vec{s2, -c2, 0});
             }
             openings += OpeningArea(inner, outer, first + k) * mold.endWallMm;
         }
@@ -369,13 +366,10 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
         for (int j = 0; j + 1 < nz; ++j) {
             const int o0 = O(j, m), o1 = O(j + 1, m), a0 = P1(j), a1 = P1(j + 1), c0 = P2(j), c1 = P2(j + 1);
             const int l0 = L(z(j)), l1 = L(z(j + 1));
-            b.Facing(o0, o1, a1, splitNormal);
-            b.Facing(o0, a1, a0, splitNormal);
-            b.Facing(c0, c1, l1, splitNormal);
-            b.Facing(c0, l1, l0, splitNormal);
+            b.FacingQuad(o0, o1, a1, a0, splitNormal);
+            b.FacingQuad(c0, c1, l1, l0, splitNormal);
             if (!InPin(j, nz, pinBands)) {
-                b.Facing(a0, a1, c1, splitNormal);
-                b.Facing(a0, c1, c0, splitNormal);
+                b.FacingQuad(a0, a1, c1, c0, splitNormal);
             }
         }
         // The pins (shell A, standing out of the face, their tops inset by the clearance so they
@@ -388,8 +382,7 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
             const int t1b = b.Vertex({x1 + inset, y, z(jb) - c}), t2b = b.Vertex({x2 - inset, y, z(jb) - c});
             const double out = upper ? 1 : -1;  // faces point away from the pin's inside, or into the hole
             const Vec towardAxisX{-sign * out, 0, 0}, awayAxisX{sign * out, 0, 0}, lower{0, 0, -out}, higher{0, 0, out};
-            b.Facing(t1a, t2a, t2b, Vec{0, -out, 0});
-            b.Facing(t1a, t2b, t1b, Vec{0, -out, 0});
+            b.FacingQuad(t1a, t2a, t2b, t1b, Vec{0, -out, 0});
             for (int j = ja; j < jb; ++j) {
                 b.Facing(t1a, P1(j), P1(j + 1), towardAxisX);
                 b.Facing(t2a, P2(j), P2(j + 1), awayAxisX);
@@ -488,8 +481,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
             for (const int j : {0, nz - 1}) {
                 const Vec normal{0, 0, j == 0 ? -1.0 : 1.0};
                 const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j, i + 1)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j, i + 1));
-                b.Facing(o0, o1, i1, normal);
-                b.Facing(o0, i1, i0, normal);
+                b.FacingQuad(o0, o1, i1, i0, normal);
             }
         solids.actuator = b.Take();
     }
@@ -504,16 +496,14 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
             for (const int j : {0, nz - 1}) {
                 const Vec normal{0, 0, j == 0 ? -1.0 : 1.0};
                 const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j, i + 1)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j, i + 1));
-                b.Facing(o0, o1, i1, normal);
-                b.Facing(o0, i1, i0, normal);
+                b.FacingQuad(o0, o1, i1, i0, normal);
             }
         }
         for (const int i : {0, half})
             for (int j = 0; j + 1 < nz; ++j) {
                 const Vec normal{0, -1, 0};
                 const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j + 1, i)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j + 1, i));
-                b.Facing(o0, o1, i1, normal);
-                b.Facing(o0, i1, i0, normal);
+                b.FacingQuad(o0, o1, i1, i0, normal);
             }
         solids.actuatorCut = b.Take();
     }
@@ -532,8 +522,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
                 const Vec& p1 = inner.At(j, i + 1);
                 const int r0 = b.Vertex(p0), r1 = b.Vertex(p1), e0 = b.Vertex({p0[0], p0[1], z}), e1 = b.Vertex({p1[0], p1[1], z});
                 const Vec outward{p0[0] + p1[0], p0[1] + p1[1], 0};
-                b.Facing(e0, e1, r1, outward);
-                b.Facing(e0, r1, r0, outward);
+                b.FacingQuad(e0, e1, r1, r0, outward);
                 b.Facing(centre, e0, e1, Vec{0, 0, atTop ? 1.0 : -1.0});
             }
         }
