@@ -72,7 +72,8 @@ int RunExport(int argc, char** argv, int first) {
     }
     const sim::PartDef part = PartDefOf(cli, partOptions, job);
     const sim::MoldDef& mold = partOptions.mold;
-    const sim::PartSolids solids = BuildSolids(job, part, mold);
+    if (cli.Given("--port-mm") && !partOptions.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
+    const sim::PartSolids solids = BuildSolids(job, part, mold, partOptions.fittings);
 
     // The folder: new or empty, so that a part's files never mix with another's.
     std::error_code ec;
@@ -82,10 +83,9 @@ int RunExport(int argc, char** argv, int first) {
     if (!fs::is_directory(out, ec)) throw UsageError("cannot create folder " + Quote(out));
 
     const std::string extension = Extension(format);
-    const std::pair<std::string, const sim::TriangleMesh*> files[] = {{"actuator", &solids.actuator},
-                                                                      {"mold_core", &solids.core},
-                                                                      {"mold_shell_a", &solids.shellA},
-                                                                      {"mold_shell_b", &solids.shellB}};
+    std::vector<std::pair<std::string, const sim::TriangleMesh*>> files{
+        {"actuator", &solids.actuator}, {"mold_core", &solids.core}, {"mold_shell_a", &solids.shellA}, {"mold_shell_b", &solids.shellB}};
+    if (partOptions.fittings.enabled) files.insert(files.end(), {{"fitting_bottom", &solids.fittingBottom}, {"fitting_top", &solids.fittingTop}});
     Json manifest;
     manifest["units"] = "mm";
     Json list = Json::array();
@@ -121,6 +121,7 @@ int RunExport(int argc, char** argv, int first) {
                             {"wall", sim::Name(part.wall)},
                             {"samples_around", part.angularSamples},
                             {"samples_along", part.axialSamples}};
+    if (partOptions.fittings.enabled) manifest["fittings"] = Json{{"port_mm", partOptions.fittings.portMm}, {"collar_mm", partOptions.fittings.collarMm}};
     manifest["mold"] = Json{{"margin_mm", mold.marginMm}, {"end_wall_mm", mold.endWallMm}, {"handle_mm", mold.handleMm},
                             {"sprue_deg", mold.sprueDegrees}, {"vent_deg", mold.ventDegrees}, {"pin_clearance_mm", mold.pinClearanceMm},
                             {"sector_blend_deg", sim::SectorBlendRadians(part) * 180 / 3.141592653589793}};
@@ -128,7 +129,7 @@ int RunExport(int argc, char** argv, int first) {
     if (cli.Given("--from")) manifest["design"]["from"] = Json{{"archive", from}, {"index", index}};
     WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::cout << Json{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", 6}, {"seconds", seconds}}.dump() << "\n";
+    std::cout << Json{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}}.dump() << "\n";
     return 0;
 }
 

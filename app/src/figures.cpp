@@ -234,15 +234,17 @@ render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string
     const double w = sim::MeshBounds(solids.shellA)[3], step = 2.7 * w;
     std::shared_ptr<sim::Surface> surface;
     render::Scene scene;
-    scene.panels = {SolidsPanel({{&solids.actuator, 0, false}, {&solids.core, -step, false}, {&solids.shellA, step, false}, {&solids.shellB, 2 * step, true}},
-                                surface)};
+    std::vector<PlacedSolid> placed{{&solids.actuator, 0, false}, {&solids.core, -step, false}, {&solids.shellA, step, false}, {&solids.shellB, 2 * step, true}};
+    const bool fittings = !solids.fittingBottom.triangles.empty();
+    if (fittings) placed.insert(placed.end(), {{&solids.fittingBottom, -2 * step, false}, {&solids.fittingTop, -2 * step, false}});
+    scene.panels = {SolidsPanel(placed, surface)};
     scene.surface = surface;
     scene.title = title;
-    scene.lines = {"core, actuator, shell A, shell B (split faces to you)"};
+    scene.lines = {fittings ? "fittings, core, actuator, shell A, shell B (split faces to you)" : "core, actuator, shell A, shell B (split faces to you)"};
     scene.colorBy = render::ColorBy::Values;
     scene.colorMin = 0;
-    scene.colorMax = 3;
-    scene.colorLabel = "part: 0 actuator\n1 core, 2 shell A\n3 shell B";
+    scene.colorMax = fittings ? 5 : 3;
+    scene.colorLabel = fittings ? "part: 0 actuator\n1 core, 2 shell A\n3 shell B\n4, 5 fittings" : "part: 0 actuator\n1 core, 2 shell A\n3 shell B";
     return scene;
 }
 

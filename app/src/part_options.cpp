@@ -15,6 +15,8 @@ void AddPartOptions(Cli& cli, PartOptions& o) {
                 "--resolution stays the simulation mesh's",
                 1, 64)
         ->default_str("4");
+    cli.Flag("--fittings", o.fittings.enabled, "also rigid end fittings: a plug for each end (insert and collar), the bottom one bored for the air line");
+    cli.Number("--port-mm", o.fittings.portMm, "with --fittings: the bottom plug's through hole, diameter", 0.1, 1e3)->default_str("4");
     cli.Group("Mold");
     cli.Number("--margin-mm", o.mold.marginMm, "block beyond the actuator's widest point", 0.1, 1e4)->default_str("5");
     cli.Number("--end-wall-mm", o.mold.endWallMm, "block beyond each end of the actuator", 0.1, 1e4)->default_str("5");
@@ -49,9 +51,10 @@ sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob&
     return part;
 }
 
-sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold) {
+sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold, const sim::FittingDef& fittings) {
     sim::PartSolids solids;
-    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids); !error.empty()) throw UsageError("cannot make this design: " + error);
+    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids, fittings); !error.empty())
+        throw UsageError("cannot make this design: " + error);
     return solids;
 }
 

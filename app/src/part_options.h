@@ -15,6 +15,7 @@ struct PartOptions {
     int sampling = 4;                      // surface samples per simulation-mesh edge
     sim::PartDef part;                     // its wall side is bound to --wall
     sim::MoldDef mold;                     // bound to the mold options
+    sim::FittingDef fittings;              // bound to --fittings and --port-mm
 };
 
 // Adds --wall, --unit-mm, --wall-mm, --sampling under "Part" and the mold's options under "Mold".
@@ -25,6 +26,6 @@ void AddPartOptions(Cli& cli, PartOptions& options);
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& options, const sim::EvalJob& job);
 
 // The solids, or UsageError naming why the design cannot be made.
-sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold);
+sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold, const sim::FittingDef& fittings = {});
 
 }  // namespace app

@@ -449,7 +449,54 @@ double RingArea(const Grid& g, int j) {
 
 }  // namespace
 
-std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out) {
+// A plug for one end of the tube (bottom: z = 0, the collar below; top: mirrored), built bottom-up
+// and flipped for the top: collar rings, the insert following the inner end ring, an optional bore.
+std::string Fitting(const Grid& inner, const Grid& outer, bool atTop, double port, const FittingDef& f, double insert, const PartDef& part,
+                    TriangleMesh* out) {
+    const int nt = inner.nt, j = atTop ? inner.nz - 1 : 0;
+    double collar = 0, smallest = INFINITY;
+    for (int i = 0; i < nt; ++i) {
+        collar = std::max(collar, std::hypot(outer.At(j, i)[0], outer.At(j, i)[1]));
+        smallest = std::min(smallest, std::hypot(inner.At(j, i)[0], inner.At(j, i)[1]));
+    }
+    collar += f.collarMarginMm;
+    if (port > 0 && port / 2 > smallest - 0.5)
+        return Format("a port of %.3g mm does not fit the tube's end, whose inner radius is %.3g mm (leave 0.5 mm of wall)", port, smallest);
+    // Local height h: 0 at the tube's end, the insert up to `insert`, the collar down to -collarMm.
+    auto place = [&](double x, double y, double h) { return Vec{x, y, atTop ? part.lengthMm - h : h}; };
+    Builder b;
+    const Vec up{0, 0, atTop ? -1.0 : 1.0}, down{0, 0, atTop ? 1.0 : -1.0};
+    const int centreLow = b.Vertex(place(0, 0, -f.collarMm)), centreHigh = b.Vertex(place(0, 0, insert));
+    for (int i = 0; i < nt; ++i) {
+        const auto [c0, s0] = Direction(i, nt);
+        const auto [c1, s1] = Direction(i + 1, nt);
+        const Vec& e0 = inner.At(j, i);
+        const Vec& e1 = inner.At(j, i + 1);
+        const int g0 = b.Vertex(place(collar * c0, collar * s0, -f.collarMm)), g1 = b.Vertex(place(collar * c1, collar * s1, -f.collarMm));
+        const int h0 = b.Vertex(place(collar * c0, collar * s0, 0)), h1 = b.Vertex(place(collar * c1, collar * s1, 0));
+        const int n0 = b.Vertex(place(e0[0], e0[1], 0)), n1 = b.Vertex(place(e1[0], e1[1], 0));
+        const int t0 = b.Vertex(place(e0[0], e0[1], insert)), t1 = b.Vertex(place(e1[0], e1[1], insert));
+        const Vec outward{c0 + c1, s0 + s1, 0};
+        b.FacingQuad(g0, g1, h1, h0, outward);  // the collar's side
+        b.FacingQuad(n0, n1, h1, h0, up);       // the shoulder the actuator's end sits on
+        b.FacingQuad(n0, n1, t1, t0, outward);  // the insert
+        if (port > 0) {
+            const double r = port / 2;
+            const int p0 = b.Vertex(place(r * c0, r * s0, -f.collarMm)), p1 = b.Vertex(place(r * c1, r * s1, -f.collarMm));
+            const int q0 = b.Vertex(place(r * c0, r * s0, insert)), q1 = b.Vertex(place(r * c1, r * s1, insert));
+            b.FacingQuad(p0, p1, g1, g0, down);
+            b.FacingQuad(q0, q1, t1, t0, up);
+            b.FacingQuad(p0, p1, q1, q0, Vec{-(c0 + c1), -(s0 + s1), 0});
+        } else {
+            b.Facing(centreLow, g0, g1, down);
+            b.Facing(centreHigh, t0, t1, up);
+        }
+    }
+    *out = b.Take();
+    return "";
+}
+
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings) {
     if (part.angularSamples < 8 || part.angularSamples % 8 != 0) return "the samples around the tube must be a multiple of 8, at least 8";
     if (part.axialSamples < 3) return "at least 3 samples along the tube";
     if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
@@ -535,6 +582,26 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     const double w = reach + mold.marginMm;
     solids.shellA = Shell(true, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
     solids.shellB = Shell(false, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
+    if (fittings.enabled) {
+        // The insert runs as far as the tube does not narrow below its end ring (else it would cut the wall).
+        double insert = fittings.insertMm > 0 ? fittings.insertMm : std::max(part.clampFraction * part.lengthMm, 2 * part.thicknessMm);
+        for (const bool atTop : {false, true}) {
+            for (int step = 1; step < nz; ++step) {
+                const int j = atTop ? nz - 1 - step : step, end = atTop ? nz - 1 : 0;
+                const double h = atTop ? part.lengthMm - inner.At(j, 0)[2] : inner.At(j, 0)[2];
+                if (h > insert) break;
+                for (int i = 0; i < nt; ++i)
+                    if (std::hypot(inner.At(j, i)[0], inner.At(j, i)[1]) < std::hypot(inner.At(end, i)[0], inner.At(end, i)[1]) * (1 - 1e-9)) {
+                        insert = std::min(insert, std::max(0.0, h - 1e-6));
+                        break;
+                    }
+            }
+        }
+        if (insert < part.thicknessMm)
+            return Format("the tube narrows within %.3g mm of its ends: no room for a fitting's insert (at least one wall, %.3g mm)", insert, part.thicknessMm);
+        if (std::string error = Fitting(inner, outer, false, fittings.portMm, fittings, insert, part, &solids.fittingBottom); !error.empty()) return error;
+        Fitting(inner, outer, true, 0, fittings, insert, part, &solids.fittingTop);
+    }
     *out = std::move(solids);
     return "";
 }

@@ -112,9 +112,14 @@ TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
     const sim::PartDef part = PartOf(c);
     const sim::MoldDef mold;
     sim::PartSolids solids;
-    ASSERT_EQ(sim::BuildPartSolids(c.shape, part, mold, &solids), "");
-    const std::pair<const char*, const sim::TriangleMesh*> parts[] = {
-        {"actuator", &solids.actuator}, {"core", &solids.core}, {"shell A", &solids.shellA}, {"shell B", &solids.shellB}, {"cut-away", &solids.actuatorCut}};
+    sim::FittingDef fittings;
+    fittings.enabled = true;
+    fittings.portMm = 2;
+    ASSERT_EQ(sim::BuildPartSolids(c.shape, part, mold, &solids, fittings), "");
+    const std::pair<const char*, const sim::TriangleMesh*> parts[] = {{"actuator", &solids.actuator},  {"core", &solids.core},
+                                                                      {"shell A", &solids.shellA},     {"shell B", &solids.shellB},
+                                                                      {"cut-away", &solids.actuatorCut}, {"bottom fitting", &solids.fittingBottom},
+                                                                      {"top fitting", &solids.fittingTop}};
     for (const auto& [name, mesh] : parts) EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty()) << c.name << ": " << name;
     // The block is the two shells, the wall and the core's part inside it, to rounding.
     const auto a = sim::MeshBounds(solids.shellA), b = sim::MeshBounds(solids.shellB);
@@ -188,10 +193,11 @@ TEST(Solid, FilesReadBackAsWhatWasBuilt) {
 class ExportCli : public CliTest {};
 
 TEST_F(ExportCli, WritesTheSolidsAndAManifestThatAddsUp) {
-    const Result r = Run("export --shape bspline --region middle --control-points 1,1.4,0.8,1.3,1 --unit-mm 5 --wall-mm 1 --out " + Path("part"));
+    const Result r = Run("export --shape bspline --region middle --control-points 1,1.4,0.8,1.3,1 --unit-mm 5 --wall-mm 1 --fittings --out " + Path("part"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto manifest = nlohmann::json::parse(Slurp(dir_ / "part" / "manifest.json"));
-    ASSERT_EQ(manifest["files"].size(), 4u);
+    ASSERT_EQ(manifest["files"].size(), 6u) << "the actuator, the mold's three parts and two fittings";
+    testing_support::ExpectPicture(dir_ / "part" / "mold_assembly.png");
     for (const auto& file : manifest["files"]) {
         sim::TriangleMesh mesh;
         std::string error;
@@ -218,6 +224,10 @@ TEST_F(ExportCli, RefusesWhatCannotBeMadeAndWritesNothing) {
     r = Run("export --shape cylinder");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("--out DIR is required"));
+    r = Run("export --shape cylinder --fittings --port-mm 9 --out " + Path("port"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("a port of 9 mm does not fit"));
+    EXPECT_FALSE(fs::exists(dir_ / "port"));
     r = Run("export --model shell --shape cylinder --unit-mm 3 --out " + Path("unit"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("--radius-mm"));

@@ -37,6 +37,16 @@ struct PartDef {
     int axialSamples = 121;     // along the tube, end rings included
 };
 
+// Rigid end fittings: a plug at each end, its insert filling the tube's end where the clamps grip and
+// its collar outside, the bottom one bored through for the air line.
+struct FittingDef {
+    bool enabled = false;
+    double portMm = 4;         // the bottom plug's through hole, diameter
+    double collarMm = 10;      // collar length beyond the end
+    double collarMarginMm = 2; // collar beyond the actuator's outer end ring
+    double insertMm = 0;       // insert length into the tube; 0: the clamped length (clampFraction x length), at least two walls
+};
+
 // The mold: a block around the actuator split in two halves through the axis (the plane y = 0), and
 // a core that forms the inside, its ends reaching through the block as handles.
 struct MoldDef {
@@ -60,6 +70,7 @@ struct PartSolids {
     TriangleMesh shellA;    // the block's half at y >= 0, less the actuator and the core's channels
     TriangleMesh shellB;    // the half at y <= 0
     double coreOutsideBlockMm3 = 0;  // the handles' parts beyond the block (the rest of the core fills the cavity)
+    TriangleMesh fittingBottom, fittingTop;  // when asked for (FittingDef::enabled)
     double openingsMm3 = 0;          // the sprue and vents: block volume in neither shell nor part
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
 };
@@ -71,7 +82,7 @@ double SectorBlendRadians(const PartDef& part);
 // Builds every solid. Empty when the design can be made; otherwise one line naming where and why
 // (a radius that is not positive, a wall that would fold over itself at this thickness, a design
 // defined only per vertex), and `out` is left untouched.
-std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out);
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings = {});
 
 }  // namespace sim
 
