@@ -36,6 +36,7 @@ sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob&
         part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.mesh.turns;
         part.angularSamples = 8 * ((job.mesh.resolution * o.sampling + 7) / 8);
         part.axialSamples = job.mesh.turns * o.sampling + 1;
+        part.helixAngles = true;
         return part;
     }
     cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
@@ -53,7 +54,14 @@ sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob&
 
 sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold, const sim::FittingDef& fittings) {
     sim::PartSolids solids;
-    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids, fittings); !error.empty())
+    // Designs defined per vertex are measured on their rest mesh; the others have a profile.
+    sim::RadiusField measured;
+    if (std::holds_alternative<sim::FreeXYShape>(job.shape) || std::holds_alternative<sim::MeshShape>(job.shape)) {
+        std::string error;
+        measured = sim::MeasuredRadiusField(job, &error);
+        if (!measured) throw UsageError("cannot make this design: " + error);
+    }
+    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids, fittings, measured); !error.empty())
         throw UsageError("cannot make this design: " + error);
     return solids;
 }

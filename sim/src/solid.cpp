@@ -6,6 +6,9 @@
 #include <map>
 #include <numbers>
 
+#include "sim/shell.h"
+#include "sim/shell_problem.h"
+
 namespace sim {
 namespace {
 
@@ -99,6 +102,53 @@ double Degrees(int i, int nt) { return 360.0 * (i % nt) / nt; }
 
 }  // namespace
 
+RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error) {
+    const double pi = std::numbers::pi;
+    if (job.model == ModelKind::Thesis) {
+        if (std::string e = ShapeError(job.shape, job.mesh); !e.empty()) {
+            *error = e;
+            return {};
+        }
+        const Positions p = BuildInitialPositions(job.shape, job.mesh);
+        const int r = job.mesh.resolution, n = VertexCount(job.mesh), turns = job.mesh.turns;
+        std::vector<double> rho(static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i) rho[i] = std::hypot(p.x[i], p.y[i]);
+        // Vertex i lies at helix angle 2 pi i / R (x = sin, y = cos) and height (i + 1) / R turns.
+        return [rho, r, n, turns, pi](double t, double angle) {
+            auto along = [&](double s) {  // the radius at a fractional vertex index, clamped to the helix
+                s = std::clamp(s, 0.0, static_cast<double>(n - 1));
+                const int k = std::min(static_cast<int>(s), n - 2);
+                return rho[k] + (s - k) * (rho[k + 1] - rho[k]);
+            };
+            double turn = (0.5 * pi - angle) / (2 * pi);
+            turn -= std::floor(turn);
+            const double h = t * turns, first = turn + 1.0 / r;  // the helix passes this angle at heights first + k
+            const double k = std::floor(h - first);
+            const double below = (turn + k) * r, w = std::clamp(h - (first + k), 0.0, 1.0);
+            return (1 - w) * along(below) + w * along(below + r);
+        };
+    }
+    const ShellProblem problem = BuildTubeProblem(job.shell, job.shape, job.model == ModelKind::Shell, error);
+    if (!error->empty()) return {};
+    const GeometryDef& g = job.shell.geometry;
+    const int r = g.ringVertices, rings = RingCount(g);
+    std::vector<double> rho(static_cast<size_t>(r) * rings);
+    for (int v = 0; v < r * rings; ++v) rho[v] = std::hypot(problem.rest.x[v], problem.rest.y[v]) / g.radiusMm;
+    // Ring j's vertex i lies at angle 2 pi (i + j/2) / R, ring j at height fraction j / (rings - 1).
+    return [rho, r, rings, pi](double t, double angle) {
+        auto ring = [&](int j) {
+            double u = angle * r / (2 * pi) - 0.5 * j;
+            u -= r * std::floor(u / r);
+            const int i = static_cast<int>(u) % r;
+            const double f = u - std::floor(u);
+            return rho[static_cast<size_t>(j) * r + i] + f * (rho[static_cast<size_t>(j) * r + (i + 1) % r] - rho[static_cast<size_t>(j) * r + i]);
+        };
+        const double x = std::clamp(t, 0.0, 1.0) * (rings - 1);
+        const int j = std::min(static_cast<int>(x), rings - 2);
+        return ring(j) + (x - j) * (ring(j + 1) - ring(j));
+    };
+}
+
 double SectorBlendRadians(const PartDef& part) {
     // Two wall thicknesses of arc at the base radius, and at least three samples.
     return std::max(2 * part.thicknessMm / part.radiusMm, 3 * 2 * std::numbers::pi / part.angularSamples);
@@ -123,10 +173,9 @@ std::array<double, 6> MeshBounds(const TriangleMesh& mesh) {
 namespace {
 
 // The design's rest surface in millimetres; an error when it has no positive radius somewhere.
-std::string RestSurface(const Shape& shape, const PartDef& part, Grid* rest) {
-    if (std::holds_alternative<FreeXYShape>(shape) || std::holds_alternative<MeshShape>(shape))
-        return std::string(ShapeName(shape)) + " designs are defined per vertex of a simulation mesh, not as a surface; export takes cylinder, sine, "
-                                               "abs-sine and bspline designs";
+std::string RestSurface(const Shape& shape, const PartDef& part, const RadiusField& measured, Grid* rest) {
+    const bool perVertex = std::holds_alternative<FreeXYShape>(shape) || std::holds_alternative<MeshShape>(shape);
+    if (perVertex && !measured) return std::string(ShapeName(shape)) + " designs are defined per vertex: their radius must be measured from the rest mesh";
     rest->nz = part.axialSamples;
     rest->nt = part.angularSamples;
     rest->p.resize(static_cast<size_t>(rest->nz) * rest->nt);
@@ -135,7 +184,10 @@ std::string RestSurface(const Shape& shape, const PartDef& part, Grid* rest) {
     const auto* spline = std::get_if<BSplineShape>(&shape);
     const int sectors = spline ? static_cast<int>(spline->splines.size()) : 1;
     const double blend = SectorBlendRadians(part);
-    auto radius = [&](double t, double angle) {
+    auto radius = [&](double t, double standardAngle) {
+        if (perVertex) return measured(t, standardAngle);
+        // The design's own angle: the thesis helix runs x = sin, y = cos.
+        const double angle = part.helixAngles ? 0.5 * std::numbers::pi - standardAngle : standardAngle;
         if (sectors < 2) return DesignRadius(shape, t, angle, part.clampFraction);
         const double step = 2 * std::numbers::pi / sectors;
         const double boundary = step * std::round(angle / step);
@@ -496,7 +548,8 @@ std::string Fitting(const Grid& inner, const Grid& outer, bool atTop, double por
     return "";
 }
 
-std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings) {
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings,
+                            const RadiusField& measured) {
     if (part.angularSamples < 8 || part.angularSamples % 8 != 0) return "the samples around the tube must be a multiple of 8, at least 8";
     if (part.axialSamples < 3) return "at least 3 samples along the tube";
     if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
@@ -504,7 +557,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     if (!(mold.sprueDegrees >= 0 && mold.sprueDegrees <= 120) || !(mold.ventDegrees >= 0 && mold.ventDegrees <= 60))
         return "the sprue spans 0 to 120 degrees and each vent 0 to 60";
     Grid rest;
-    if (std::string error = RestSurface(shape, part, &rest); !error.empty()) return error;
+    if (std::string error = RestSurface(shape, part, measured, &rest); !error.empty()) return error;
     const std::vector<Vec> normals = Normals(rest);
     for (size_t k = 0; k < normals.size(); ++k)
         if (Dot(normals[k], normals[k]) == 0)

@@ -162,7 +162,7 @@ TEST(Solid, DesignsThatCannotBeMadeAreRefusedNamingWhereAndWhy) {
     const std::string fold = sim::BuildPartSolids(sim::BSplineShape{sim::SplineRegion::Middle, {{1, 1, 4, 0.6, 4, 1, 1}}}, part, {}, &untouched);
     EXPECT_THAT(fold, ::testing::AnyOf(HasSubstr("folds over itself"), HasSubstr("reaches the axis")));
     EXPECT_THAT(fold, HasSubstr("z = "));
-    // Per-vertex designs have no surface to offset.
+    // Per-vertex designs need their radius measured on their rest mesh.
     EXPECT_THAT(sim::BuildPartSolids(sim::FreeXYShape{}, sim::PartDef{}, {}, &untouched), HasSubstr("defined per vertex"));
     EXPECT_TRUE(untouched.actuator.triangles.empty());
 }
@@ -266,4 +266,60 @@ TEST_F(ExportCli, RenderDrawsTheCutAwayAndTheMoldWithoutSimulating) {
     r = Run("render --shape cylinder --solid section --out " + Path("pics"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("choose cutaway or mold"));
+}
+
+// Designs defined per vertex: free-xy offsets and OBJ meshes, under the thesis model (on its helix) and
+// the shell model (on its rings), measured from their rest meshes and checked like the others.
+TEST(Solid, PerVertexDesignsAreMeasuredOnTheirRestMesh) {
+    sim::EvalJob thesis;
+    thesis.model = sim::ModelKind::Thesis;
+    thesis.params = sim::DefaultSimParams();
+    const int n = sim::VertexCount(thesis.mesh);
+    sim::FreeXYShape offsets;
+    offsets.dx.assign(static_cast<size_t>(n), 0.0);
+    offsets.dy.assign(static_cast<size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i) {  // a gentle bulge: the helix pushed outward about its middle, clamped turns unmoved
+        if (sim::IsClamped(thesis.mesh, i)) continue;
+        const double bulge = 0.3 * std::sin(kPi * i / n), angle = 2 * kPi * i / thesis.mesh.resolution;
+        offsets.dx[i] = bulge * std::sin(angle);
+        offsets.dy[i] = bulge * std::cos(angle);
+    }
+    thesis.shape = offsets;
+    std::string error;
+    const sim::RadiusField field = sim::MeasuredRadiusField(thesis, &error);
+    ASSERT_TRUE(field) << error;
+    EXPECT_NEAR(field(0.5, 0.3), 1.3, 0.01) << "the middle pushed out by 0.3";
+    EXPECT_NEAR(field(0.01, 1.0), 1.0, 1e-9) << "the clamped turns at radius 1";
+    // The same bulge as a profile: the measured part matches the analytic one closely.
+    sim::PartDef part;
+    part.radiusMm = 4;
+    part.lengthMm = 120;
+    part.angularSamples = 64;
+    part.axialSamples = 61;
+    part.helixAngles = true;
+    sim::PartSolids measured;
+    ASSERT_EQ(sim::BuildPartSolids(thesis.shape, part, {}, &measured, {}, field), "");
+    for (const auto* mesh : {&measured.actuator, &measured.core, &measured.shellA, &measured.shellB})
+        EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty());
+    // The shell model's rings, from an OBJ-like mesh shape: its rest mesh read back the same way.
+    sim::EvalJob shell;
+    shell.model = sim::ModelKind::Shell;
+    shell.shell = sim::DefaultShellDef();
+    shell.shape = sim::SineShape{1.2, 0.5, kPi - 0.5};
+    const sim::RadiusField rings = sim::MeasuredRadiusField(shell, &error);
+    ASSERT_TRUE(rings) << error;
+    for (double t : {0.2, 0.5, 0.8})
+        EXPECT_NEAR(rings(t, 1.0), sim::DesignRadius(shell.shape, t, 1.0, 0), 0.02) << "t = " << t;
+}
+
+TEST_F(ExportCli, AFreeXyDesignExports) {
+    // A free-xy design of all-zero offsets is the plain cylinder, whatever the mesh.
+    std::string zeros;
+    for (int i = 0; i < 900; ++i) zeros += "0 0\n";
+    Write("offsets.txt", zeros);
+    const Result r = Run("export --shape free-xy --offsets " + Path("offsets.txt") + " --out " + Path("xy"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto manifest = nlohmann::json::parse(Slurp(dir_ / "xy" / "manifest.json"));
+    const double volume = manifest["silicone"]["volume_mm3"];
+    EXPECT_NEAR(volume / (kPi * (5.5 * 5.5 - 4.5 * 4.5) * 150), 1.0, 2e-3) << "a 5 mm tube with a 1 mm wall, 150 mm long";
 }

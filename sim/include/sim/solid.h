@@ -5,9 +5,11 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "sim/batch.h"
 #include "sim/names.h"
 #include "sim/shape.h"
 
@@ -35,7 +37,17 @@ struct PartDef {
     double clampFraction = 0;   // middle-region B-splines: the share of the length at each end kept at radius 1
     int angularSamples = 120;   // around the tube; a multiple of 8 (the mold splits at 0 and 180 degrees, its block corners lie at 45)
     int axialSamples = 121;     // along the tube, end rings included
+    bool helixAngles = false;   // thesis-model designs: sector angles run as the helix's (x = sin, y = cos), not from +x counter-clockwise
 };
+
+// A design's radius, in units of the base radius, at height fraction t (0..1) and at an angle
+// (radians, from +x counter-clockwise).
+using RadiusField = std::function<double(double t, double angle)>;
+
+// The radius of a design defined per vertex (free-xy offsets, an OBJ mesh), read from its rest mesh
+// under the job's model: each vertex's distance from the axis, interpolated around the rings (or the
+// helix's turns) and between them. Empty with `error` set when the rest mesh cannot be built.
+RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error);
 
 // Rigid end fittings: a plug at each end, its insert filling the tube's end where the clamps grip and
 // its collar outside, the bottom one bored through for the air line.
@@ -82,7 +94,10 @@ double SectorBlendRadians(const PartDef& part);
 // Builds every solid. Empty when the design can be made; otherwise one line naming where and why
 // (a radius that is not positive, a wall that would fold over itself at this thickness, a design
 // defined only per vertex), and `out` is left untouched.
-std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings = {});
+// `measured` is the radius of per-vertex designs (MeasuredRadiusField); other designs use their
+// profile (DesignRadius).
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings = {},
+                            const RadiusField& measured = {});
 
 }  // namespace sim
 
