@@ -18,6 +18,7 @@ packages=(
   libgtest-dev libgmock-dev  # tests
   libpagmo-dev               # optimizers: CMA-ES, DE, PSO, NSGA-II, ... (sim_optimize; brings Boost and TBB)
   libbenchmark-dev           # benchmarks
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
   libcgal-dev                # exported solids checked by an independent library (tests only; header-only, brings GMP and MPFR)
 )
 
