@@ -8,11 +8,15 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <numbers>
 #include <optional>
 
 #include "errors.h"
 #include "evaluator.h"
+#include "experiment.h"
+#include "experiment_runner.h"
+#include "results_folder.h"
 #include "fields.h"
 #include "sim/batch.h"
 #include "sim/names.h"
@@ -164,9 +168,64 @@ sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std:
     return job;
 }
 
+// Runs an experiment (a dict, or the path of a JSON file) into `out` (new or empty) on `threads`
+// threads and returns its summary and its tables as NumPy structured arrays: results.csv for a sweep
+// or a list, each run's logbook.csv (and pareto_front.csv) for the GA and the optimizers.
+py::dict RunExperimentFromPython(const py::object& experiment, const std::string& out, int threads, std::optional<app::ExperimentKind> kind) {
+    namespace fs = std::filesystem;
+    app::Experiment e;
+    if (py::isinstance<py::dict>(experiment)) {
+        const std::string text = py::str(py::module_::import("json").attr("dumps")(experiment));
+        e = app::ParseExperiment(text, "<dict>");
+    } else {
+        e = app::LoadExperiment(experiment.cast<std::string>());
+    }
+    if (kind && e.kind != *kind) {
+        static const char* names[] = {"sweep", "evolve", "evaluate", "optimizer"};
+        throw py::value_error(std::string("this experiment is a '") + names[static_cast<int>(e.kind)] + "' one; use actuator.run (or the function of that name)");
+    }
+    if (threads < 0) throw py::value_error("threads: must be 0 (one per core) or more");
+    {
+        py::gil_scoped_release release;
+        app::ResultsFolder folder(out, app::FolderMode::Fresh, "python");
+        const auto evaluator = app::MakeLocalEvaluator(threads);
+        app::RunOptions options;
+        options.evaluator = evaluator.get();
+        options.progress = false;
+        options.folder = &folder;
+        app::RunExperiment(e, out, options);
+        folder.FirstResultDone();
+    }
+    const py::object numpy = py::module_::import("numpy");
+    auto table = [&](const fs::path& csv) {
+        return numpy.attr("genfromtxt")(csv.string(), py::arg("delimiter") = ",", py::arg("names") = true, py::arg("dtype") = py::none(),
+                                        py::arg("encoding") = "utf-8", py::arg("ndmin") = 1);
+    };
+    py::dict tables;
+    if (fs::exists(fs::path(out) / "results.csv")) tables["results"] = table(fs::path(out) / "results.csv");
+    for (int r = 1; r <= e.runs; ++r)
+        for (const char* name : {"logbook", "pareto_front"}) {
+            const fs::path csv = fs::path(out) / ("run_" + std::to_string(r)) / (std::string(name) + ".csv");
+            if (fs::exists(csv)) tables[py::str(fmt::format("run_{}_{}", r, name))] = table(csv);
+        }
+    py::dict result;
+    result["summary"] = py::module_::import("json").attr("loads")(app::ReadInputFile((fs::path(out) / "summary.json").string()));
+    result["tables"] = tables;
+    result["folder"] = out;
+    return result;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(actuator, m) {
+    // The command line's bad-input errors are Python's ValueError, with the same one line.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const app::UsageError& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        }
+    });
     m.doc() = "Actuator Workbench: generative design of thin-walled soft pneumatic actuators (the `actuator` command line's models, from Python).";
 
     py::class_<Design>(m, "Shape", "An actuator design: make one with cylinder(), sine(), abs_sine(), bspline() or free_xy().")
@@ -237,4 +296,15 @@ PYBIND11_MODULE(actuator, m) {
         py::arg("shapes"), py::arg("threads") = 0, py::arg("model") = std::string(sim::Name(sim::ModelKind::Thesis)), py::arg("params") = py::none(),
         py::arg("mesh") = py::none(), py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(),
         "Evaluates many designs on the workbench's evaluator (threads; 0: one per core), results in the order given. The GIL is released.");
+    const char* runDoc = "Runs an experiment (a dict in the experiment-file format, or a JSON file's path) into `out` (a new or empty folder) and "
+                         "returns {'summary': ..., 'tables': {name: NumPy structured array}, 'folder': out}.";
+    m.def("run", [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, std::nullopt); },
+          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, runDoc);
+    m.def("sweep", [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, app::ExperimentKind::Sweep); },
+          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, "run() for a sweep experiment; its table is 'results'.");
+    m.def("evolve", [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, app::ExperimentKind::Evolve); },
+          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, "run() for a GA experiment; its tables are 'run_K_logbook'.");
+    m.def("optimize",
+          [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, app::ExperimentKind::Optimize); },
+          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, "run() for an optimizer experiment; 'run_K_logbook' and 'run_K_pareto_front'.");
 }

@@ -75,3 +75,42 @@ def test_numerical_failure_is_a_status_not_an_exception():
     params = actuator.ThesisParams(step_scale=50.0, iterations=2000)
     r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=params)
     assert r.status != "ok"
+
+
+SWEEP = {
+    "id": "py", "title": "python sweep", "sim": {"iterations": 2000},
+    "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
+              "axes": [{"parameter": "amplitude", "from": 1, "to": 4, "points": 3}]},
+    "render": {"figures": False, "thumbnails": False},
+}
+
+
+def test_a_sweep_returns_its_table_and_equals_evaluate(tmp_path):
+    out = actuator.sweep(SWEEP, str(tmp_path / "s"), threads=2)
+    results = out["tables"]["results"]
+    assert list(results["amplitude"]) == [1.0, 2.5, 4.0]
+    one = actuator.evaluate(actuator.sine(2.5, (0.5, math.pi - 0.5)), params=actuator.ThesisParams(iterations=2000))
+    assert float(results["fitness"][1]).hex() == one.fitness.hex()
+    assert out["summary"]["simulations"] == 3
+
+
+def test_a_small_ga_logs_every_generation(tmp_path):
+    ga = {"id": "g", "seed": 3, "sim": {"iterations": 1500},
+          "evolve": {"runs": 1, "population": 6, "generations": 2, "genome": {"kind": "bspline", "length": [4, 6]}},
+          "render": {"figures": False, "thumbnails": False}}
+    out = actuator.evolve(ga, str(tmp_path / "g"))
+    logbook = out["tables"]["run_1_logbook"]
+    assert list(logbook["generation"]) == [0, 1, 2]
+    assert all(logbook["best"] >= logbook["median"])
+
+
+def test_bad_experiments_raise_value_error(tmp_path):
+    with pytest.raises(ValueError, match="sim.iteration"):
+        actuator.run({"id": "x", "sim": {"iteration": 5}, "sweep": SWEEP["sweep"]}, str(tmp_path / "x"))
+    with pytest.raises(ValueError, match="is a 'sweep' one"):
+        actuator.evolve(SWEEP, str(tmp_path / "y"))
+    (tmp_path / "full").mkdir()
+    (tmp_path / "full" / "keep.txt").write_text("mine")
+    with pytest.raises(ValueError):
+        actuator.sweep(SWEEP, str(tmp_path / "full"))
+    assert (tmp_path / "full" / "keep.txt").read_text() == "mine"
