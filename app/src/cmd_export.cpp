@@ -29,9 +29,12 @@ int RunExport(int argc, char** argv, int first) {
     Cli cli("export", "Writes a design as solids to print and cast, into --out DIR (new or empty): actuator.stl (the wall as a closed solid of "
                       "the given thickness around the rest surface, ends closed by flat annuli), mold_core.stl (the inner cavity with a "
                       "handle through each end of the block), mold_shell_a.stl and mold_shell_b.stl (the block around the actuator split "
-                      "through its axis at y = 0) mold_assembly.png (the parts pulled apart) and manifest.json (each file's volume in mm^3, "
-                      "bounds, triangles; the silicone's volume and mass). The design is given as for simulate. Under --model thesis one design unit is --unit-mm millimetres "
-                      "(the 30-turn mesh is 30 units long); under membrane and shell the geometry options give radius, length and wall.");
+                      "through its axis at y = 0, with registration pins on A and holes in B, a pour sprue in A's top wall and vents in B's), "
+                      "with --fittings fitting_bottom.stl and fitting_top.stl (end plugs, the bottom one bored for the air line), "
+                      "mold_assembly.png (the parts side by side) and manifest.json (each file's volume in mm^3, bounds, triangles; the "
+                      "silicone's volume and mass). The design is given as for simulate. Under --model thesis one design unit is --unit-mm "
+                      "millimetres (the 30-turn mesh is 30 units long); under membrane and shell the geometry options give radius, length "
+                      "and wall. A design that cannot be made is refused naming where and why, and nothing is written.");
     ShapeOptions shape;
     ModelOptions model;
     std::string from, out;

@@ -24,7 +24,7 @@ struct ComparisonRow {
     double thesis = NAN;   // NaN when the thesis gives no number
     // Why ours differs, computed from the run's own numbers (thesis_check.h's sentences), and whether
     // that accounts for the difference.
-    std::string why;
+    std::string why{};
     bool explained = false;
 };
 

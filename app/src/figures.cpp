@@ -324,7 +324,10 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
     // One design's figures share a camera: its "before" mesh is the same size in each.
     std::vector<const sim::Positions*> framed;
     for (const auto& [load, result] : loads)
-        if (result) framed.insert(framed.end(), {&result->initial, &result->final});
+        if (result) {
+            framed.push_back(&result->initial);
+            framed.push_back(&result->final);
+        }
     for (const auto& [load, result] : loads) {
         if (!result) continue;
         const std::string name = f.prefix + load + ".png";

@@ -31,7 +31,7 @@ struct ItemLine {
     std::string anchor;      // the experiment's section in the report
     ThesisItem item;
     double thesis = NAN, ours = NAN, tolerance = NAN;
-    std::string why;         // the computed reason, for explained and unexplained differences
+    std::string why{};       // the computed reason, for explained and unexplained differences
     Verdict verdict = Verdict::Unexplained;
 };
 // The experiment's items against its outcome's rows. An item whose row the run did not produce is
