@@ -42,12 +42,16 @@ std::string Signed(double v) { return std::isfinite(v) ? fmt::format("{:+.3g}", 
 
 // The comparison table at the top: every thesis table and figure the experiments reproduce, with our
 // number, the difference, and a verdict decided by rule (thesis_check.h).
-std::string ItemsMarkdown(const std::vector<ReportEntry>& entries, bool quick) {
+std::vector<ItemLine> AllItemLines(const std::vector<ReportEntry>& entries) {
     std::vector<ItemLine> lines;
     for (const auto& entry : entries) {
         auto more = ItemLines(entry.experiment, entry.outcome.rows, entry.folder);
         lines.insert(lines.end(), more.begin(), more.end());
     }
+    return lines;
+}
+
+std::string ItemsMarkdown(const std::vector<ItemLine>& lines, bool quick) {
     if (lines.empty()) return "";
     int counts[3] = {0, 0, 0};
     for (const auto& line : lines) ++counts[static_cast<int>(line.verdict)];
@@ -139,19 +143,15 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
     md += "| evaluations | " + std::to_string(evaluations) + " (archived) |\n";
     // Timing lines: this session's, so a resumed run states what it did (tests skip them).
     md += fmt::format("| wall time | {:.1f} s ({:.1f} min), this session |\n", seconds, seconds / 60);
-    md += fmt::format("| throughput | {} simulations, {:.1f} evaluations/s on {}, figures included, this session |\n\n", simulations,
+    md += fmt::format("| throughput | {} simulations, {:.1f} evaluations/s on {}, figures included, this session |\n", simulations,
                       seconds > 0 ? simulations / seconds : 0, evaluator);
-    const std::string items = ItemsMarkdown(entries, quick);
+    const std::vector<ItemLine> items = AllItemLines(entries);
     if (!items.empty()) {
-        std::vector<ItemLine> all;
-        for (const auto& entry : entries) {
-            auto more = ItemLines(entry.experiment, entry.outcome.rows, entry.folder);
-            all.insert(all.end(), more.begin(), more.end());
-        }
-        const auto unexplained = std::count_if(all.begin(), all.end(), [](const ItemLine& l) { return l.verdict == Verdict::Unexplained; });
-        md.insert(md.rfind("\n\n"), fmt::format("\n| thesis items | {} compared, **{} unexplained** ([table](#thesis-items)) |", all.size(), unexplained));
-        md += items + BesideMarkdown(entries);
+        const auto unexplained = std::count_if(items.begin(), items.end(), [](const ItemLine& l) { return l.verdict == Verdict::Unexplained; });
+        md += fmt::format("| thesis items | {} compared, **{} unexplained** ([table](#thesis-items)) |\n", items.size(), unexplained);
     }
+    md += "\n";
+    if (!items.empty()) md += ItemsMarkdown(items, quick) + BesideMarkdown(entries);
     md += "## Contents\n\n";
     bool chapterListed = false;
     for (const auto& entry : entries) {
