@@ -1,7 +1,9 @@
-// `import actuator`: the workbench from Python. Shapes, the models' def structs (their fields bound
-// from app/fields.h, so names, defaults and ranges are the C++ ones, written once), evaluate and
-// evaluate_many on the workbench's evaluator with the GIL released, and results with NumPy arrays.
+// `import actuator`: the workbench from Python. Shapes, the models' def structs (def_binding.h),
+// evaluate and evaluate_many on the workbench's evaluators (threads, servers, or any Python map:
+// map_evaluator.h) with the GIL released, experiments with their tables as NumPy or pandas, results
+// with NumPy arrays, pictures, and archives as iterables of records.
 // Bad input raises ValueError with the command line's message; numerical failure is a status.
+#include <pybind11/eval.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -12,120 +14,25 @@
 #include <numbers>
 #include <optional>
 
+#include "archive.h"
+#include "def_binding.h"
 #include "errors.h"
 #include "evaluator.h"
 #include "experiment.h"
 #include "experiment_runner.h"
+#include "files.h"
+#include "figures.h"
+#include "map_evaluator.h"
 #include "results_folder.h"
-#include "fields.h"
 #include "sim/batch.h"
 #include "sim/names.h"
 #include "sim/shape.h"
 #include "sim/shell.h"
 
 namespace py = pybind11;
+using pybinding::BindDef;
 
 namespace {
-
-// Visitors of app/fields.h for one field, found by key: read it as a Python object (int, float or
-// the enum's name), set it with the command line's range checks, or list the keys.
-struct FieldReader {
-    const std::string& key;
-    py::object& out;
-    void Integer(const char* k, const int& v, const char*, long long, long long) {
-        if (key == k) out = py::int_(v);
-    }
-    void Number(const char* k, const double& v, const char*, double, double) {
-        if (key == k) out = py::float_(v);
-    }
-    template <class E>
-    void Enum(const char* k, const E& v, const char*) {
-        if (key == k) out = py::str(sim::Name(v));
-    }
-};
-
-struct FieldWriter {
-    const std::string& key;
-    const py::object& value;
-    void Integer(const char* k, int& v, const char*, long long min, long long max) {
-        if (key != k) return;
-        const long long x = value.cast<long long>();
-        if (x < min || x > max) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", k, x, min, max));
-        v = static_cast<int>(x);
-    }
-    void Number(const char* k, double& v, const char*, double min, double max) {
-        if (key != k) return;
-        const double x = value.cast<double>();
-        if (!(x >= min && x <= max)) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", k, x, min, max));
-        v = x;
-    }
-    template <class E>
-    void Enum(const char* k, E& v, const char*) {
-        if (key != k) return;
-        const std::string text = value.cast<std::string>();
-        const auto parsed = sim::FromName<E>(text);
-        if (!parsed) throw py::value_error(fmt::format("{}: unknown value '{}' (choose {})", k, text, sim::Choices<E>()));
-        v = *parsed;
-    }
-};
-
-template <class Def>
-py::object GetField(const Def& def, const std::string& key) {
-    py::object out;
-    app::VisitFields(def, FieldReader{key, out});
-    return out;
-}
-
-template <class Def>
-void SetField(Def& def, const std::string& key, const py::object& value) {
-    app::VisitFields(def, FieldWriter{key, value});
-}
-
-template <class Def>
-struct FieldLister {
-    std::vector<std::string>& keys;
-    py::class_<Def>& cls;
-    void Add(const char* k, const char* help) {
-        keys.push_back(k);
-        const std::string key = k;
-        cls.def_property(
-            k, [key](const Def& d) { return GetField(d, key); }, [key](Def& d, const py::object& v) { SetField(d, key, v); }, help);
-    }
-    void Integer(const char* k, int&, const char* help, long long, long long) { Add(k, help); }
-    void Number(const char* k, double&, const char* help, double, double) { Add(k, help); }
-    template <class E>
-    void Enum(const char* k, E&, const char* help) {
-        Add(k, help);
-    }
-};
-
-// A def struct as a Python class: a keyword constructor and one attribute per field, with its help.
-template <class Def>
-void BindDef(py::module_& m, const char* name, const char* doc, Def defaults = Def{}) {
-    py::class_<Def> cls(m, name, doc);
-    std::vector<std::string> keys;
-    Def probe = defaults;
-    app::VisitFields(probe, FieldLister<Def>{keys, cls});
-    cls.def(py::init([defaults, keys](const py::kwargs& kwargs) {
-        Def def = defaults;
-        for (const auto& [key, value] : kwargs) {
-            const std::string k = key.template cast<std::string>();
-            if (std::find(keys.begin(), keys.end(), k) == keys.end()) {
-                std::string valid;
-                for (const auto& v : keys) valid += (valid.empty() ? "" : ", ") + v;
-                throw py::value_error(fmt::format("unknown field '{}' (valid: {})", k, valid));
-            }
-            SetField(def, k, py::reinterpret_borrow<py::object>(value));
-        }
-        return def;
-    }));
-    const std::string className = name;
-    cls.def("__repr__", [keys, className](const Def& d) {
-        std::string text = className + "(";
-        for (size_t k = 0; k < keys.size(); ++k) text += (k ? ", " : "") + keys[k] + "=" + std::string(py::repr(GetField(d, keys[k])));
-        return text + ")";
-    });
-}
 
 // A design, held whole: pybind11's std::variant caster would otherwise unpack sim::Shape.
 struct Design {
@@ -147,31 +54,126 @@ py::array_t<double> Rows(const sim::Positions& p) {
 // The job for a shape under a model: thesis (params, mesh) or membrane/shell (the shell def's parts).
 sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std::optional<sim::SimParams>& params, const std::optional<sim::MeshDef>& mesh,
                    const std::optional<sim::GeometryDef>& geometry, const std::optional<sim::MaterialDef>& material,
-                   const std::optional<sim::LoadDef>& load) {
+                   const std::optional<sim::LoadDef>& load, const std::optional<sim::SolverDef>& solver = std::nullopt,
+                   const std::optional<sim::FibreDef>& fibres = std::nullopt) {
     sim::EvalJob job;
     const auto kind = sim::FromName<sim::ModelKind>(model);
     if (!kind) throw py::value_error("model: unknown value '" + model + "' (choose " + sim::Choices<sim::ModelKind>() + ")");
     job.model = *kind;
     job.shape = shape;
     if (job.model == sim::ModelKind::Thesis) {
-        if (geometry || material || load) throw py::value_error("geometry, material and load are the membrane and shell models'; the thesis model takes params and mesh");
+        if (geometry || material || load || solver || fibres)
+            throw py::value_error("geometry, material, load, solver and fibres are the membrane and shell models'; the thesis model takes params and mesh");
         job.params = params.value_or(sim::DefaultSimParams());
         job.mesh = mesh.value_or(sim::DefaultMeshDef());
     } else {
-        if (params || mesh) throw py::value_error(std::string("params and mesh are the thesis model's; the ") + model + " model takes geometry, material and load");
+        if (params || mesh) throw py::value_error(std::string("params and mesh are the thesis model's; the ") + model + " model takes geometry, material, load, solver and fibres");
         job.shell = sim::DefaultShellDef();
         if (geometry) job.shell.geometry = *geometry;
         if (material) job.shell.material = *material;
         if (load) job.shell.load = *load;
+        if (solver) job.shell.solver = *solver;
+        if (fibres) job.shell.fibres = *fibres;
     }
     if (const std::string error = sim::JobError(job); !error.empty()) throw py::value_error(error);
     return job;
 }
 
-// Runs an experiment (a dict, or the path of a JSON file) into `out` (new or empty) on `threads`
-// threads and returns its summary and its tables as NumPy structured arrays: results.csv for a sweep
+// A result with the job that made it: pictures and the shell model's outputs need both.
+struct Evaluated {
+    sim::EvalJob job;
+    sim::SimResult result;
+};
+
+// An archive's record: where it came from, and its result.
+struct Record {
+    app::ArchiveRecord record;
+};
+
+// The archive read a few records at a time (memory stays bounded on a 100,000-record archive).
+class ArchiveIterator {
+public:
+    ArchiveIterator(std::string path, bool meshes) : path_(std::move(path)), meshes_(meshes) {}
+
+    Record Next() {
+        if (next_ == buffer_.size()) {
+            if (done_) throw py::stop_iteration();
+            Refill();
+            if (buffer_.empty()) throw py::stop_iteration();
+        }
+        return Record{std::move(buffer_[next_++])};
+    }
+
+private:
+    static constexpr size_t kChunk = 256;
+
+    void Refill() {
+        buffer_.clear();
+        next_ = 0;
+        py::gil_scoped_release release;
+        const app::ArchiveScan scan = app::ScanArchive(
+            path_, meshes_,
+            [&](app::ArchiveRecord&& r) {
+                buffer_.push_back(std::move(r));
+                return buffer_.size() < kChunk;
+            },
+            place_);
+        // A version-1 archive reads only from its start: take it whole.
+        if (scan.version == 1 && buffer_.size() == kChunk) {
+            buffer_.clear();
+            app::ScanArchive(path_, meshes_, [&](app::ArchiveRecord&& r) {
+                buffer_.push_back(std::move(r));
+                return true;
+            });
+            done_ = true;
+        }
+        place_ = {scan.goodBytes, scan.records};
+        if (buffer_.size() < kChunk) done_ = true;
+        if (done_ && (scan.corrupt || (scan.tornTail && buffer_.empty())))
+            if (scan.corrupt) throw app::UsageError(app::Quote(path_) + ": " + scan.problem);
+    }
+
+    std::string path_;
+    bool meshes_;
+    app::ArchivePlace place_;
+    std::vector<app::ArchiveRecord> buffer_;
+    size_t next_ = 0;
+    bool done_ = false;
+};
+
+// A CSV table as a pandas DataFrame (when asked, or when pandas is there and nothing was said) or
+// as a NumPy structured array.
+py::object Table(const std::filesystem::path& csv, bool asFrame) {
+    // round_trip: pandas's default parser may be off in the last bit; the CSVs hold exact round-trip numbers.
+    if (asFrame) return py::module_::import("pandas").attr("read_csv")(csv.string(), py::arg("float_precision") = "round_trip");
+    return py::module_::import("numpy").attr("genfromtxt")(csv.string(), py::arg("delimiter") = ",", py::arg("names") = true, py::arg("dtype") = py::none(),
+                                                          py::arg("encoding") = "utf-8", py::arg("ndmin") = 1);
+}
+
+bool PandasInstalled() {
+    return !py::module_::import("importlib.util").attr("find_spec")("pandas").is_none();
+}
+
+bool FramesWanted(const py::object& asFrame) {
+    if (!asFrame.is_none()) {
+        const bool wanted = asFrame.cast<bool>();
+        if (wanted && !PandasInstalled())
+            throw py::value_error("as_frame=True: pandas is not installed (apt-get install python3-pandas), or pass as_frame=False for NumPy arrays");
+        return wanted;
+    }
+    return PandasInstalled();
+}
+
+struct RunArgs {
+    int threads = 0;
+    py::object map, workers, asFrame;
+    bool resume = false;
+};
+
+// Runs an experiment (a dict, or the path of a JSON file) into `out` (new or empty; or, with resume,
+// a folder an interrupted run left) and returns its summary and its tables: results.csv for a sweep
 // or a list, each run's logbook.csv (and pareto_front.csv) for the GA and the optimizers.
-py::dict RunExperimentFromPython(const py::object& experiment, const std::string& out, int threads, std::optional<app::ExperimentKind> kind) {
+py::dict RunExperimentFromPython(const py::object& experiment, const std::string& out, const RunArgs& args, std::optional<app::ExperimentKind> kind) {
     namespace fs = std::filesystem;
     app::Experiment e;
     if (py::isinstance<py::dict>(experiment)) {
@@ -184,35 +186,82 @@ py::dict RunExperimentFromPython(const py::object& experiment, const std::string
         static const char* names[] = {"sweep", "evolve", "evaluate", "optimizer"};
         throw py::value_error(std::string("this experiment is a '") + names[static_cast<int>(e.kind)] + "' one; use actuator.run (or the function of that name)");
     }
-    if (threads < 0) throw py::value_error("threads: must be 0 (one per core) or more");
+    const bool frames = FramesWanted(args.asFrame);
+    const std::unique_ptr<app::Evaluator> evaluator = pybinding::MakePythonEvaluator(args.threads, args.map, args.workers);
     {
         py::gil_scoped_release release;
-        app::ResultsFolder folder(out, app::FolderMode::Fresh, "python");
-        const auto evaluator = app::MakeLocalEvaluator(threads);
+        app::ResultsFolder folder(out, args.resume ? app::FolderMode::Resume : app::FolderMode::Fresh, "python");
         app::RunOptions options;
         options.evaluator = evaluator.get();
         options.progress = false;
+        options.resume = args.resume;
         options.folder = &folder;
         app::RunExperiment(e, out, options);
         folder.FirstResultDone();
     }
-    const py::object numpy = py::module_::import("numpy");
-    auto table = [&](const fs::path& csv) {
-        return numpy.attr("genfromtxt")(csv.string(), py::arg("delimiter") = ",", py::arg("names") = true, py::arg("dtype") = py::none(),
-                                        py::arg("encoding") = "utf-8", py::arg("ndmin") = 1);
-    };
     py::dict tables;
-    if (fs::exists(fs::path(out) / "results.csv")) tables["results"] = table(fs::path(out) / "results.csv");
+    if (fs::exists(fs::path(out) / "results.csv")) tables["results"] = Table(fs::path(out) / "results.csv", frames);
     for (int r = 1; r <= e.runs; ++r)
         for (const char* name : {"logbook", "pareto_front"}) {
             const fs::path csv = fs::path(out) / ("run_" + std::to_string(r)) / (std::string(name) + ".csv");
-            if (fs::exists(csv)) tables[py::str(fmt::format("run_{}_{}", r, name))] = table(csv);
+            if (fs::exists(csv)) tables[py::str(fmt::format("run_{}_{}", r, name))] = Table(csv, frames);
         }
     py::dict result;
     result["summary"] = py::module_::import("json").attr("loads")(app::ReadInputFile((fs::path(out) / "summary.json").string()));
     result["tables"] = tables;
     result["folder"] = out;
     return result;
+}
+
+// The picture `view` of a result: "before_after" (the command line's inflation figure) or
+// "turntable" (the deformed mesh turned by angle_deg).
+render::Image RenderResult(const Evaluated& e, const std::string& view, double angleDeg, int width, int height, const std::string& colouringName,
+                           int supersample) {
+    const auto colouring = sim::FromName<app::Colouring>(colouringName);
+    if (!colouring) throw py::value_error("colouring: unknown value '" + colouringName + "' (choose " + sim::Choices<app::Colouring>() + ")");
+    if (const std::string error = app::ColouringError(*colouring, e.job); !error.empty()) throw py::value_error("colouring: " + error);
+    if (view != "before_after" && view != "turntable") throw py::value_error("view: unknown value '" + view + "' (choose before_after, turntable)");
+    if (width < 16 || height < 16 || width > 8192 || height > 8192) throw py::value_error("width and height: 16 to 8192 pixels");
+    if (supersample < 1 || supersample > 4) throw py::value_error("supersample: 1 to 4");
+    if (e.result.final.Size() == 0) throw py::value_error("this result has no meshes (an archive read with meshes=False?)");
+    py::gil_scoped_release release;
+    const std::string title = app::ShapeTitle(e.job.shape);
+    const render::Scene scene = view == "before_after" ? app::BeforeAfterScene(title, e.result, e.job, *colouring)
+                                                       : app::TurntableScene(title, e.result, e.job, angleDeg, *colouring);
+    return app::MakeRenderer(width, height, supersample)->Render(scene);
+}
+
+py::array_t<std::uint8_t> ImageArray(render::Image&& image) {
+    auto* owned = new std::vector<std::uint8_t>(std::move(image.rgba));
+    py::capsule free(owned, [](void* p) { delete static_cast<std::vector<std::uint8_t>*>(p); });
+    return py::array_t<std::uint8_t>({image.height, image.width, 4}, owned->data(), free);
+}
+
+py::dict ShellOutputs(const Evaluated& e) {
+    const sim::ShellOutputs& o = e.result.shell;
+    py::dict d;
+    if (e.job.model == sim::ModelKind::Thesis) return d;
+    auto array = [](const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); };
+    d["curve_pressure_kpa"] = array(o.curvePressureKpa);
+    d["curve_contraction_percent"] = array(o.curveContractionPercent);
+    d["curve_volume_mm3"] = array(o.curveVolumeMm3);
+    d["target_pressure_kpa"] = o.targetPressureKpa;
+    d["limit_pressure_kpa"] = o.limitPressureKpa;
+    d["blocking_force_n"] = o.blockingForceN;
+    d["axial_stiffness_n_per_mm"] = o.axialStiffnessNPerMm;
+    d["rest_volume_mm3"] = o.restVolumeMm3;
+    d["volume_mm3"] = o.volumeMm3;
+    d["max_stretch"] = o.maxStretch;
+    d["max_stress_kpa"] = o.maxStressKpa;
+    d["stretch_limit"] = o.stretchLimit;
+    d["tensile_strength_kpa"] = o.tensileStrengthKpa;
+    d["displacement_mm"] = o.displacementMm;
+    d["max_fibre_strain"] = o.maxFibreStrain;
+    d["mean_fibre_strain"] = o.meanFibreStrain;
+    d["fibre_angle_deg"] = o.fibreAngleDeg;
+    d["newton_iterations"] = o.newtonIterations;
+    d["factorizations"] = o.factorizations;
+    return d;
 }
 
 }  // namespace
@@ -230,7 +279,8 @@ PYBIND11_MODULE(actuator, m) {
 
     py::class_<Design>(m, "Shape", "An actuator design: make one with cylinder(), sine(), abs_sine(), bspline() or free_xy().")
         .def_property_readonly("family", [](const Design& d) { return std::string(sim::ShapeName(d.shape)); })
-        .def("__repr__", [](const Design& d) { return std::string("<actuator.Shape ") + sim::ShapeName(d.shape) + ">"; });
+        .def_property_readonly("title", [](const Design& d) { return app::ShapeTitle(d.shape); })
+        .def("__repr__", [](const Design& d) { return "<actuator.Shape " + app::ShapeTitle(d.shape) + ">"; });
     m.def("cylinder", []() { return Design{sim::CylinderShape{}}; }, "The plain tube of radius 1.");
     const sim::SineShape sine;
     m.def("sine", [](double amplitude, std::pair<double, double> phase) { return Design{sim::SineShape{amplitude, phase.first, phase.second}}; },
@@ -255,56 +305,142 @@ PYBIND11_MODULE(actuator, m) {
 
     BindDef<sim::SimParams>(m, "ThesisParams", "The thesis model's constants (shared/MODEL.md).", sim::DefaultSimParams());
     BindDef<sim::MeshDef>(m, "Mesh", "The thesis model's helix.", sim::DefaultMeshDef());
-    BindDef<sim::GeometryDef>(m, "Geometry", "The membrane and shell models' tube, in mm.", sim::DefaultShellDef().geometry);
-    BindDef<sim::MaterialDef>(m, "Material", "The membrane and shell models' material (a preset's constants, or your own).",
-                              sim::DefaultShellDef().material);
-    BindDef<sim::LoadDef>(m, "Load", "The membrane and shell models' load.", sim::DefaultShellDef().load);
+    const sim::ShellDef shell = sim::DefaultShellDef();
+    BindDef<sim::GeometryDef>(m, "Geometry", "The membrane and shell models' tube, in mm.", shell.geometry);
+    BindDef<sim::MaterialDef>(m, "Material", "The membrane and shell models' material (a preset's constants, or your own).", shell.material);
+    BindDef<sim::LoadDef>(m, "Load", "The membrane and shell models' load.", shell.load);
+    BindDef<sim::SolverDef>(m, "Solver", "The membrane and shell models' Newton solver.", shell.solver);
+    BindDef<sim::FibreDef>(m, "Fibres", "Fibres on the membrane or shell wall (SHELL.md section 7).", shell.fibres);
 
-    py::class_<sim::SimResult>(m, "Result", "One evaluation: numbers, status, and the meshes before and after.")
-        .def_property_readonly("status", [](const sim::SimResult& r) { return std::string(sim::Name(r.status)); })
-        .def_readonly("fitness", &sim::SimResult::fitness, "thesis model: mesh units; membrane and shell: contraction in percent at the target pressure")
-        .def_readonly("contraction_percent", &sim::SimResult::contractionPercent, "positive = shorter")
-        .def_readonly("iterations", &sim::SimResult::iterationsRun, "relaxation steps run (thesis model)")
-        .def_property_readonly("initial", [](const sim::SimResult& r) { return Rows(r.initial); }, "(N, 3) rest positions")
-        .def_property_readonly("final", [](const sim::SimResult& r) { return Rows(r.final); }, "(N, 3) positions after the load")
-        .def("__repr__", [](const sim::SimResult& r) {
-            return fmt::format("<actuator.Result {} fitness={:.6g} contraction={:.4g}%>", sim::Name(r.status), r.fitness, r.contractionPercent);
+    py::class_<Evaluated>(m, "Result", "One evaluation: numbers, status, the meshes before and after, and the job that made it.")
+        .def_property_readonly("status", [](const Evaluated& e) { return std::string(sim::Name(e.result.status)); },
+                               "ok, or why the evaluation failed (a status, never an exception)")
+        .def_property_readonly("fitness", [](const Evaluated& e) { return e.result.fitness; },
+                               "thesis model: mesh units; membrane and shell: contraction in percent at the target pressure")
+        .def_property_readonly("contraction_percent", [](const Evaluated& e) { return e.result.contractionPercent; }, "positive = shorter")
+        .def_property_readonly("iterations", [](const Evaluated& e) { return e.result.iterationsRun; },
+                               "thesis: relaxation steps run; membrane and shell: Newton iterations, all load steps")
+        .def_property_readonly("elapsed_ms", [](const Evaluated& e) { return e.result.elapsedMs; }, "wall time of the solve, ms")
+        .def_property_readonly("model", [](const Evaluated& e) { return std::string(sim::Name(e.job.model)); })
+        .def_property_readonly("shape", [](const Evaluated& e) { return Design{e.job.shape}; })
+        .def_property_readonly("initial", [](const Evaluated& e) { return Rows(e.result.initial); }, "(N, 3) rest positions")
+        .def_property_readonly("final", [](const Evaluated& e) { return Rows(e.result.final); }, "(N, 3) positions after the load")
+        .def_property_readonly("shell", &ShellOutputs,
+                               "membrane and shell models: the pressure-contraction-volume curve (NumPy arrays) and the numbers at the "
+                               "target pressure, units in the names; {} for the thesis model")
+        .def("__repr__", [](const Evaluated& e) {
+            return fmt::format("<actuator.Result {} {} fitness={:.6g} contraction={:.4g}%>", sim::Name(e.job.model), sim::Name(e.result.status),
+                               e.result.fitness, e.result.contractionPercent);
         });
 
     m.def(
         "evaluate",
         [](const Design& design, const std::string& model, std::optional<sim::SimParams> params, std::optional<sim::MeshDef> mesh,
-           std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load) {
-            const sim::EvalJob job = JobOf(design.shape, model, params, mesh, geometry, material, load);
+           std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load,
+           std::optional<sim::SolverDef> solver, std::optional<sim::FibreDef> fibres) {
+            Evaluated e{JobOf(design.shape, model, params, mesh, geometry, material, load, solver, fibres), {}};
             py::gil_scoped_release release;
-            return sim::Evaluate(job);
+            e.result = sim::Evaluate(e.job);
+            return e;
         },
         py::arg("shape"), py::arg("model") = std::string(sim::Name(sim::ModelKind::Thesis)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
-        py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(),
-        "Evaluates one design under a model: 'thesis' (params, mesh) or 'membrane'/'shell' (geometry, material, load).");
+        py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(), py::arg("solver") = py::none(),
+        py::arg("fibres") = py::none(),
+        "Evaluates one design under a model: 'thesis' (params, mesh) or 'membrane'/'shell' (geometry, material, load, solver, fibres).");
     m.def(
         "evaluate_many",
-        [](const std::vector<Design>& designs, int threads, const std::string& model, std::optional<sim::SimParams> params,
-           std::optional<sim::MeshDef> mesh, std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material,
-           std::optional<sim::LoadDef> load) {
-            if (threads < 0) throw py::value_error("threads: must be 0 (one per core) or more");
+        [](const std::vector<Design>& designs, int threads, const py::object& map, const py::object& workers, size_t batch, const std::string& model,
+           std::optional<sim::SimParams> params, std::optional<sim::MeshDef> mesh, std::optional<sim::GeometryDef> geometry,
+           std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load, std::optional<sim::SolverDef> solver,
+           std::optional<sim::FibreDef> fibres) {
             std::vector<sim::EvalJob> jobs;
-            for (const auto& design : designs) jobs.push_back(JobOf(design.shape, model, params, mesh, geometry, material, load));
-            py::gil_scoped_release release;
-            return app::MakeLocalEvaluator(threads)->EvaluateAll(jobs);
+            for (const auto& design : designs) jobs.push_back(JobOf(design.shape, model, params, mesh, geometry, material, load, solver, fibres));
+            const std::unique_ptr<app::Evaluator> evaluator = pybinding::MakePythonEvaluator(threads, map, workers, batch);
+            std::vector<Evaluated> out(jobs.size());
+            {
+                py::gil_scoped_release release;
+                evaluator->Evaluate(jobs, [&](size_t k, sim::SimResult&& r) { out[k] = Evaluated{std::move(jobs[k]), std::move(r)}; });
+            }
+            return out;
         },
-        py::arg("shapes"), py::arg("threads") = 0, py::arg("model") = std::string(sim::Name(sim::ModelKind::Thesis)), py::arg("params") = py::none(),
-        py::arg("mesh") = py::none(), py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(),
-        "Evaluates many designs on the workbench's evaluator (threads; 0: one per core), results in the order given. The GIL is released.");
-    const char* runDoc = "Runs an experiment (a dict in the experiment-file format, or a JSON file's path) into `out` (a new or empty folder) and "
-                         "returns {'summary': ..., 'tables': {name: NumPy structured array}, 'folder': out}.";
-    m.def("run", [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, std::nullopt); },
-          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, runDoc);
-    m.def("sweep", [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, app::ExperimentKind::Sweep); },
-          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, "run() for a sweep experiment; its table is 'results'.");
-    m.def("evolve", [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, app::ExperimentKind::Evolve); },
-          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, "run() for a GA experiment; its tables are 'run_K_logbook'.");
-    m.def("optimize",
-          [](const py::object& e, const std::string& out, int threads) { return RunExperimentFromPython(e, out, threads, app::ExperimentKind::Optimize); },
-          py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, "run() for an optimizer experiment; 'run_K_logbook' and 'run_K_pareto_front'.");
+        py::arg("shapes"), py::arg("threads") = 0, py::arg("map") = py::none(), py::arg("workers") = py::none(), py::arg("batch") = pybinding::kDefaultMapBatch,
+        py::arg("model") = std::string(sim::Name(sim::ModelKind::Thesis)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
+        py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(), py::arg("solver") = py::none(),
+        py::arg("fibres") = py::none(),
+        "Evaluates many designs, results in the order given, identical wherever they run: on this machine's threads (0: one per core; "
+        "the GIL is released), on evaluation servers (workers=['host:port', 'local', ...]), or through any map-like callable "
+        "(map=builtins.map, an executor's map, a pool's map, or a Dask client), `batch` jobs at a time.");
+
+    const char* runDoc = "Runs an experiment (a dict in the experiment-file format, or a JSON file's path) into `out` (a new or empty folder; "
+                         "with resume=True, the folder an interrupted run left, which then ends exactly as an uninterrupted run) and returns "
+                         "{'summary': ..., 'tables': {name: table}, 'folder': out}. Tables are pandas DataFrames when pandas is installed "
+                         "(as_frame=None) or asked for (True), else NumPy structured arrays. Evaluations run on `threads`, on "
+                         "evaluation servers (workers) or through a map-like callable (map: see evaluate_many); results do not depend on which.";
+    auto bindRun = [&](const char* name, std::optional<app::ExperimentKind> kind, const std::string& doc) {
+        m.def(
+            name,
+            [kind](const py::object& e, const std::string& out, int threads, const py::object& map, const py::object& workers, bool resume,
+                   const py::object& asFrame) { return RunExperimentFromPython(e, out, RunArgs{threads, map, workers, asFrame, resume}, kind); },
+            py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, py::arg("map") = py::none(), py::arg("workers") = py::none(),
+            py::arg("resume") = false, py::arg("as_frame") = py::none(), doc.c_str());
+    };
+    bindRun("run", std::nullopt, runDoc);
+    bindRun("sweep", app::ExperimentKind::Sweep, std::string("A sweep experiment; its table is 'results'. ") + runDoc);
+    bindRun("evolve", app::ExperimentKind::Evolve, std::string("A GA experiment; its tables are 'run_K_logbook'. ") + runDoc);
+    bindRun("optimize", app::ExperimentKind::Optimize,
+            std::string("An optimizer experiment (pagmo); its tables are 'run_K_logbook' and 'run_K_pareto_front'. ") + runDoc);
+
+    m.def(
+        "render",
+        [](const Evaluated& e, const py::object& path, const std::string& view, double angleDeg, int width, int height, const std::string& colouring,
+           int supersample, bool overwrite) -> py::object {
+            std::string target;
+            if (!path.is_none()) {
+                target = py::str(path);
+                if (std::filesystem::exists(target) && !overwrite)
+                    throw py::value_error("path: " + target + " exists; pass overwrite=True to replace it, or another path");
+            }
+            render::Image image = RenderResult(e, view, angleDeg, width, height, colouring, supersample);
+            if (target.empty()) return ImageArray(std::move(image));
+            app::WritePng(target, image, 6);
+            return py::none();
+        },
+        py::arg("result"), py::arg("path") = py::none(), py::arg("view") = "before_after", py::arg("angle_deg") = 0.0,
+        py::arg("width") = render::DefaultRenderDef().width, py::arg("height") = render::DefaultRenderDef().height, py::arg("colouring") = "auto",
+        py::arg("supersample") = render::DefaultRenderDef().supersample, py::arg("overwrite") = false,
+        "Draws a result offscreen (OSMesa): 'before_after' (the rest mesh and the loaded one) or 'turntable' (the loaded mesh turned "
+        "angle_deg about its axis). Returns an (H, W, 4) uint8 RGBA array, or writes a PNG to `path` (whole or not at all) and returns None.");
+
+    py::class_<Record>(m, "Record", "One evaluation from an archive (DIR/evaluations.capnp).")
+        .def_property_readonly("id", [](const Record& r) { return r.record.id; }, "its place in the archive, from 0 (the evaluation id)")
+        .def_property_readonly("experiment", [](const Record& r) { return r.record.experiment; })
+        .def_property_readonly("run", [](const Record& r) { return r.record.run; }, "GA or optimizer run, 1-based; 0 for sweeps and lists")
+        .def_property_readonly("generation", [](const Record& r) { return r.record.generation; }, "-1 for sweeps and lists")
+        .def_property_readonly("role", [](const Record& r) { return std::string(sim::Name(r.record.role)); })
+        .def_property_readonly("label", [](const Record& r) { return r.record.label; })
+        .def_property_readonly("result", [](const Record& r) { return Evaluated{r.record.job, r.record.result}; })
+        .def("__repr__", [](const Record& r) {
+            return fmt::format("<actuator.Record {} {} {} fitness={:.6g}>", r.record.id, sim::Name(r.record.role), r.record.label, r.record.result.fitness);
+        });
+    py::class_<ArchiveIterator>(m, "_ArchiveIterator")
+        .def("__iter__", [](ArchiveIterator& it) -> ArchiveIterator& { return it; })
+        .def("__next__", &ArchiveIterator::Next);
+    m.def(
+        "open_archive",
+        [](const std::string& path, bool meshes) {
+            app::ScanArchive(path, false, [](app::ArchiveRecord&&) { return false; });  // refuses a missing file or a non-archive now
+            return ArchiveIterator(path, meshes);
+        },
+        py::arg("path"), py::arg("meshes") = true,
+        "The records of an archive (a run folder's evaluations.capnp), in order, read a few at a time; meshes=False skips the positions "
+        "(fast listing). A torn tail (a run cut off while writing) ends the records; a damaged record raises ValueError.");
+    m.def("_evaluate_job_bytes", &pybinding::EvaluateJobBytes, py::arg("job"));
+    // What a map evaluates: a plain Python function, so that pickle (process pools) sends it by name
+    // (pybind11's own functions do not pickle).
+    py::exec(R"(
+def _evaluate_job(job):
+    """One job's bytes in, its result's bytes out: what evaluate_many and the experiments hand a map."""
+    return _evaluate_job_bytes(job)
+)",
+             m.attr("__dict__"));
 }

@@ -19,6 +19,8 @@ packages=(
   libpagmo-dev               # optimizers: CMA-ES, DE, PSO, NSGA-II, ... (sim_optimize; brings Boost and TBB)
   libbenchmark-dev           # benchmarks
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
+  python3-pandas python3-distributed  # the module's tables as DataFrames; Dask as an evaluator (tests)
+  python3-deap python3-matplotlib     # examples/ (run by the tests)
   libcgal-dev                # exported solids checked by an independent library (tests only; header-only, brings GMP and MPFR)
 )
 

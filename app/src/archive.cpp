@@ -122,7 +122,7 @@ std::uint64_t ArchiveWriter::Append(ArchiveRecord& r) {
     return next_++;
 }
 
-ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::function<bool(ArchiveRecord&&)>& visit) {
+ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::function<bool(ArchiveRecord&&)>& visit, ArchivePlace from) {
     std::FILE* file = std::fopen(path.c_str(), "rb");
     if (!file) throw UsageError("cannot open archive " + Quote(path) + ": " + std::strerror(errno));
     struct stat info {};
@@ -144,6 +144,14 @@ ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::fun
     }
     if (got == sizeof magic && std::memcmp(magic, kMagic, sizeof magic) == 0) {
         scan.goodBytes = sizeof magic;
+        if (from.byte > sizeof magic) {
+            if (from.byte > static_cast<std::uint64_t>(info.st_size) || std::fseek(file, static_cast<long>(from.byte), SEEK_SET) != 0) {
+                std::fclose(file);
+                throw UsageError(Quote(path) + " has no record at byte " + std::to_string(from.byte) + " (was it cut back meanwhile?)");
+            }
+            scan.goodBytes = from.byte;
+            scan.records = from.records;
+        }
         for (;;) {
             kj::byte header[8];
             const size_t h = ReadUpTo(file, header, sizeof header);
@@ -188,6 +196,10 @@ ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::fun
         return scan;
     }
     // Version 1: packed messages back to back, no header, no checksums.
+    if (from.byte > 0) {
+        std::fclose(file);
+        throw UsageError(Quote(path) + " is a version-1 archive: it reads only from its start");
+    }
     scan.version = 1;
     std::rewind(file);
     kj::FdInputStream raw(fileno(file));

@@ -68,9 +68,17 @@ struct ArchiveScan {
     std::string problem;          // what stopped the reading
 };
 
+// Where a scan starts: the start of the file, or where an earlier scan of a version-2 archive
+// stopped (its goodBytes and records), so a reader can take the records a few at a time.
+struct ArchivePlace {
+    std::uint64_t byte = 0;
+    std::uint64_t records = 0;
+};
+
 // Streams the records in order; `visit` returns false to stop early. withMeshes = false skips the
-// positions (fast listing). Throws UsageError when the file cannot be opened or is not an archive.
-ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::function<bool(ArchiveRecord&&)>& visit);
+// positions (fast listing). Throws UsageError when the file cannot be opened or is not an archive,
+// and when `from` is not the start of a version-2 archive's record.
+ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::function<bool(ArchiveRecord&&)>& visit, ArchivePlace from = {});
 
 struct ArchiveContents {
     std::vector<ArchiveRecord> records;

@@ -161,9 +161,7 @@ public:
         return paf.promise.then([context, models = std::move(models)](std::vector<sim::SimResult> results) mutable {
             auto responses = context.getResults().initResponses(static_cast<unsigned>(results.size()));
             for (unsigned k = 0; k < results.size(); ++k) {
-                SetResultNumbers(responses[k].initResult(), results[k], models[k]);
-                SetExactMesh(responses[k].initInitial(), results[k].initial);
-                SetExactMesh(responses[k].initFinal(), results[k].final);
+                SetResponse(responses[k], results[k], models[k]);
                 results[k] = sim::SimResult{};
             }
             results = {};
@@ -379,11 +377,7 @@ private:
             const auto responses = response.getResponses();
             if (responses.size() != shared->size()) KJ_FAIL_REQUIRE("answered a different number of shapes");
             std::vector<sim::SimResult> results(responses.size());
-            for (unsigned k = 0; k < responses.size(); ++k) {
-                GetResultNumbers(responses[k].getResult(), results[k]);
-                results[k].initial = GetExactMesh(responses[k].getInitial());
-                results[k].final = GetExactMesh(responses[k].getFinal());
-            }
+            for (unsigned k = 0; k < responses.size(); ++k) results[k] = GetResponse(responses[k]);
             for (unsigned k = 0; k < results.size(); ++k) ready_.emplace((*shared)[k], std::move(results[k]));
         });
         return WithTimeout(kj::mv(call))

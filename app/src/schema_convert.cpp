@@ -1,5 +1,10 @@
 #include "schema_convert.h"
 
+#include <capnp/message.h>
+#include <capnp/serialize.h>
+
+#include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 namespace app {
@@ -325,6 +330,68 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.maxFibreStrain = s.getMaxFibreStrain();
     o.meanFibreStrain = s.getMeanFibreStrain();
     o.fibreAngleDeg = s.getFibreAngleDeg();
+}
+
+void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {
+    SetResultNumbers(out.initResult(), result, model);
+    SetExactMesh(out.initInitial(), result.initial);
+    SetExactMesh(out.initFinal(), result.final);
+}
+
+sim::SimResult GetResponse(schema::EvalResponse::Reader in) {
+    sim::SimResult result;
+    GetResultNumbers(in.getResult(), result);
+    result.initial = GetExactMesh(in.getInitial());
+    result.final = GetExactMesh(in.getFinal());
+    return result;
+}
+
+namespace {
+
+std::string MessageBytes(capnp::MessageBuilder& message) {
+    const kj::Array<capnp::word> words = capnp::messageToFlatArray(message);
+    const auto bytes = words.asBytes();
+    return std::string(reinterpret_cast<const char*>(bytes.begin()), bytes.size());
+}
+
+// Reads a root of type T from bytes (copied to word alignment) and converts it inside `use`, while
+// the message lives. Bytes that are not one whole message are an error, never a crash.
+template <class T, class Use>
+auto FromBytes(const std::string& bytes, const char* what, const Use& use) {
+    if (bytes.empty() || bytes.size() % sizeof(capnp::word) != 0)
+        throw std::runtime_error(std::string("not a ") + what + " message: " + std::to_string(bytes.size()) + " bytes");
+    kj::Array<capnp::word> words = kj::heapArray<capnp::word>(bytes.size() / sizeof(capnp::word));
+    std::memcpy(words.begin(), bytes.data(), bytes.size());
+    capnp::ReaderOptions options;
+    options.traversalLimitInWords = std::max<std::uint64_t>(options.traversalLimitInWords, 2 * words.size());
+    try {
+        capnp::FlatArrayMessageReader reader(words, options);
+        return use(reader.getRoot<T>());
+    } catch (const kj::Exception& e) {
+        throw std::runtime_error(std::string("not a ") + what + " message: " + e.getDescription().cStr());
+    }
+}
+
+}  // namespace
+
+std::string JobBytes(const sim::EvalJob& job) {
+    capnp::MallocMessageBuilder message;
+    SetJob(message.initRoot<schema::EvalRequest>(), job);
+    return MessageBytes(message);
+}
+
+sim::EvalJob JobFromBytes(const std::string& bytes) {
+    return FromBytes<schema::EvalRequest>(bytes, "job", [](schema::EvalRequest::Reader in) { return GetJob(in); });
+}
+
+std::string ResultBytes(const sim::SimResult& result, sim::ModelKind model) {
+    capnp::MallocMessageBuilder message;
+    SetResponse(message.initRoot<schema::EvalResponse>(), result, model);
+    return MessageBytes(message);
+}
+
+sim::SimResult ResultFromBytes(const std::string& bytes) {
+    return FromBytes<schema::EvalResponse>(bytes, "result", [](schema::EvalResponse::Reader in) { return GetResponse(in); });
 }
 
 }  // namespace app

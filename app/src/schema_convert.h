@@ -33,6 +33,18 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader in);  // throws std::runtime_
 void SetResultNumbers(schema::EvalResult::Builder out, const sim::SimResult& result, sim::ModelKind model);
 void GetResultNumbers(schema::EvalResult::Reader in, sim::SimResult& result);
 
+// A whole result as evaluation servers send it: its numbers and both meshes at full precision, so
+// it equals a local run's bit for bit (the shell models' per-step positions stay behind).
+void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model);
+sim::SimResult GetResponse(schema::EvalResponse::Reader in);
+
+// One job and one result as self-contained bytes (a Cap'n Proto EvalRequest / EvalResponse message):
+// what the Python module hands to a `map` (Dask, concurrent.futures) to evaluate anywhere.
+std::string JobBytes(const sim::EvalJob& job);
+sim::EvalJob JobFromBytes(const std::string& bytes);  // throws std::runtime_error on bytes that do not decode
+std::string ResultBytes(const sim::SimResult& result, sim::ModelKind model);
+sim::SimResult ResultFromBytes(const std::string& bytes);  // throws std::runtime_error likewise
+
 // A job into any struct that has its fields (EvalRequest on the wire, Evaluation in archives): the
 // shape, the model, and the model's settings (the thesis model's parameters and mesh size, or the
 // shell def). Records from before the shell models read as thesis jobs.

@@ -30,8 +30,10 @@ std::vector<fs::path> SearchDirs() {
     Dl_info info{};
     if (dladdr(reinterpret_cast<void*>(&LoadBackend), &info) && info.dli_fname) {
         const fs::path self = fs::weakly_canonical(fs::path(info.dli_fname));
-        dirs.push_back(self.parent_path().parent_path() / "lib" / "actuator");
+        dirs.push_back(self.parent_path().parent_path() / "lib" / "actuator");  // PREFIX/bin/actuator
         dirs.push_back(self.parent_path());
+        // The Python module: PREFIX/lib/python3.X/dist-packages/actuator*.so
+        dirs.push_back(self.parent_path().parent_path().parent_path() / "actuator");
     }
     dirs.emplace_back(ACTUATOR_RENDER_BUILD_DIR);
     dirs.emplace_back(ACTUATOR_RENDER_INSTALL_DIR);

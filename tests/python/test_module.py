@@ -1,8 +1,11 @@
 """`import actuator`: the module against the command line, bit for bit; threads; errors; arrays."""
+import concurrent.futures
 import json
 import math
+import multiprocessing
 import os
 import subprocess
+import time
 
 import numpy as np
 import pytest
@@ -114,3 +117,164 @@ def test_bad_experiments_raise_value_error(tmp_path):
     with pytest.raises(ValueError):
         actuator.sweep(SWEEP, str(tmp_path / "full"))
     assert (tmp_path / "full" / "keep.txt").read_text() == "mine"
+
+
+# ---- where evaluations run: threads, servers, any map -------------------------------------------
+
+SHAPES = [actuator.sine(a, (0.5, math.pi - 0.5)) for a in (1.0, 2.5, 4.1, 6.0, 8.0)]
+SHORT = actuator.ThesisParams(iterations=2000)
+
+
+def hexes(results):
+    return [(r.status, r.fitness.hex(), r.final.tobytes()) for r in results]
+
+
+def test_any_map_gives_the_local_results_bit_for_bit():
+    local = hexes(actuator.evaluate_many(SHAPES, threads=2, params=SHORT))
+    assert hexes(actuator.evaluate_many(SHAPES, map=map, params=SHORT)) == local
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT, batch=2)) == local
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT)) == local
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT)) == local
+
+
+def test_shell_results_through_a_map_keep_their_curves():
+    kw = dict(model="membrane", geometry=actuator.Geometry(ring_vertices=12, rings=16), load=actuator.Load(pressure_kpa=1.0, steps=3))
+    local = actuator.evaluate_many(SHAPES[:2], threads=1, **kw)
+    mapped = actuator.evaluate_many(SHAPES[:2], map=map, **kw)
+    for a, b in zip(local, mapped):
+        assert a.fitness.hex() == b.fitness.hex()
+        assert a.shell["curve_contraction_percent"].tobytes() == b.shell["curve_contraction_percent"].tobytes()
+        assert a.shell["max_stretch"] == b.shell["max_stretch"] and len(a.shell["curve_pressure_kpa"]) == 3
+
+
+def test_a_map_that_misbehaves_is_a_value_error():
+    with pytest.raises(ValueError, match="neither callable"):
+        actuator.evaluate_many(SHAPES, map=42)
+    with pytest.raises(ValueError, match="gave back 4 results for 5 jobs"):
+        actuator.evaluate_many(SHAPES, map=lambda f, xs: [f(x) for x in list(xs)[:4]], params=SHORT)
+    with pytest.raises(ValueError, match="where actuator._evaluate_job's bytes were expected"):
+        actuator.evaluate_many(SHAPES, map=lambda f, xs: [0 for _ in xs], params=SHORT)
+    with pytest.raises(ValueError, match="give one of them"):
+        actuator.evaluate_many(SHAPES, map=map, workers=["local"])
+    with pytest.raises(ValueError, match="not a job message"):
+        actuator._evaluate_job(b"not capnp")
+
+
+def test_an_experiment_through_a_map_equals_the_local_run(tmp_path):
+    ga = {"id": "m", "seed": 5, "sim": {"iterations": 1500},
+          "evolve": {"runs": 1, "population": 8, "generations": 3, "genome": {"kind": "bspline", "length": [4, 6]}},
+          "render": {"figures": False, "thumbnails": False}}
+    actuator.evolve(ga, str(tmp_path / "local"), threads=2)
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        actuator.evolve(ga, str(tmp_path / "mapped"), map=pool.map)
+    for name in ("run_1/logbook.csv", "run_1/halloffame.csv", "run_1/checkpoint.json"):
+        assert (tmp_path / "mapped" / name).read_bytes() == (tmp_path / "local" / name).read_bytes(), name
+
+
+def test_evaluation_servers_give_the_local_results(tmp_path):
+    server = subprocess.Popen([BIN, "serve", "--listen", "127.0.0.1:0", "--threads", "1"], stdout=subprocess.PIPE, text=True)
+    try:
+        line = server.stdout.readline()
+        assert line.startswith("listening on "), line
+        address = line.split()[2]  # "listening on ADDRESS:PORT (1 worker threads)"
+        local = hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT))
+        assert hexes(actuator.evaluate_many(SHAPES, workers=[address], params=SHORT)) == local
+        assert hexes(actuator.evaluate_many(SHAPES, workers=address + ",local", threads=1, params=SHORT)) == local
+    finally:
+        server.kill()
+        server.wait()
+
+
+# ---- tables, pictures, archives -----------------------------------------------------------------
+
+def test_tables_are_dataframes_with_pandas_and_structured_arrays_without(tmp_path):
+    pandas = pytest.importorskip("pandas")  # Debian's python3-pandas is in scripts/install-deps.sh
+    frames = actuator.sweep(SWEEP, str(tmp_path / "f"), threads=2)["tables"]["results"]
+    arrays = actuator.sweep(SWEEP, str(tmp_path / "a"), threads=2, as_frame=False)["tables"]["results"]
+    assert isinstance(frames, pandas.DataFrame) and isinstance(arrays, np.ndarray)
+    assert list(frames.columns) == list(arrays.dtype.names)
+    assert [f.hex() for f in frames["fitness"]] == [float(f).hex() for f in arrays["fitness"]]
+
+
+def test_render_returns_rgba_pixels_and_writes_a_png_once(tmp_path):
+    r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=SHORT)
+    image = actuator.render(r, width=320, height=240)
+    assert image.shape == (240, 320, 4) and image.dtype == np.uint8
+    assert (image[..., 3] == 255).all()
+    # The deformed mesh is coloured (viridis), the rest mesh grey: the picture is not blank.
+    assert len(np.unique(image.reshape(-1, 4), axis=0)) > 500
+    turned = actuator.render(r, view="turntable", angle_deg=90, width=320, height=240)
+    assert not np.array_equal(turned, image)
+    png = tmp_path / "r.png"
+    assert actuator.render(r, str(png), width=320, height=240) is None
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    before = png.read_bytes()
+    with pytest.raises(ValueError, match="exists"):
+        actuator.render(r, str(png), width=64, height=64)
+    assert png.read_bytes() == before
+    with pytest.raises(ValueError, match="choose"):
+        actuator.render(r, view="side")
+    with pytest.raises(ValueError, match="colouring"):
+        actuator.render(r, colouring="stress")  # the thesis model has no stress
+
+
+def test_an_archive_reads_as_records_in_order(tmp_path):
+    # 300 records: more than the reader takes at a time (256).
+    sweep = json.loads(json.dumps(SWEEP))
+    sweep["sim"]["iterations"] = 50
+    sweep["sweep"]["axes"] = [{"parameter": "amplitude", "from": 0.5, "to": 3, "points": 300}]
+    out = actuator.sweep(sweep, str(tmp_path / "s"), threads=2, as_frame=False)
+    archive = str(tmp_path / "s" / "evaluations.capnp")
+    records = list(actuator.open_archive(archive))
+    assert [r.id for r in records] == list(range(300))
+    assert {r.role for r in records} == {"grid"}
+    assert [r.result.fitness.hex() for r in records] == [float(f).hex() for f in out["tables"]["results"]["fitness"]]
+    assert records[7].result.final.shape == (900, 3)
+    again = actuator.evaluate(records[7].result.shape, params=actuator.ThesisParams(iterations=50))
+    assert again.fitness.hex() == records[7].result.fitness.hex()
+    quick = list(actuator.open_archive(archive, meshes=False))
+    assert len(quick) == 300 and quick[0].result.final.shape == (0, 3)
+    with pytest.raises(ValueError, match="no meshes"):
+        actuator.render(quick[0].result)
+    with pytest.raises(ValueError, match="cannot open"):
+        actuator.open_archive(str(tmp_path / "none.capnp"))
+
+
+def test_a_torn_archive_tail_ends_the_records_and_damage_is_an_error(tmp_path):
+    actuator.sweep(SWEEP, str(tmp_path / "s"), threads=2)
+    archive = tmp_path / "s" / "evaluations.capnp"
+    whole = archive.read_bytes()
+    archive.write_bytes(whole[:-10])
+    assert len(list(actuator.open_archive(str(archive)))) == 2
+    damaged = bytearray(whole)
+    damaged[len(whole) // 2] ^= 0xFF
+    archive.write_bytes(bytes(damaged))
+    with pytest.raises(ValueError, match="damaged|does not decode"):
+        list(actuator.open_archive(str(archive)))
+
+
+def test_resume_from_python_ends_as_an_uninterrupted_run(tmp_path):
+    ga = {"id": "r", "seed": 9, "sim": {"iterations": 6000},
+          "evolve": {"runs": 1, "population": 12, "generations": 5, "genome": {"kind": "bspline", "length": [4, 6]}},
+          "render": {"figures": False, "thumbnails": False}}
+    whole = tmp_path / "whole"
+    actuator.evolve(ga, str(whole), threads=2)
+    # An interrupted run: the CLI killed after its first checkpoints, then resumed from Python.
+    cut = tmp_path / "cut"
+    path = tmp_path / "ga.json"
+    path.write_text(json.dumps(ga))
+    proc = subprocess.Popen([BIN, "evolve", str(path), "--out", str(cut), "--threads", "1"], stderr=subprocess.DEVNULL)
+    deadline = time.time() + 60
+    while not (cut / "run_1" / "checkpoint.json").exists() and time.time() < deadline and proc.poll() is None:
+        time.sleep(0.005)
+    proc.kill()
+    proc.wait()
+    assert proc.returncode == -9, "the run ended before it could be interrupted"
+    actuator.evolve(str(path), str(cut), threads=2, resume=True)
+    for name in ("run_1/logbook.csv", "run_1/halloffame.csv", "run_1/checkpoint.json"):
+        assert (cut / name).read_bytes() == (whole / name).read_bytes(), name
+    with pytest.raises(ValueError):
+        actuator.evolve(str(path), str(tmp_path / "nothing"), resume=True)

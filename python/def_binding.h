@@ -1,0 +1,120 @@
+// Def structs as Python classes, their fields bound from app/fields.h: the names, defaults, help
+// and ranges are the C++ ones, written once. Setting a field checks it as the command line does.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "fields.h"
+#include "sim/names.h"
+
+namespace pybinding {
+
+namespace py = pybind11;
+
+// Visitors of app/fields.h for one field, found by key: read it as a Python object (int, float or
+// the enum's name), set it with the command line's range checks, or list the keys.
+struct FieldReader {
+    const std::string& key;
+    py::object& out;
+    void Integer(const char* k, const int& v, const char*, long long, long long) {
+        if (key == k) out = py::int_(v);
+    }
+    void Number(const char* k, const double& v, const char*, double, double) {
+        if (key == k) out = py::float_(v);
+    }
+    template <class E>
+    void Enum(const char* k, const E& v, const char*) {
+        if (key == k) out = py::str(sim::Name(v));
+    }
+};
+
+struct FieldWriter {
+    const std::string& key;
+    const py::object& value;
+    void Integer(const char* k, int& v, const char*, long long min, long long max) {
+        if (key != k) return;
+        const long long x = value.cast<long long>();
+        if (x < min || x > max) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", k, x, min, max));
+        v = static_cast<int>(x);
+    }
+    void Number(const char* k, double& v, const char*, double min, double max) {
+        if (key != k) return;
+        const double x = value.cast<double>();
+        if (!(x >= min && x <= max)) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", k, x, min, max));
+        v = x;
+    }
+    template <class E>
+    void Enum(const char* k, E& v, const char*) {
+        if (key != k) return;
+        const std::string text = value.cast<std::string>();
+        const auto parsed = sim::FromName<E>(text);
+        if (!parsed) throw py::value_error(fmt::format("{}: unknown value '{}' (choose {})", k, text, sim::Choices<E>()));
+        v = *parsed;
+    }
+};
+
+template <class Def>
+py::object GetField(const Def& def, const std::string& key) {
+    py::object out;
+    app::VisitFields(def, FieldReader{key, out});
+    return out;
+}
+
+template <class Def>
+void SetField(Def& def, const std::string& key, const py::object& value) {
+    app::VisitFields(def, FieldWriter{key, value});
+}
+
+template <class Def>
+struct FieldLister {
+    std::vector<std::string>& keys;
+    py::class_<Def>& cls;
+    void Add(const char* k, const char* help) {
+        keys.push_back(k);
+        const std::string key = k;
+        cls.def_property(
+            k, [key](const Def& d) { return GetField(d, key); }, [key](Def& d, const py::object& v) { SetField(d, key, v); }, help);
+    }
+    void Integer(const char* k, int&, const char* help, long long, long long) { Add(k, help); }
+    void Number(const char* k, double&, const char* help, double, double) { Add(k, help); }
+    template <class E>
+    void Enum(const char* k, E&, const char* help) {
+        Add(k, help);
+    }
+};
+
+// A def struct as a Python class: a keyword constructor and one attribute per field, with its help.
+template <class Def>
+void BindDef(py::module_& m, const char* name, const char* doc, Def defaults = Def{}) {
+    py::class_<Def> cls(m, name, doc);
+    std::vector<std::string> keys;
+    Def probe = defaults;
+    app::VisitFields(probe, FieldLister<Def>{keys, cls});
+    cls.def(py::init([defaults, keys](const py::kwargs& kwargs) {
+        Def def = defaults;
+        for (const auto& [key, value] : kwargs) {
+            const std::string k = key.template cast<std::string>();
+            if (std::find(keys.begin(), keys.end(), k) == keys.end()) {
+                std::string valid;
+                for (const auto& v : keys) valid += (valid.empty() ? "" : ", ") + v;
+                throw py::value_error(fmt::format("unknown field '{}' (valid: {})", k, valid));
+            }
+            SetField(def, k, py::reinterpret_borrow<py::object>(value));
+        }
+        return def;
+    }));
+    const std::string className = name;
+    cls.def("__repr__", [keys, className](const Def& d) {
+        std::string text = className + "(";
+        for (size_t k = 0; k < keys.size(); ++k) text += (k ? ", " : "") + keys[k] + "=" + std::string(py::repr(GetField(d, keys[k])));
+        return text + ")";
+    });
+}
+
+}  // namespace pybinding
