@@ -13,8 +13,10 @@
 #include <filesystem>
 #include <numbers>
 #include <optional>
+#include <utility>
 
 #include "archive.h"
+#include "cli.h"
 #include "def_binding.h"
 #include "errors.h"
 #include "evaluator.h"
@@ -90,16 +92,18 @@ struct Record {
     app::ArchiveRecord record;
 };
 
-// The archive read a few records at a time (memory stays bounded on a 100,000-record archive).
+// The archive read a few records at a time (memory stays bounded on a 100,000-record archive). A
+// torn tail (a run cut off while writing) ends the records quietly; a damaged record raises
+// ValueError after the records before it.
 class ArchiveIterator {
 public:
     ArchiveIterator(std::string path, bool meshes) : path_(std::move(path)), meshes_(meshes) {}
 
     Record Next() {
+        if (next_ == buffer_.size() && !done_) Refill();
         if (next_ == buffer_.size()) {
-            if (done_) throw py::stop_iteration();
-            Refill();
-            if (buffer_.empty()) throw py::stop_iteration();
+            if (!problem_.empty()) throw app::UsageError(app::Quote(path_) + ": " + std::exchange(problem_, std::string()));
+            throw py::stop_iteration();
         }
         return Record{std::move(buffer_[next_++])};
     }
@@ -107,30 +111,28 @@ public:
 private:
     static constexpr size_t kChunk = 256;
 
+    app::ArchiveScan Scan(size_t limit) {
+        return app::ScanArchive(
+            path_, meshes_,
+            [&](app::ArchiveRecord&& r) {
+                buffer_.push_back(std::move(r));
+                return buffer_.size() < limit;
+            },
+            place_);
+    }
+
     void Refill() {
         buffer_.clear();
         next_ = 0;
         py::gil_scoped_release release;
-        const app::ArchiveScan scan = app::ScanArchive(
-            path_, meshes_,
-            [&](app::ArchiveRecord&& r) {
-                buffer_.push_back(std::move(r));
-                return buffer_.size() < kChunk;
-            },
-            place_);
-        // A version-1 archive reads only from its start: take it whole.
-        if (scan.version == 1 && buffer_.size() == kChunk) {
+        app::ArchiveScan scan = Scan(kChunk);
+        if (scan.version == 1 && buffer_.size() == kChunk) {  // a version-1 archive reads only from its start: take it whole
             buffer_.clear();
-            app::ScanArchive(path_, meshes_, [&](app::ArchiveRecord&& r) {
-                buffer_.push_back(std::move(r));
-                return true;
-            });
-            done_ = true;
+            scan = Scan(SIZE_MAX);
         }
         place_ = {scan.goodBytes, scan.records};
-        if (buffer_.size() < kChunk) done_ = true;
-        if (done_ && (scan.corrupt || (scan.tornTail && buffer_.empty())))
-            if (scan.corrupt) throw app::UsageError(app::Quote(path_) + ": " + scan.problem);
+        done_ = buffer_.size() < kChunk || scan.version == 1 || scan.corrupt;
+        if (scan.corrupt) problem_ = scan.problem;
     }
 
     std::string path_;
@@ -139,6 +141,7 @@ private:
     std::vector<app::ArchiveRecord> buffer_;
     size_t next_ = 0;
     bool done_ = false;
+    std::string problem_;
 };
 
 // A CSV table as a pandas DataFrame (when asked, or when pandas is there and nothing was said) or
@@ -168,6 +171,7 @@ struct RunArgs {
     int threads = 0;
     py::object map, workers, asFrame;
     bool resume = false;
+    bool progress = false;  // the command line's progress lines, on the process's stderr
 };
 
 // Runs an experiment (a dict, or the path of a JSON file) into `out` (new or empty; or, with resume,
@@ -193,7 +197,7 @@ py::dict RunExperimentFromPython(const py::object& experiment, const std::string
         app::ResultsFolder folder(out, args.resume ? app::FolderMode::Resume : app::FolderMode::Fresh, "python");
         app::RunOptions options;
         options.evaluator = evaluator.get();
-        options.progress = false;
+        options.progress = args.progress;
         options.resume = args.resume;
         options.folder = &folder;
         app::RunExperiment(e, out, options);
@@ -275,6 +279,7 @@ PYBIND11_MODULE(actuator, m) {
             PyErr_SetString(PyExc_ValueError, e.what());
         }
     });
+    m.attr("__version__") = app::Version();
     m.doc() = "Actuator Workbench: generative design of thin-walled soft pneumatic actuators (the `actuator` command line's models, from Python).";
 
     py::class_<Design>(m, "Shape", "An actuator design: make one with cylinder(), sine(), abs_sine(), bspline() or free_xy().")
@@ -375,14 +380,17 @@ PYBIND11_MODULE(actuator, m) {
                          "with resume=True, the folder an interrupted run left, which then ends exactly as an uninterrupted run) and returns "
                          "{'summary': ..., 'tables': {name: table}, 'folder': out}. Tables are pandas DataFrames when pandas is installed "
                          "(as_frame=None) or asked for (True), else NumPy structured arrays. Evaluations run on `threads`, on "
-                         "evaluation servers (workers) or through a map-like callable (map: see evaluate_many); results do not depend on which.";
+                         "evaluation servers (workers) or through a map-like callable (map: see evaluate_many); results do not depend on which. "
+                         "progress=True prints the command line's progress lines on stderr.";
     auto bindRun = [&](const char* name, std::optional<app::ExperimentKind> kind, const std::string& doc) {
         m.def(
             name,
             [kind](const py::object& e, const std::string& out, int threads, const py::object& map, const py::object& workers, bool resume,
-                   const py::object& asFrame) { return RunExperimentFromPython(e, out, RunArgs{threads, map, workers, asFrame, resume}, kind); },
+                   const py::object& asFrame, bool progress) {
+                return RunExperimentFromPython(e, out, RunArgs{threads, map, workers, asFrame, resume, progress}, kind);
+            },
             py::arg("experiment"), py::arg("out"), py::arg("threads") = 0, py::arg("map") = py::none(), py::arg("workers") = py::none(),
-            py::arg("resume") = false, py::arg("as_frame") = py::none(), doc.c_str());
+            py::arg("resume") = false, py::arg("as_frame") = py::none(), py::arg("progress") = false, doc.c_str());
     };
     bindRun("run", std::nullopt, runDoc);
     bindRun("sweep", app::ExperimentKind::Sweep, std::string("A sweep experiment; its table is 'results'. ") + runDoc);

@@ -537,7 +537,7 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
             EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
             ++files;
         }
-    EXPECT_EQ(files, 10 + 10 + 4 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparisons'";
+    EXPECT_EQ(files, 10 + 10 + 5 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparisons'";
 }
 
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {

@@ -278,3 +278,25 @@ def test_resume_from_python_ends_as_an_uninterrupted_run(tmp_path):
         assert (cut / name).read_bytes() == (whole / name).read_bytes(), name
     with pytest.raises(ValueError):
         actuator.evolve(str(path), str(tmp_path / "nothing"), resume=True)
+
+
+def test_a_map_that_fails_mid_run_loses_nothing_and_the_run_resumes(tmp_path):
+    ga = {"id": "f", "seed": 4, "sim": {"iterations": 1500},
+          "evolve": {"runs": 1, "population": 8, "generations": 4, "genome": {"kind": "bspline", "length": [4, 6]}},
+          "render": {"figures": False, "thumbnails": False}}
+    actuator.evolve(ga, str(tmp_path / "whole"), threads=2)
+    calls = []
+
+    def failing_map(f, items):  # a cluster that goes away during the third batch
+        calls.append(1)
+        if len(calls) == 3:
+            raise ConnectionError("the cluster went away")
+        return map(f, items)
+
+    with pytest.raises(ConnectionError, match="went away"):
+        actuator.evolve(ga, str(tmp_path / "cut"), map=failing_map)
+    records = list(actuator.open_archive(str(tmp_path / "cut" / "evaluations.capnp"), meshes=False))
+    assert records and [r.id for r in records] == list(range(len(records)))
+    actuator.evolve(ga, str(tmp_path / "cut"), map=map, resume=True)
+    for name in ("run_1/logbook.csv", "run_1/halloffame.csv", "run_1/checkpoint.json"):
+        assert (tmp_path / "cut" / name).read_bytes() == (tmp_path / "whole" / name).read_bytes(), name
