@@ -4,9 +4,9 @@
 The problem: a sine radius (phase 0.5 to pi-0.5) whose amplitude A, 1 to 10 mesh units, is the one
 gene; fitness is the thesis model's contraction after 10,000 iterations of inflation (shared/MODEL.md).
 The workbench's 30-point sweep (assets/experiments/4.1_amplitude_sweep.json) is best at its grid
-point A = 3.48 (fitness 0.597); pagmo's differential evolution from C++ (assets/experiments/
-optimizers/O4.1_de_thesis.json) finds A = 3.64 (0.5983) between grid points. The thesis reports
-A = 4.1 (0.75).
+point A = 3.48 (fitness 0.597); the C++ genetic algorithm (pagmo's sga, assets/experiments/
+optimizers/O4.1_ga_thesis.json) finds A = 3.64 (0.5983) between grid points, and so does this
+script. The thesis reports A = 4.1 (0.75).
 
 DEAP evaluates through toolbox.map. actuator.evaluate releases the GIL, so a thread pool's map runs
 the simulations on every core; any map works (a process pool's, a Dask client's via
@@ -82,7 +82,7 @@ def main():
     for row in logbook:
         print(f"  generation {row['gen']:2d}: {row['nevals']:2d} simulations, best {row['max']:.4f}, mean {row['mean']:.4f}")
     print(f"best: A = {best[0]:.3f} mesh units, fitness {best.fitness.values[0]:.4f} mesh units "
-          f"(C++ DE: A = 3.64, 0.5983; thesis: A = 4.1, 0.75)")
+          f"(C++ GA: A = 3.64, 0.5983; thesis: A = 4.1, 0.75)")
     if args.json:
         record = {"amplitude": best[0], "fitness": best.fitness.values[0], "simulations": evaluations,
                   "logbook": [{"generation": r["gen"], "simulations": r["nevals"], "best": r["max"], "mean": r["mean"]} for r in logbook]}

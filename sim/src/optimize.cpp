@@ -246,6 +246,12 @@ const std::vector<AlgorithmParameter>& AlgorithmParameters() {
         {Algorithm::Moead, "eta_m", 20, 0, 100, false, "distribution index of the polynomial mutation"},
         {Algorithm::Moead, "realb", 0.9, 0, 1, false, "chance that the mating pool is the neighbourhood"},
         {Algorithm::Moead, "limit", 2, 1, 10000, true, "most parents replaced by one child"},
+        // pagmo's simple genetic algorithm: tournament selection, exponential crossover, polynomial
+        // mutation, pure elitism (pagmo's defaults for the three operators).
+        {Algorithm::Sga, "cr", 0.9, 0, 1, false, "crossover probability"},
+        {Algorithm::Sga, "m", 0.02, 0, 1, false, "mutation probability per gene"},
+        {Algorithm::Sga, "param_m", 1, 1, 100, false, "distribution index of the polynomial mutation (small: wide steps)"},
+        {Algorithm::Sga, "param_s", 2, 1, 1000, true, "tournament size; at most the population"},
     };
     return table;
 }
@@ -268,6 +274,7 @@ int SmallestPopulation(Algorithm a) {
         case Algorithm::Pso: return 2;
         case Algorithm::Nsga2: return 8;
         case Algorithm::Moead: return 4;
+        case Algorithm::Sga: return 2;
     }
     return 1;
 }
@@ -292,6 +299,8 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
             return fmt::format("{} parameter '{}' must be {} in [{:g}, {:g}] (got {:g})", name, key, found->integer ? "an integer" : "a number",
                                found->min, found->max, value);
     }
+    if (def.algorithm == Algorithm::Sga && ParameterValue(def, "param_s") > def.population)
+        return fmt::format("sga's tournament (param_s {}) is larger than the population ({})", ParameterValue(def, "param_s"), def.population);
     if (def.algorithm == Algorithm::Moead && ParameterValue(def, "neighbours") >= def.population)
         return fmt::format("moead's neighbours ({:g}) must be smaller than the population ({})", ParameterValue(def, "neighbours"), def.population);
     if (def.objectives.empty()) return "at least one objective is needed";

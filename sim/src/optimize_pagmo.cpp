@@ -14,6 +14,7 @@
 #include <pagmo/algorithms/nsga2.hpp>
 #include <pagmo/algorithms/pso_gen.hpp>
 #include <pagmo/algorithms/sade.hpp>
+#include <pagmo/algorithms/sga.hpp>
 #include <pagmo/algorithms/xnes.hpp>
 #include <pagmo/population.hpp>
 #include <pagmo/problem.hpp>
@@ -92,6 +93,8 @@ pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) {
         case Algorithm::Pso:
             return pagmo::algorithm{pagmo::pso_gen(1, p("omega"), p("eta1"), p("eta2"), p("max_vel"), u("variant"), u("neighb_type"), u("neighb_param"), true, seed)};
         case Algorithm::Nsga2: return pagmo::algorithm{pagmo::nsga2(1, p("cr"), p("eta_c"), p("m"), p("eta_m"), seed)};
+        case Algorithm::Sga:
+            return pagmo::algorithm{pagmo::sga(1, p("cr"), 1.0, p("m"), p("param_m"), u("param_s"), "exponential", "polynomial", "tournament", seed)};
         case Algorithm::Moead:
             // "low discrepancy" weights work for any population size ("grid" does not).
             return pagmo::algorithm{pagmo::moead(1, "low discrepancy", "tchebycheff", static_cast<pagmo::population::size_type>(p("neighbours")), p("CR"),

@@ -314,7 +314,7 @@ TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
         Write("bad.json", text.replace(at, from.size(), to));
         return "evolve " + Path("bad.json") + " --out " + Path("bad");
     };
-    ExpectRefused(with("\"cmaes\"", "\"cma-es\""), "unknown value 'cma-es' (choose cmaes, xnes, de, sade, pso, nsga2 or moead)");
+    ExpectRefused(with("\"cmaes\"", "\"cma-es\""), "unknown value 'cma-es' (choose cmaes, xnes, de, sade, pso, nsga2, moead or sga)");
     ExpectRefused(with("\"cmaes\"", "\"ga\""), "the thesis's GA (variable-length genomes) is the 'evolve' block");
     ExpectRefused(with("\"cmaes\"", "\"nsga2\""), "nsga2 optimises several objectives");
     ExpectRefused(with("\"population\": 8", "\"population\": 3"), "cmaes needs a population of at least 5 (got 3)");

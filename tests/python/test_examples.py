@@ -15,13 +15,13 @@ def run_example(name, *args):
     return subprocess.run([sys.executable, str(ROOT / "examples" / name), *args], capture_output=True, text=True, timeout=600)
 
 
-def test_deap_finds_the_optimum_region_of_the_cpp_optimizer(tmp_path):
+def test_deap_finds_the_optimum_region_of_the_cpp_ga(tmp_path):
     deap = run_example("deap_ga.py", "--threads", "2", "--json", str(tmp_path / "deap.json"))
     assert deap.returncode == 0, deap.stderr
     found = json.loads((tmp_path / "deap.json").read_text())
-    # The same problem from C++: pagmo's DE over the amplitude (assets/experiments/optimizers).
-    cpp = actuator.optimize(str(ROOT / "assets/experiments/optimizers/O4.1_de_thesis.json"), str(tmp_path / "de"), threads=2, as_frame=False)
-    with open(tmp_path / "de" / "run_1" / "halloffame.csv") as f:
+    # The same problem from C++: pagmo's genetic algorithm over the amplitude (assets/experiments/optimizers).
+    cpp = actuator.optimize(str(ROOT / "assets/experiments/optimizers/O4.1_ga_thesis.json"), str(tmp_path / "ga"), threads=2, as_frame=False)
+    with open(tmp_path / "ga" / "run_1" / "halloffame.csv") as f:
         best = next(csv.DictReader(f))  # rank 1
     cpp_amplitude, cpp_fitness = float(best["gene_amplitude"]), float(best["thesis_fitness_mesh_units"])
     assert abs(found["amplitude"] - cpp_amplitude) < 0.25, (found["amplitude"], cpp_amplitude)

@@ -73,7 +73,7 @@ TEST_P(EachSingleObjective, FindsThePeakOfABowlAndForeseesEveryGeneration) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Optimize, EachSingleObjective,
-                         ::testing::Values(Algorithm::Cmaes, Algorithm::Xnes, Algorithm::De, Algorithm::Sade, Algorithm::Pso),
+                         ::testing::Values(Algorithm::Cmaes, Algorithm::Xnes, Algorithm::De, Algorithm::Sade, Algorithm::Pso, Algorithm::Sga),
                          [](const auto& info) { return std::string(Name(info.param)); });
 
 TEST(Optimize, TheSameSeedGivesTheSameRunWhateverTheOrderOfEvaluation) {
@@ -224,6 +224,11 @@ TEST(Optimize, DefinitionsThatCannotRunAreRefusedWithTheReason) {
     def = OneGene(Algorithm::Moead, 8, 5);
     def.objectives = {{ObjectiveKind::Contraction, true}, {ObjectiveKind::MaxStretch, false}};
     EXPECT_THAT(OptimizerDefError(def, ModelKind::Shell, kMesh), HasSubstr("neighbours (10) must be smaller than the population (8)"));
+    def = OneGene(Algorithm::Sga, 4, 5);
+    def.parameters["param_s"] = 6;
+    EXPECT_THAT(OptimizerDefError(def, ModelKind::Shell, kMesh), HasSubstr("tournament (param_s 6) is larger than the population (4)"));
+    def.parameters["param_s"] = 4;
+    EXPECT_EQ(OptimizerDefError(def, ModelKind::Shell, kMesh), "");
 }
 
 }  // namespace

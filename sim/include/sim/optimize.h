@@ -25,7 +25,7 @@
 
 namespace sim {
 
-enum class Algorithm { Cmaes, Xnes, De, Sade, Pso, Nsga2, Moead };
+enum class Algorithm { Cmaes, Xnes, De, Sade, Pso, Nsga2, Moead, Sga };
 
 // True for the algorithms that optimise several objectives at once (NSGA-II, MOEA/D).
 bool IsMultiObjective(Algorithm algorithm);
@@ -179,13 +179,14 @@ std::vector<size_t> NonDominated(const std::vector<std::vector<double>>& points)
 
 template <>
 struct EnumNames<Algorithm> {
-    static constexpr std::array<std::pair<Algorithm, const char*>, 7> table{{{Algorithm::Cmaes, "cmaes"},
+    static constexpr std::array<std::pair<Algorithm, const char*>, 8> table{{{Algorithm::Cmaes, "cmaes"},
                                                                              {Algorithm::Xnes, "xnes"},
                                                                              {Algorithm::De, "de"},
                                                                              {Algorithm::Sade, "sade"},
                                                                              {Algorithm::Pso, "pso"},
                                                                              {Algorithm::Nsga2, "nsga2"},
-                                                                             {Algorithm::Moead, "moead"}}};
+                                                                             {Algorithm::Moead, "moead"},
+                                                                             {Algorithm::Sga, "sga"}}};
 };
 template <>
 struct EnumNames<ObjectiveKind> {
