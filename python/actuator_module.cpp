@@ -26,6 +26,7 @@
 #include "figures.h"
 #include "map_evaluator.h"
 #include "results_folder.h"
+#include "schema_convert.h"
 #include "sim/batch.h"
 #include "sim/names.h"
 #include "sim/shape.h"
@@ -285,7 +286,14 @@ PYBIND11_MODULE(actuator, m) {
     py::class_<Design>(m, "Shape", "An actuator design: make one with cylinder(), sine(), abs_sine(), bspline() or free_xy().")
         .def_property_readonly("family", [](const Design& d) { return std::string(sim::ShapeName(d.shape)); })
         .def_property_readonly("title", [](const Design& d) { return app::ShapeTitle(d.shape); })
-        .def("__repr__", [](const Design& d) { return "<actuator.Shape " + app::ShapeTitle(d.shape) + ">"; });
+        .def("__repr__", [](const Design& d) { return "<actuator.Shape " + app::ShapeTitle(d.shape) + ">"; })
+        .def(py::pickle(
+                 [](const Design& d) {
+                     sim::EvalJob job;
+                     job.shape = d.shape;
+                     return py::bytes(app::JobBytes(job));
+                 },
+                        [](const py::bytes& b) { return Design{app::JobFromBytes(b.cast<std::string>()).shape}; }));
     m.def("cylinder", []() { return Design{sim::CylinderShape{}}; }, "The plain tube of radius 1.");
     const sim::SineShape sine;
     m.def("sine", [](double amplitude, std::pair<double, double> phase) { return Design{sim::SineShape{amplitude, phase.first, phase.second}}; },
@@ -312,7 +320,17 @@ PYBIND11_MODULE(actuator, m) {
     BindDef<sim::MeshDef>(m, "Mesh", "The thesis model's helix.", sim::DefaultMeshDef());
     const sim::ShellDef shell = sim::DefaultShellDef();
     BindDef<sim::GeometryDef>(m, "Geometry", "The membrane and shell models' tube, in mm.", shell.geometry);
-    BindDef<sim::MaterialDef>(m, "Material", "The membrane and shell models' material (a preset's constants, or your own).", shell.material);
+    BindDef<sim::MaterialDef>(m, "Material", "The membrane and shell models' material (a preset's constants, or your own).", shell.material)
+        .def_static(
+            "from_preset",
+            [](const std::string& name) {
+                const auto preset = sim::FromName<sim::MaterialPreset>(name);
+                if (!preset) throw py::value_error("preset: unknown value '" + name + "' (choose " + sim::Choices<sim::MaterialPreset>() + ")");
+                return sim::MaterialPresetDef(*preset);
+            },
+            py::arg("name"), "A preset's constants and limits (Material() is ecoflex-00-30's); change fields after, as the command line's keys override a preset.")
+        .def_property_readonly("preset", [](const sim::MaterialDef& d) { return std::string(sim::Name(d.preset)); },
+                               "the preset the constants started from (figures and JSON name it)");
     BindDef<sim::LoadDef>(m, "Load", "The membrane and shell models' load.", shell.load);
     BindDef<sim::SolverDef>(m, "Solver", "The membrane and shell models' Newton solver.", shell.solver);
     BindDef<sim::FibreDef>(m, "Fibres", "Fibres on the membrane or shell wall (SHELL.md section 7).", shell.fibres);
@@ -336,7 +354,14 @@ PYBIND11_MODULE(actuator, m) {
         .def("__repr__", [](const Evaluated& e) {
             return fmt::format("<actuator.Result {} {} fitness={:.6g} contraction={:.4g}%>", sim::Name(e.job.model), sim::Name(e.result.status),
                                e.result.fitness, e.result.contractionPercent);
-        });
+        })
+        // Pickled as the wire carries it: every number and both meshes exactly (not the shell
+        // models' per-step positions).
+        .def(py::pickle([](const Evaluated& e) { return py::make_tuple(py::bytes(app::JobBytes(e.job)), py::bytes(app::ResultBytes(e.result, e.job.model))); },
+                        [](const py::tuple& t) {
+                            if (t.size() != 2) throw py::value_error("not a pickled actuator.Result");
+                            return Evaluated{app::JobFromBytes(t[0].cast<std::string>()), app::ResultFromBytes(t[1].cast<std::string>())};
+                        }));
 
     m.def(
         "evaluate",
@@ -445,10 +470,25 @@ PYBIND11_MODULE(actuator, m) {
     m.def("_evaluate_job_bytes", &pybinding::EvaluateJobBytes, py::arg("job"));
     // What a map evaluates: a plain Python function, so that pickle (process pools) sends it by name
     // (pybind11's own functions do not pickle).
+    // The public functions become plain Python functions around the bindings too, so that
+    // pool.map(actuator.evaluate, ...) works; their help and signatures stay.
     py::exec(R"(
 def _evaluate_job(job):
     """One job's bytes in, its result's bytes out: what evaluate_many and the experiments hand a map."""
     return _evaluate_job_bytes(job)
+
+def _picklable(bound):
+    import functools
+    @functools.wraps(bound)
+    def function(*args, **kwargs):
+        return bound(*args, **kwargs)
+    function.__module__, function.__qualname__ = "actuator", bound.__name__
+    return function
+
+for _name in ("cylinder", "sine", "abs_sine", "bspline", "free_xy", "evaluate", "evaluate_many", "run", "sweep", "evolve",
+              "optimize", "render", "open_archive"):
+    globals()[_name] = _picklable(globals()[_name])
+del _name
 )",
              m.attr("__dict__"));
 }

@@ -12,6 +12,7 @@
 
 #include "fields.h"
 #include "sim/names.h"
+#include "sim/shell.h"
 
 namespace pybinding {
 
@@ -89,9 +90,10 @@ struct FieldLister {
     }
 };
 
-// A def struct as a Python class: a keyword constructor and one attribute per field, with its help.
+// A def struct as a Python class: a keyword constructor and one attribute per field, with its help;
+// it pickles as its fields (process pools and Dask send it so).
 template <class Def>
-void BindDef(py::module_& m, const char* name, const char* doc, Def defaults = Def{}) {
+py::class_<Def> BindDef(py::module_& m, const char* name, const char* doc, Def defaults = Def{}) {
     py::class_<Def> cls(m, name, doc);
     std::vector<std::string> keys;
     Def probe = defaults;
@@ -115,6 +117,27 @@ void BindDef(py::module_& m, const char* name, const char* doc, Def defaults = D
         for (size_t k = 0; k < keys.size(); ++k) text += (k ? ", " : "") + keys[k] + "=" + std::string(py::repr(GetField(d, keys[k])));
         return text + ")";
     });
+    cls.def(py::pickle(
+        [keys](const Def& d) {
+            py::dict state;
+            for (const auto& k : keys) state[py::str(k)] = GetField(d, k);
+            if constexpr (std::is_same_v<Def, sim::MaterialDef>) state["preset"] = sim::Name(d.preset);  // named after it, not a field
+            return state;
+        },
+        [defaults](const py::dict& state) {
+            Def def = defaults;
+            for (const auto& [key, value] : state) {
+                const std::string k = key.template cast<std::string>();
+                if constexpr (std::is_same_v<Def, sim::MaterialDef>)
+                    if (k == "preset") {
+                        def.preset = sim::FromName<sim::MaterialPreset>(value.template cast<std::string>()).value_or(def.preset);
+                        continue;
+                    }
+                SetField(def, k, py::reinterpret_borrow<py::object>(value));
+            }
+            return def;
+        }));
+    return cls;
 }
 
 }  // namespace pybinding

@@ -1,5 +1,6 @@
 """`import actuator`: the module against the command line, bit for bit; threads; errors; arrays."""
 import concurrent.futures
+import functools
 import json
 import math
 import multiprocessing
@@ -300,3 +301,22 @@ def test_a_map_that_fails_mid_run_loses_nothing_and_the_run_resumes(tmp_path):
     actuator.evolve(ga, str(tmp_path / "cut"), map=map, resume=True)
     for name in ("run_1/logbook.csv", "run_1/halloffame.csv", "run_1/checkpoint.json"):
         assert (tmp_path / "cut" / name).read_bytes() == (tmp_path / "whole" / name).read_bytes(), name
+
+
+def test_shapes_defs_and_results_pickle_exactly_for_process_pools():
+    import pickle
+    shape = actuator.bspline([[1, 3, 5, 2, 0]], "entire")
+    assert pickle.loads(pickle.dumps(shape)).title == shape.title
+    material = actuator.Material.from_preset("dragon-skin-10")
+    material.mu_kpa = 123.0
+    back = pickle.loads(pickle.dumps(material))
+    assert repr(back) == repr(material) and back.preset == "dragon-skin-10"
+    r = actuator.evaluate(actuator.sine(2.0), params=SHORT)
+    again = pickle.loads(pickle.dumps(r))
+    assert (again.fitness.hex(), again.final.tobytes(), again.model) == (r.fitness.hex(), r.final.tobytes(), r.model)
+    # actuator.evaluate itself in a process pool, shapes and params sent by pickle.
+    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+        far = list(pool.map(functools.partial(actuator.evaluate, params=actuator.ThesisParams(iterations=2000)), SHAPES))
+    assert hexes(far) == hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT))
+    with pytest.raises(ValueError, match="choose"):
+        actuator.Material.from_preset("rubber")
