@@ -1,5 +1,6 @@
 #include "schema_convert.h"
 
+#include <capnp/any.h>
 #include <capnp/message.h>
 #include <capnp/serialize.h>
 
@@ -366,6 +367,7 @@ auto FromBytes(const std::string& bytes, const char* what, const Use& use) {
     options.traversalLimitInWords = std::max<std::uint64_t>(options.traversalLimitInWords, 2 * words.size());
     try {
         capnp::FlatArrayMessageReader reader(words, options);
+        if (reader.getRoot<capnp::AnyPointer>().isNull()) throw std::runtime_error(std::string("not a ") + what + " message: it holds nothing");
         return use(reader.getRoot<T>());
     } catch (const kj::Exception& e) {
         throw std::runtime_error(std::string("not a ") + what + " message: " + e.getDescription().cStr());

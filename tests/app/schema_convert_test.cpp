@@ -1,10 +1,12 @@
 // Every design, setting and result survives the Cap'n Proto schema unchanged, and a value this
 // build does not know is an error rather than a silent default.
 #include "schema_convert.h"
+#include "sim/batch.h"
 
 #include <capnp/message.h>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <numbers>
 
 TEST(SchemaConvert, EveryShapeAndSettingRoundTrips) {
@@ -155,4 +157,28 @@ TEST(SchemaConvert, AnUnknownEnumValueIsAnError) {
     auto params = message.initRoot<app::schema::SimParams>();
     params.setLoad(static_cast<app::schema::Load>(9));
     EXPECT_THROW(app::GetParams(params.asReader()), std::runtime_error);
+}
+
+TEST(SchemaConvert, JobsAndResultsAsBytesRoundTripExactlyAndGarbageIsRefused) {
+    sim::EvalJob job;
+    job.shape = sim::BSplineShape{sim::SplineRegion::Entire, {{1, 3, 5, 2, 0}, {8, 0, 4, 4, 4}}};
+    job.params = sim::DefaultSimParams();
+    job.params.iterations = 300;
+    job.mesh = sim::MeshDef{12, 9};
+    const sim::EvalJob back = app::JobFromBytes(app::JobBytes(job));
+    EXPECT_EQ(app::JobBytes(back), app::JobBytes(job));
+    EXPECT_EQ(std::get<sim::BSplineShape>(back.shape), std::get<sim::BSplineShape>(job.shape));
+    EXPECT_EQ(back.params.iterations, 300);
+    EXPECT_EQ(back.mesh.resolution, 12);
+
+    const sim::SimResult result = sim::Evaluate(job);
+    const sim::SimResult again = app::ResultFromBytes(app::ResultBytes(result, job.model));
+    EXPECT_EQ(again.status, result.status);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(again.fitness), std::bit_cast<std::uint64_t>(result.fitness));
+    EXPECT_EQ(again.final.x, result.final.x);
+    EXPECT_EQ(again.initial.z, result.initial.z);
+
+    for (const std::string& bad : {std::string(), std::string("1234567"), std::string(16, '\xff'), app::JobBytes(job).substr(0, 16)})
+        EXPECT_THROW(app::JobFromBytes(bad), std::runtime_error) << bad.size() << " bytes";
+    EXPECT_THROW(app::ResultFromBytes(std::string(24, '\0') + "garbage!"), std::runtime_error);
 }
