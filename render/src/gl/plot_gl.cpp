@@ -208,19 +208,36 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
             draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(corner.x + fs * 1.6f, corner.y + fs * 0.2f), IM_COL32(170, 20, 20, 255), plot.highlightLabel.c_str());
         }
     }
-    // Legend under the plots, from the first plot's series and bands.
+    // Legend under the plots, from the first plot's series and bands; on two rows when one would run
+    // past the right edge.
     if (!plots.empty()) {
-        float x = left, y = H - fs * 2.2f;
-        auto entry = [&](const std::string& label, ImU32 color, int kind) {  // 0 line, 1 filled, 2 dot
-            if (label.empty()) return;
-            if (kind == 1) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), color);
-            else if (kind == 2) draw->AddCircleFilled(ImVec2(x + fs * 0.8f, y + fs * 0.5f), fs * 0.3f, color);
-            else draw->AddLine(ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), color, fs * 0.18f);
-            draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(x + fs * 2.0f, y), kInk, label.c_str());
-            x += fs * 2.6f + o.TextFont()->CalcTextSizeA(fs * 0.9f, FLT_MAX, 0, label.c_str()).x + fs * 1.2f;
+        struct Entry {
+            std::string label;
+            ImU32 color;
+            int kind;  // 0 line, 1 filled, 2 dot
+            float width;
         };
-        for (const auto& series : plots[0].series) entry(series.label, Color(series.color, std::max(series.alpha, 0.5f)), series.lines ? 0 : 2);
-        for (const auto& band : plots[0].bands) entry(band.label, Color(band.color, 0.35f), 1);
+        std::vector<Entry> entries;
+        auto add = [&](const std::string& label, ImU32 color, int kind) {
+            if (!label.empty()) entries.push_back({label, color, kind, fs * 3.8f + o.TextFont()->CalcTextSizeA(fs * 0.9f, FLT_MAX, 0, label.c_str()).x});
+        };
+        for (const auto& series : plots[0].series) add(series.label, Color(series.color, std::max(series.alpha, 0.5f)), series.lines ? 0 : 2);
+        for (const auto& band : plots[0].bands) add(band.label, Color(band.color, 0.35f), 1);
+        float total = 0;
+        for (const Entry& e : entries) total += e.width;
+        const bool twoRows = left + total > W - right;
+        float x = left, y = H - fs * (twoRows ? 2.7f : 2.2f);
+        for (const Entry& e : entries) {
+            if (twoRows && x > left && x + e.width > W - right) {
+                x = left;
+                y += fs * 1.3f;
+            }
+            if (e.kind == 1) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), e.color);
+            else if (e.kind == 2) draw->AddCircleFilled(ImVec2(x + fs * 0.8f, y + fs * 0.5f), fs * 0.3f, e.color);
+            else draw->AddLine(ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), e.color, fs * 0.18f);
+            draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(x + fs * 2.0f, y), kInk, e.label.c_str());
+            x += e.width;
+        }
     }
     return End();
 }
