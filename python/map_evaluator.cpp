@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+
 #include "remote.h"
 #include "schema_convert.h"
 #include "sim/batch.h"
@@ -67,6 +69,30 @@ private:
     size_t batch_;
 };
 
+// Any evaluator, made stoppable from Python: between results (at most every 0.1 s) the calling
+// thread takes the GIL and lets Python run its signal handlers, so Ctrl-C (or a notebook's
+// interrupt) raises KeyboardInterrupt out of a long run. The work in flight stops; what was
+// recorded stays, and resume=True continues from it.
+class Interruptible final : public app::Evaluator {
+public:
+    explicit Interruptible(std::unique_ptr<app::Evaluator> inner) : inner_(std::move(inner)) {}
+
+    void Evaluate(const std::vector<sim::EvalJob>& jobs, const app::ResultSink& sink) override {
+        auto checked = std::chrono::steady_clock::now();
+        inner_->Evaluate(jobs, [&](size_t index, sim::SimResult&& result) {
+            sink(index, std::move(result));
+            if (std::chrono::steady_clock::now() - checked < std::chrono::milliseconds(100)) return;
+            checked = std::chrono::steady_clock::now();
+            py::gil_scoped_acquire gil;
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        });
+    }
+    std::string Describe() const override { return inner_->Describe(); }
+
+private:
+    std::unique_ptr<app::Evaluator> inner_;
+};
+
 }  // namespace
 
 std::unique_ptr<app::Evaluator> MakePythonEvaluator(int threads, const py::object& map, const py::object& workers, size_t batch) {
@@ -80,9 +106,9 @@ std::unique_ptr<app::Evaluator> MakePythonEvaluator(int threads, const py::objec
         options.workers = py::isinstance<py::str>(workers) ? app::ParseWorkerList(workers.cast<std::string>())
                                                            : workers.cast<std::vector<std::string>>();
         if (options.workers.empty()) throw py::value_error("workers: the list is empty");
-        return app::MakeWorkerPool(options);
+        return std::make_unique<Interruptible>(app::MakeWorkerPool(options));
     }
-    if (!hasMap) return app::MakeLocalEvaluator(threads);
+    if (!hasMap) return std::make_unique<Interruptible>(app::MakeLocalEvaluator(threads));
     // A Dask client (or anything with map and gather): submit, then gather, in order.
     if (py::hasattr(map, "map") && py::hasattr(map, "gather")) return std::make_unique<MapEvaluator>(map.attr("map"), map.attr("gather"), batch);
     if (PyCallable_Check(map.ptr())) return std::make_unique<MapEvaluator>(map, py::object(), batch);

@@ -23,7 +23,8 @@ constexpr size_t kDefaultMapBatch = 1024;
 // Where a Python call's evaluations run: this machine's threads (map and workers None), a Python
 // map, or evaluation servers (`workers`, "host:port" strings, as the command line's --workers).
 // Throws ValueError for a map that is neither callable nor a Dask-like client, or for both map and
-// workers. Made and destroyed with the GIL held; its Evaluate takes the GIL when it needs it.
+// workers. Made and destroyed with the GIL held; its Evaluate takes the GIL when it needs it. Threads
+// and servers check Python's signals between results: Ctrl-C raises KeyboardInterrupt.
 std::unique_ptr<app::Evaluator> MakePythonEvaluator(int threads, const py::object& map, const py::object& workers, size_t batch = kDefaultMapBatch);
 
 // What runs on the map's side: job bytes in, result bytes out (app/schema_convert.h).

@@ -320,3 +320,26 @@ def test_shapes_defs_and_results_pickle_exactly_for_process_pools():
     assert hexes(far) == hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT))
     with pytest.raises(ValueError, match="choose"):
         actuator.Material.from_preset("rubber")
+
+
+def test_ctrl_c_stops_a_long_local_run_and_it_resumes(tmp_path):
+    import signal
+    import threading
+    shapes = [actuator.sine(1 + 0.01 * k, (0.5, math.pi - 0.5)) for k in range(400)]  # about 5 s on 2 threads
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    started = time.time()
+    with pytest.raises(KeyboardInterrupt):
+        actuator.evaluate_many(shapes, threads=2)
+    assert time.time() - started < 2.5
+    # An experiment stopped so keeps what it recorded, and resumes to the uninterrupted end.
+    sweep = json.loads(json.dumps(SWEEP))
+    sweep["sim"]["iterations"] = 10000
+    sweep["sweep"]["axes"] = [{"parameter": "amplitude", "from": 1, "to": 4, "points": 120}]
+    threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+    with pytest.raises(KeyboardInterrupt):
+        actuator.sweep(sweep, str(tmp_path / "cut"), threads=2)
+    kept = len(list(actuator.open_archive(str(tmp_path / "cut" / "evaluations.capnp"), meshes=False)))
+    assert 0 < kept < 120
+    actuator.sweep(sweep, str(tmp_path / "cut"), threads=2, resume=True)
+    actuator.sweep(sweep, str(tmp_path / "whole"), threads=2)
+    assert (tmp_path / "cut" / "results.csv").read_bytes() == (tmp_path / "whole" / "results.csv").read_bytes()
