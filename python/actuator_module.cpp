@@ -230,7 +230,10 @@ render::Image RenderResult(const Evaluated& e, const std::string& view, double a
     if (supersample < 1 || supersample > 4) throw py::value_error("supersample: 1 to 4");
     if (e.result.final.Size() == 0) throw py::value_error("this result has no meshes (an archive read with meshes=False?)");
     py::gil_scoped_release release;
-    const std::string title = app::ShapeTitle(e.job.shape);
+    // As `actuator render` titles it: the shape, and for the shell models the model and the fibres.
+    const bool thesis = e.job.model == sim::ModelKind::Thesis;
+    const std::string title = app::ShapeTitle(e.job.shape) + (thesis ? "" : fmt::format("  -  {} model", sim::Name(e.job.model))) +
+                              (thesis || e.job.shell.fibres.layout == sim::FibreLayout::None ? "" : ",  " + app::FibreTitle(e.job.shell.fibres));
     const render::Scene scene = view == "before_after" ? app::BeforeAfterScene(title, e.result, e.job, *colouring)
                                                        : app::TurntableScene(title, e.result, e.job, angleDeg, *colouring);
     return app::MakeRenderer(width, height, supersample)->Render(scene);
