@@ -188,8 +188,7 @@ py::dict RunExperimentFromPython(const py::object& experiment, const std::string
         e = app::LoadExperiment(experiment.cast<std::string>());
     }
     if (kind && e.kind != *kind) {
-        static const char* names[] = {"sweep", "evolve", "evaluate", "optimizer"};
-        throw py::value_error(std::string("this experiment is a '") + names[static_cast<int>(e.kind)] + "' one; use actuator.run (or the function of that name)");
+        throw py::value_error(fmt::format("this experiment is a '{}' one; use actuator.run (or the function of that name)", sim::Name(e.kind)));
     }
     const bool frames = FramesWanted(args.asFrame);
     const std::unique_ptr<app::Evaluator> evaluator = pybinding::MakePythonEvaluator(args.threads, args.map, args.workers);
@@ -230,10 +229,7 @@ render::Image RenderResult(const Evaluated& e, const std::string& view, double a
     if (supersample < 1 || supersample > 4) throw py::value_error("supersample: 1 to 4");
     if (e.result.final.Size() == 0) throw py::value_error("this result has no meshes (an archive read with meshes=False?)");
     py::gil_scoped_release release;
-    // As `actuator render` titles it: the shape, and for the shell models the model and the fibres.
-    const bool thesis = e.job.model == sim::ModelKind::Thesis;
-    const std::string title = app::ShapeTitle(e.job.shape) + (thesis ? "" : fmt::format("  -  {} model", sim::Name(e.job.model))) +
-                              (thesis || e.job.shell.fibres.layout == sim::FibreLayout::None ? "" : ",  " + app::FibreTitle(e.job.shell.fibres));
+    const std::string title = app::JobTitle(e.job);  // as `actuator render` titles it
     const render::Scene scene = view == "before_after" ? app::BeforeAfterScene(title, e.result, e.job, *colouring)
                                                        : app::TurntableScene(title, e.result, e.job, angleDeg, *colouring);
     return app::MakeRenderer(width, height, supersample)->Render(scene);

@@ -307,8 +307,7 @@ int RunRender(int argc, char** argv, int first) {
     const std::string loadName = thesis ? sim::Name(job.params.load) : sim::Name(job.shell.load.kind);
     const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
                                                    ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", loadName)
-                                     : ShapeTitle(job.shape) + (thesis ? "" : fmt::format("  -  {} model", sim::Name(job.model))) +
-                                           (thesis || job.shell.fibres.layout == sim::FibreLayout::None ? "" : ",  " + FibreTitle(job.shell.fibres));
+                                     : JobTitle(job);
     if (stored) {
         const fs::path path = out / files.front();
         WritePng(path.string(), renderer->Render(BeforeAfterScene(title, inflated, job, colouring)), p.pngLevel);

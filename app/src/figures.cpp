@@ -53,6 +53,12 @@ std::string FibreTitle(const sim::FibreDef& f) {
     return title + " deg";
 }
 
+std::string JobTitle(const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis) return ShapeTitle(job.shape);
+    const std::string fibres = FibreTitle(job.shell.fibres);
+    return fmt::format("{}  -  {} model{}", ShapeTitle(job.shape), sim::Name(job.model), fibres.empty() ? "" : ",  " + fibres);
+}
+
 std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
     if (job.model == sim::ModelKind::Thesis) {
