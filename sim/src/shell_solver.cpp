@@ -59,6 +59,10 @@ public:
         return true;
     }
     Eigen::VectorXd Solve(const Eigen::VectorXd& b) const { return ldlt_.solve(b); }
+    double SmallestPivot() const {
+        const auto& d = ldlt_.vectorD();
+        return d.size() ? d.minCoeff() : NAN;
+    }
     // The most negative pivot (0 when none is negative).
     double MostNegativePivot() const {
         const auto& d = ldlt_.vectorD();
@@ -89,22 +93,63 @@ enum class NewtonEnd {
     Runaway,  // the volume passed its limit: no equilibrium nearby (past the pressure maximum)
 };
 
-struct Solver {
-    const ShellProblem& problem;
-    const SolverDef& def;
+// What a solve needs that depends on the mesh's topology alone: the Hessian's pattern and the
+// factors' symbolic analysis. Building and ordering the pattern costs about as much as a
+// factorisation, and the evaluations a thread runs one after another (a sweep, a population) nearly
+// always share one mesh, so each thread keeps the last one (SHELL.md section 11). Results do not
+// depend on it: every factor is computed afresh before it is read.
+struct Workspace {
+    // The topology: what the pattern is built from.
+    std::vector<int> dofOf, anchored;
+    std::vector<std::array<int, 3>> wall, caps;
+    std::vector<std::array<int, 4>> hinges;
+    int unknowns = 0, axial = -1;
+
     HessianPattern pattern;       // Newton's projected Hessian
     Factor factor;
     HessianPattern exactPattern;  // the exact Hessian (inertia, stiffness, volume control), factorised apart
     Factor exactFactor;           // so that Newton's last factor stays for the predictor
+
+    explicit Workspace(const ShellProblem& p)
+        : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
+          pattern(p), exactPattern(pattern) {}
+    bool Fits(const ShellProblem& p) const {
+        return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
+               caps == p.caps && hinges == p.hinges;
+    }
+};
+
+// This thread's last workspace: taken by a solver while it runs (a solver inside another builds its own).
+thread_local std::unique_ptr<Workspace> tLastWorkspace;
+
+std::unique_ptr<Workspace> TakeWorkspace(const ShellProblem& p) {
+    std::unique_ptr<Workspace> w = std::move(tLastWorkspace);
+    if (w && w->Fits(p)) return w;
+    return std::make_unique<Workspace>(p);
+}
+
+struct Solver {
+    const ShellProblem& problem;
+    const SolverDef& def;
+    std::unique_ptr<Workspace> workspace;
+    HessianPattern& pattern;
+    Factor* factor;       // Newton's: the workspace's two, swapped when the exact one is the fresher preconditioner
+    HessianPattern& exactPattern;
+    Factor* exactFactor;
     Counters counters;
     bool holdAxial = false;   // u is held at its current value (the blocked test)
     double volumeLimit = std::numeric_limits<double>::infinity();  // Minimise stops as Runaway past it
     double forceTolerance;    // N
     EnergyTerms terms;
 
-    Solver(const ShellProblem& p, const SolverDef& d) : problem(p), def(d), pattern(p), exactPattern(p) {
+    Solver(const ShellProblem& p, const SolverDef& d)
+        : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
+          exactPattern(workspace->exactPattern), exactFactor(&workspace->exactFactor) {
         forceTolerance = d.tolerance * MembraneMaterialShearModulus(p.material) * p.material.thicknessMm * p.meanEdgeMm;
     }
+    ~Solver() { tLastWorkspace = std::move(workspace); }
+    Solver(const Solver&) = delete;
+    Solver& operator=(const Solver&) = delete;
 
     // The largest force on a free vertex (and on the top clamp, unless held).
     double LargestForce(const Eigen::VectorXd& g) const {
@@ -121,57 +166,122 @@ struct Solver {
         return largest;
     }
 
-    void ApplyHeld(Eigen::VectorXd& g, SparseMatrix* H) const {
+    void HoldGradient(Eigen::VectorXd& g) const {
+        if (holdAxial && problem.axial >= 0) g[problem.axial] = 0;
+    }
+    void HoldMatrix(SparseMatrix& H) const {
         if (!holdAxial || problem.axial < 0) return;
-        g[problem.axial] = 0;
-        if (!H) return;
         // Dirichlet by elimination: the held unknown's row and column become the identity.
-        for (int col = 0; col < H->outerSize(); ++col)
-            for (SparseMatrix::InnerIterator it(*H, col); it; ++it)
+        for (int col = 0; col < H.outerSize(); ++col)
+            for (SparseMatrix::InnerIterator it(H, col); it; ++it)
                 if (it.row() == problem.axial || it.col() == problem.axial) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
     }
 
     // Solves (H + c w w^T) x = b by Sherman-Morrison on the sparse factor (the sealed gas's term).
     Eigen::VectorXd SolveWithRankOne(const Eigen::VectorXd& b, double c, const Eigen::VectorXd& w) const {
-        Eigen::VectorXd x = factor.Solve(b);
+        Eigen::VectorXd x = factor->Solve(b);
         if (c == 0) return x;
-        const Eigen::VectorXd y = factor.Solve(w);
+        const Eigen::VectorXd y = factor->Solve(w);
         return x - (c * w.dot(x) / (1 + c * w.dot(y))) * y;
+    }
+
+    // The Newton step by conjugate gradients on (H + c w w^T) s = -g, preconditioned by `factor`, the
+    // factorisation of an earlier (nearby) state's matrix: a factorisation costs about 40
+    // back-substitutions, and a factor a few Newton iterations or a load step old still clusters the
+    // spectrum tightly. False when the matrix is not positive definite along the search or the
+    // iterations run out; `used` counts them.
+    bool PreconditionedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, Eigen::VectorXd& step, int* used) {
+        step = Eigen::VectorXd::Zero(g.size());
+        Eigen::VectorXd r = -g;
+        Eigen::VectorXd z = factor->Solve(r);
+        Eigen::VectorXd p = z, Ap;
+        double rz = r.dot(z);
+        const double target = kStepResidual * g.norm();
+        for (int k = 1; k <= kMaxStepIterations; ++k) {
+            *used = k;
+            Ap = H * p;
+            if (c != 0) Ap += (c * w.dot(p)) * w;
+            const double curvature = p.dot(Ap);
+            if (!(curvature > 0) || !(rz > 0)) return false;
+            const double alpha = rz / curvature;
+            step += alpha * p;
+            r -= alpha * Ap;
+            if (r.norm() <= target) return step.allFinite();
+            z = factor->Solve(r);
+            const double next = r.dot(z);
+            p = z + (next / rz) * p;
+            rz = next;
+        }
+        return false;
+    }
+    static constexpr double kStepResidual = 1e-4;  // of the gradient's norm: the step's linear residual
+    static constexpr int kMaxStepIterations = 30;  // then a fresh factorisation is cheaper
+    bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
+    bool refresh = false;                          // the last preconditioned step was slow: factorise next time
+
+    // A step from a fresh factorisation of H (+ the gas's rank-one term): a descent direction, or
+    // empty. When H is not definite, the pressure's part is left out, which is positive
+    // semi-definite by construction; a tiny growing shift takes care of what is singular.
+    Eigen::VectorXd FactorisedStep(const Eigen::VectorXd& q, const LoadTerms& load, const EnergyResult& r, double gasTerm, const Eigen::VectorXd& w,
+                                   SparseMatrix& H, bool definite) {
+        Eigen::VectorXd step;
+        double shift = 0;
+        for (int attempt = 0; attempt < 12; ++attempt) {
+            preconditioner = factor->Compute(H, shift, true, counters);
+            if (preconditioner) {
+                step = -SolveWithRankOne(r.gradient, gasTerm, w);
+                if (step.allFinite() && step.dot(r.gradient) < 0) return step;
+            }
+            if (!definite) {
+                definite = true;
+                AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Definite);  // H is pattern.matrix
+                HoldMatrix(H);
+                continue;
+            }
+            const double scale = H.diagonal().cwiseAbs().maxCoeff();
+            shift = shift == 0 ? 1e-10 * scale : 10 * shift;
+        }
+        return Eigen::VectorXd();
     }
 
     // Minimises the total energy at `load` from q (in place).
     NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load) {
+        // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
+        EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
         for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
-            EnergyResult r = AssembleEnergy(problem, q, load, terms, true, &pattern, HessianKind::Projected);
             ++counters.iterations;
             if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
             if (r.volume > volumeLimit) return NewtonEnd::Runaway;
-            ApplyHeld(r.gradient, &pattern.matrix);
+            HoldGradient(r.gradient);
             if (LargestForce(r.gradient) < forceTolerance) return NewtonEnd::Converged;
             const double gasTerm = load.gasConstant > 0 ? load.gasConstant / (r.volume * r.volume) : 0;
             Eigen::VectorXd w = r.volumeGradient;
-            if (holdAxial && problem.axial >= 0) w[problem.axial] = 0;
-            // A step that descends: the projected Hessian with the pressure's exact one (quadratic
-            // convergence near a stable equilibrium); when that is not definite (far from equilibrium,
-            // or near the pressure maximum), the pressure's part is left out, which is positive
-            // semi-definite by construction; a tiny growing shift takes care of what is singular.
+            HoldGradient(w);
+            // Newton's step on the projected Hessian with the pressure's exact one (quadratic
+            // convergence near a stable equilibrium), by conjugate gradients on an earlier factor when
+            // there is one, else (or when they fail) from a fresh factorisation.
+            AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Projected);
+            HoldMatrix(pattern.matrix);
             Eigen::VectorXd step;
-            double shift = 0;
-            bool definite = false;
-            for (int attempt = 0; attempt < 12; ++attempt) {
-                if (factor.Compute(pattern.matrix, shift, true, counters)) {
-                    step = -SolveWithRankOne(r.gradient, gasTerm, w);
-                    if (step.allFinite() && step.dot(r.gradient) < 0) break;
-                }
-                step.resize(0);
-                if (!definite) {
-                    definite = true;
-                    AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Definite);
-                    ApplyHeld(r.gradient, &pattern.matrix);
-                    continue;
-                }
-                const double scale = pattern.matrix.diagonal().cwiseAbs().maxCoeff();
-                shift = shift == 0 ? 1e-10 * scale : 10 * shift;
+            if (!preconditioner) {
+                // The solve's first factorisation: of the Hessian without the pressure's part. From
+                // the rest state the whole one is rarely definite, and a factorisation that fails
+                // costs as much as one that succeeds. It preconditions the whole Hessian, or gives
+                // the step itself.
+                AssembleEnergy(problem, q, load, terms, false, &exactPattern, HessianKind::Definite);
+                HoldMatrix(exactPattern.matrix);
+                const Eigen::VectorXd fallback = FactorisedStep(q, load, r, gasTerm, w, exactPattern.matrix, true);
+                int used = 0;
+                if (preconditioner && !(PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) && step.dot(r.gradient) < 0)) step = fallback;
+                refresh = used > kMaxStepIterations / 2;
+            } else if (!refresh) {
+                int used = 0;
+                if (!PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) || !(step.dot(r.gradient) < 0)) step.resize(0);
+                refresh = step.size() == 0 || used > kMaxStepIterations / 2;
+            }
+            if (step.size() == 0) {
+                refresh = false;
+                step = FactorisedStep(q, load, r, gasTerm, w, pattern.matrix, false);
             }
             if (step.size() == 0) return NewtonEnd::NotConverged;
             // Backtracking on E. When the predicted decrease is below round-off, energy can no longer
@@ -183,12 +293,10 @@ struct Solver {
             bool accepted = false;
             for (int halving = 0; halving < 40; ++halving) {
                 next = q + alpha * step;
-                if (roundOff) {
-                    accepted = true;
-                    break;
-                }
-                const double e = AssembleEnergy(problem, next, load, terms, false, nullptr, HessianKind::Projected).energy;
-                if (std::isfinite(e) && e <= r.energy + 1e-4 * alpha * slope) {
+                // With the gradient: the next iteration's (most steps are taken whole).
+                EnergyResult trial = AssembleEnergy(problem, next, load, terms, true, nullptr, HessianKind::Projected);
+                if (roundOff || (std::isfinite(trial.energy) && trial.energy <= r.energy + 1e-4 * alpha * slope)) {
+                    r = std::move(trial);
                     accepted = true;
                     break;
                 }
@@ -211,15 +319,16 @@ struct Solver {
             EnergyResult r = AssembleEnergy(problem, q, l, terms, true, &exactPattern, HessianKind::Exact);
             ++counters.iterations;
             if (!r.gradient.allFinite() || !std::isfinite(r.volume)) return NewtonEnd::NonFinite;
-            ApplyHeld(r.gradient, &exactPattern.matrix);
+            HoldGradient(r.gradient);
+            HoldMatrix(exactPattern.matrix);
             const double volumeError = r.volume - target;
             if (LargestForce(r.gradient) < forceTolerance && std::fabs(volumeError) < 1e-10 * problem.restVolume) return NewtonEnd::Converged;
-            if (!exactFactor.Compute(exactPattern.matrix, 0, false, counters)) return NewtonEnd::NotConverged;
+            if (!exactFactor->Compute(exactPattern.matrix, 0, false, counters)) return NewtonEnd::NotConverged;
             Eigen::VectorXd w = r.volumeGradient;
-            if (holdAxial && problem.axial >= 0) w[problem.axial] = 0;
+            HoldGradient(w);
             // [K -w; -w^T 0][dq; dp] = -[g; -(V - target)]: with a = K^-1 g, b = K^-1 w,
             // dq = -a + dp b and w^T dq = -(V - target).
-            const Eigen::VectorXd a = exactFactor.Solve(r.gradient), b = exactFactor.Solve(w);
+            const Eigen::VectorXd a = exactFactor->Solve(r.gradient), b = exactFactor->Solve(w);
             const double dp = (w.dot(a) - volumeError) / w.dot(b);
             const Eigen::VectorXd dq = -a + dp * b;
             if (!dq.allFinite() || !std::isfinite(dp)) return NewtonEnd::NonFinite;
@@ -229,12 +338,22 @@ struct Solver {
         return NewtonEnd::NotConverged;
     }
 
+    // Makes the exact Hessian's factor (just computed, positive definite) Newton's preconditioner: it
+    // is fresher than Newton's own.
+    void PreconditionWithExact() {
+        if (!(exactFactor->SmallestPivot() > 0)) return;
+        std::swap(factor, exactFactor);
+        preconditioner = true;
+        refresh = false;
+    }
+
     // The exact Hessian at q, factorised (indefinite allowed); its negative pivots.
     int ExactInertia(const Eigen::VectorXd& q, const LoadTerms& load, EnergyResult* r) {
         *r = AssembleEnergy(problem, q, load, terms, true, &exactPattern, HessianKind::Exact);
-        ApplyHeld(r->gradient, &exactPattern.matrix);
-        if (!exactFactor.Compute(exactPattern.matrix, 0, false, counters)) return -1;
-        return exactFactor.NegativePivots();
+        HoldGradient(r->gradient);
+        HoldMatrix(exactPattern.matrix);
+        if (!exactFactor->Compute(exactPattern.matrix, 0, false, counters)) return -1;
+        return exactFactor->NegativePivots();
     }
 };
 
@@ -410,7 +529,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
                     if (predict) {
                         Eigen::VectorXd w = AssembleEnergy(problem, q, loadAt(reached), solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
                         if (solver.holdAxial && problem.axial >= 0) w[problem.axial] = 0;
-                        tangent = solver.factor.Solve(w);  // the factor of Newton's last step
+                        tangent = solver.factor->Solve(w);  // the factor of Newton's last step
                         if (!tangent.allFinite()) tangent.resize(0);
                     }
                     continue;
@@ -471,7 +590,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
         if (negative >= 0 && problem.axial >= 0 && !solver.holdAxial) {
             Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.unknowns);
             unit[problem.axial] = 1;
-            out.axialStiffnessNPerMm = 1 / solver.exactFactor.Solve(unit)[problem.axial];
+            out.axialStiffnessNPerMm = 1 / solver.exactFactor->Solve(unit)[problem.axial];
         }
     }
     // Blocking force: the top clamp held at its rest place at the final load, from the free state.
@@ -480,6 +599,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     } else if (load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Gas) {
         Eigen::VectorXd held = q;
         held[problem.axial] = 0;
+        solver.PreconditionWithExact();
         solver.holdAxial = true;
         if (solver.Minimise(held, finalLoad) == NewtonEnd::Converged)
             out.blockingForceN = AssembleEnergy(problem, held, finalLoad, solver.terms, true, nullptr, HessianKind::Exact).axialForce;
