@@ -146,7 +146,8 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             Matrix6* hessianOfF = hessian ? &hF : nullptr;
             double density = terms.membrane ? MembraneDensity(p.material, F, gradientOfF, hessianOfF) : 0.0;
             // The fibres' part is positive semi-definite where taut and zero where slack.
-            for (int k = 0; k < families; ++k) density += FibreDensity(F, &p.fibreDirections[t][2 * k], p.fibreStiffness, gradientOfF, hessianOfF);
+            for (int k = 0; k < families; ++k)
+                density += FibreDensity(F, &p.fibreDirections[t][2 * k], p.fibreStiffness, gradientOfF, hessianOfF, kind != HessianKind::Exact);
             energy.Add(rest.area * density);
             if (wantGradient || hessian) {
                 // dE/dx_a = A0 sum_alpha g_a[alpha] dPsi/df_alpha.

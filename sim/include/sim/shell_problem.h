@@ -63,7 +63,9 @@ PrincipalValues Principal(const MembraneMaterial& material, const Matrix32& F);
 // A fibre family's energy per rest area, (k/4)(I4 - 1)^2 with I4 = |F a|^2 when I4 > 1 (threads carry
 // no compression), for unit rest direction a in the triangle's rest frame and stiffness k (N/mm);
 // with its derivatives with respect to F's entries. Either pointer may be null (then not touched).
-double FibreDensity(const Matrix32& F, const double a[2], double stiffness, Vector6* gradient, Matrix6* hessian);
+// With tautAtKink (Newton's matrix), a fibre at its rest length within round-off adds the taut
+// side's stiffness 2k (F a)(F a)^T to the Hessian, where the exact one is 0.
+double FibreDensity(const Matrix32& F, const double a[2], double stiffness, Vector6* gradient, Matrix6* hessian, bool tautAtKink = false);
 
 // The bending angle of hinge (p0, p1, q, r) and its derivatives (see scripts/generate_hinge_angle.py):
 // 12-vector gradient and 12 x 12 Hessian over (p0, p1, q, r). Either pointer may be null.
