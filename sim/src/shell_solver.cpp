@@ -196,7 +196,9 @@ struct Solver {
         Eigen::VectorXd z = factor->Solve(r);
         Eigen::VectorXd p = z, Ap;
         double rz = r.dot(z);
-        const double target = kStepResidual * g.norm();
+        // Relative to the gradient, but never below a tenth of the convergence tolerance: the step
+        // that ends a solve needs no more than that.
+        const double target = std::max(kStepResidual * g.norm(), 0.1 * forceTolerance);
         for (int k = 1; k <= kMaxStepIterations; ++k) {
             *used = k;
             Ap = H * p;
@@ -579,6 +581,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
         return l;
     }() : loadAt(1.0);
     // The exact Hessian's inertia tells a stable equilibrium from one past the pressure maximum.
+    Eigen::VectorXd axialResponse;  // dq per unit axial force: K^-1 e_u
     {
         EnergyResult exact;
         const int negative = solver.ExactInertia(q, finalLoad, &exact);
@@ -590,14 +593,19 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
         if (negative >= 0 && problem.axial >= 0 && !solver.holdAxial) {
             Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.unknowns);
             unit[problem.axial] = 1;
-            out.axialStiffnessNPerMm = 1 / solver.exactFactor->Solve(unit)[problem.axial];
+            axialResponse = solver.exactFactor->Solve(unit);
+            out.axialStiffnessNPerMm = 1 / axialResponse[problem.axial];
         }
     }
     // Blocking force: the top clamp held at its rest place at the final load, from the free state.
     if (load.kind == ShellLoad::Blocked) {
         out.blockingForceN = AssembleEnergy(problem, q, finalLoad, solver.terms, true, nullptr, HessianKind::Exact).axialForce;
     } else if (load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Gas) {
+        // Starting from the free state's linear response to the clamp's return (not from the free
+        // state with the clamp alone moved, which strains the rings beside it the most).
         Eigen::VectorXd held = q;
+        if (axialResponse.allFinite() && axialResponse.size() == q.size() && axialResponse[problem.axial] > 0)
+            held -= (q[problem.axial] / axialResponse[problem.axial]) * axialResponse;
         held[problem.axial] = 0;
         solver.PreconditionWithExact();
         solver.holdAxial = true;
