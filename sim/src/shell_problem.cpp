@@ -328,4 +328,20 @@ Matrix32 DeformationGradient(const ShellProblem& p, int t, const Positions& x) {
     return F;
 }
 
+std::vector<int> VertexBlockPlaces(const ShellProblem& p) {
+    std::vector<int> places(p.unknowns, -1);
+    int blocks = 0;
+    for (int v = 0; v < p.vertexCount(); ++v) {
+        bool free = false;
+        for (int c = 0; c < 3; ++c)
+            if (const int d = p.dofOf[3 * v + c]; d >= 0) {
+                places[d] = 3 * blocks + c;
+                free = true;
+            }
+        blocks += free;
+    }
+    if (p.axial >= 0) places[p.axial] = 3 * blocks;
+    return places;
+}
+
 }  // namespace sim

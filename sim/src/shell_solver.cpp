@@ -5,7 +5,6 @@
 // [SECTION] Newton: projected Hessian, backtracking line search on E, round-off guard
 // [SECTION] Loads: pressure steps with bisection, sealed gas, volume control, axial force
 // [SECTION] Evaluation: outputs, statuses
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <mutex>
 
 #include "sim/batch.h"
+#include "sim/block_ldlt.h"
 #include "sim/shell_problem.h"
 
 namespace sim {
@@ -33,53 +33,24 @@ struct Counters {
     int factorizations = 0;
 };
 
-// An LDL^T factor whose symbolic analysis is done once for a pattern and reused.
+// An LDL^T factor in vertex blocks whose symbolic analysis is done once for a pattern and reused.
 class Factor {
 public:
-    // Factorises H (+ shift I). False when a pivot is not positive (for a matrix that must be
-    // positive definite) or the factorisation failed.
-    bool Compute(const SparseMatrix& H, double shift, bool requirePositive, Counters& counters) {
-        if (!analysed_) {
-            ldlt_.analyzePattern(H);
-            analysed_ = true;
-        }
-        if (shift != 0) {
-            shifted_ = H;
-            for (int k = 0; k < shifted_.outerSize(); ++k) shifted_.coeffRef(k, k) += shift;
-            ldlt_.factorize(shifted_);
-        } else {
-            ldlt_.factorize(H);
-        }
+    // Factorises H (+ shift I); `places` gives each unknown's vertex block. False when a pivot is
+    // not positive (for a matrix that must be positive definite) or the factorisation failed.
+    bool Compute(const SparseMatrix& H, const std::vector<int>& places, double shift, bool requirePositive, Counters& counters) {
+        if (!ldlt_.Analysed()) ldlt_.Analyse(H, places);
         ++counters.factorizations;
-        if (ldlt_.info() != Eigen::Success) return false;
-        if (!requirePositive) return true;
-        const auto& d = ldlt_.vectorD();
-        for (int k = 0; k < d.size(); ++k)
-            if (!(d[k] > 0)) return false;
-        return true;
+        if (!ldlt_.Factorise(H, shift)) return false;
+        return !requirePositive || ldlt_.SmallestPivot() > 0;
     }
-    Eigen::VectorXd Solve(const Eigen::VectorXd& b) const { return ldlt_.solve(b); }
-    double SmallestPivot() const {
-        const auto& d = ldlt_.vectorD();
-        return d.size() ? d.minCoeff() : NAN;
-    }
-    // The most negative pivot (0 when none is negative).
-    double MostNegativePivot() const {
-        const auto& d = ldlt_.vectorD();
-        return d.size() ? std::min(0.0, d.minCoeff()) : 0.0;
-    }
+    Eigen::VectorXd Solve(const Eigen::VectorXd& b) const { return ldlt_.Solve(b); }
+    double SmallestPivot() const { return ldlt_.SmallestPivot(); }
     // Negative pivots: by Sylvester's law of inertia, the number of negative eigenvalues.
-    int NegativePivots() const {
-        const auto& d = ldlt_.vectorD();
-        int count = 0;
-        for (int k = 0; k < d.size(); ++k) count += d[k] < 0;
-        return count;
-    }
+    int NegativePivots() const { return ldlt_.NegativePivots(); }
 
 private:
-    Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
-    SparseMatrix shifted_;
-    bool analysed_ = false;
+    BlockLdlt ldlt_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -105,6 +76,7 @@ struct Workspace {
     std::vector<std::array<int, 4>> hinges;
     int unknowns = 0, axial = -1;
 
+    std::vector<int> places;      // each unknown's place in the factors' vertex blocks
     HessianPattern pattern;       // Newton's projected Hessian
     Factor factor;
     HessianPattern exactPattern;  // the exact Hessian (inertia, stiffness, volume control), factorised apart
@@ -112,7 +84,7 @@ struct Workspace {
 
     explicit Workspace(const ShellProblem& p)
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
-          pattern(p), exactPattern(pattern) {}
+          places(VertexBlockPlaces(p)), pattern(p), exactPattern(pattern) {}
     bool Fits(const ShellProblem& p) const {
         return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
                caps == p.caps && hinges == p.hinges;
@@ -229,7 +201,7 @@ struct Solver {
         Eigen::VectorXd step;
         double shift = 0;
         for (int attempt = 0; attempt < 12; ++attempt) {
-            preconditioner = factor->Compute(H, shift, true, counters);
+            preconditioner = factor->Compute(H, workspace->places, shift, true, counters);
             if (preconditioner) {
                 step = -SolveWithRankOne(r.gradient, gasTerm, w);
                 if (step.allFinite() && step.dot(r.gradient) < 0) return step;
@@ -325,7 +297,7 @@ struct Solver {
             HoldMatrix(exactPattern.matrix);
             const double volumeError = r.volume - target;
             if (LargestForce(r.gradient) < forceTolerance && std::fabs(volumeError) < 1e-10 * problem.restVolume) return NewtonEnd::Converged;
-            if (!exactFactor->Compute(exactPattern.matrix, 0, false, counters)) return NewtonEnd::NotConverged;
+            if (!exactFactor->Compute(exactPattern.matrix, workspace->places, 0, false, counters)) return NewtonEnd::NotConverged;
             Eigen::VectorXd w = r.volumeGradient;
             HoldGradient(w);
             // [K -w; -w^T 0][dq; dp] = -[g; -(V - target)]: with a = K^-1 g, b = K^-1 w,
@@ -354,7 +326,7 @@ struct Solver {
         *r = AssembleEnergy(problem, q, load, terms, true, &exactPattern, HessianKind::Exact);
         HoldGradient(r->gradient);
         HoldMatrix(exactPattern.matrix);
-        if (!exactFactor->Compute(exactPattern.matrix, 0, false, counters)) return -1;
+        if (!exactFactor->Compute(exactPattern.matrix, workspace->places, 0, false, counters)) return -1;
         return exactFactor->NegativePivots();
     }
 };

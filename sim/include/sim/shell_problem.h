@@ -137,6 +137,10 @@ std::vector<std::array<int, 4>> HingesOf(const std::vector<std::array<int, 3>>& 
 // hinge energy, with the factor that passes its own cylinder calibration (see shell_problem.cpp).
 void SetHingeRest(ShellProblem& problem);
 
+// Each unknown's place in a factorisation's 3 x 3 blocks (BlockLdlt), 3 * block + coordinate: a
+// vertex's free coordinates share a block; the clamp's axial unknown has one of its own.
+std::vector<int> VertexBlockPlaces(const ShellProblem& problem);
+
 // The unknowns' values for positions (u read from the first axial coordinate) and back.
 Eigen::VectorXd UnknownsOf(const ShellProblem& problem, const Positions& x);
 void PositionsOf(const ShellProblem& problem, const Eigen::VectorXd& q, Positions& x);
