@@ -359,12 +359,15 @@ bool SelfIntersects(const ShellProblem& p, const Positions& x) {
     auto key = [](long long i, long long j, long long k) {
         return (static_cast<std::uint64_t>(i & 0x1fffff) << 42) | (static_cast<std::uint64_t>(j & 0x1fffff) << 21) | static_cast<std::uint64_t>(k & 0x1fffff);
     };
+    std::vector<Eigen::Vector3d> lows(triangles.size()), highs(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
         Eigen::Vector3d lo = At(x, triangles[t][0]), hi = lo;
         for (int k = 1; k < 3; ++k) {
             lo = lo.cwiseMin(At(x, triangles[t][k]));
             hi = hi.cwiseMax(At(x, triangles[t][k]));
         }
+        lows[t] = lo;
+        highs[t] = hi;
         for (long long i = std::llround(std::floor(lo.x() / cell)); i <= std::llround(std::floor(hi.x() / cell)); ++i)
             for (long long j = std::llround(std::floor(lo.y() / cell)); j <= std::llround(std::floor(hi.y() / cell)); ++j)
                 for (long long k = std::llround(std::floor(lo.z() / cell)); k <= std::llround(std::floor(hi.z() / cell)); ++k)
@@ -375,6 +378,8 @@ bool SelfIntersects(const ShellProblem& p, const Positions& x) {
             for (size_t n = m + 1; n < members.size(); ++n) {
                 const auto& A = triangles[members[m]];
                 const auto& B = triangles[members[n]];
+                // Boxes apart: most pairs sharing a cell (cheaper than the exact test by far).
+                if ((lows[members[m]].array() > highs[members[n]].array()).any() || (lows[members[n]].array() > highs[members[m]].array()).any()) continue;
                 bool adjacent = false;
                 for (int a : A)
                     for (int b : B) adjacent = adjacent || a == b;
