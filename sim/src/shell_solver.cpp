@@ -503,7 +503,10 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
                     if (predict) {
                         Eigen::VectorXd w = AssembleEnergy(problem, q, loadAt(reached), solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
                         if (solver.holdAxial && problem.axial >= 0) w[problem.axial] = 0;
-                        tangent = solver.factor->Solve(w);  // the factor of Newton's last step
+                        // With the last Newton step's Hessian (a moment before convergence), solved as
+                        // Newton's steps are; the preconditioner alone when that fails.
+                        int used = 0;
+                        if (!solver.preconditioner || !solver.PreconditionedStep(solver.pattern.matrix, 0, w, -w, tangent, &used)) tangent = solver.factor->Solve(w);
                         if (!tangent.allFinite()) tangent.resize(0);
                     }
                     continue;
