@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake make pkg-config git
   libeigen3-dev              # linear algebra (sim)
+  libmetis-dev               # fill-reducing order of the shell models' sparse factorisation (sim)
   libosmesa6-dev             # offscreen OpenGL, OSMesa backend (render)
   libegl-dev libegl-mesa0 libopengl-dev  # offscreen OpenGL, EGL surfaceless backend (render)
   libpng-dev zlib1g-dev      # PNG files (render), archive checksums (app)

@@ -21,7 +21,7 @@ public:
     // The pattern of the matrices to come (full symmetric, compressed, with its diagonal; values
     // ignored) and each unknown's place, 3 * block + coordinate. A block may use fewer than three
     // places (a partly held vertex; the clamp's axial unknown): the others are padded with an
-    // identity that couples to nothing. Orders the blocks by approximate minimum degree.
+    // identity that couples to nothing. Orders the blocks by nested dissection (METIS).
     void Analyse(const Eigen::SparseMatrix<double>& pattern, const std::vector<int>& placeOf);
     bool Analysed() const { return analysed_; }
 
