@@ -1,8 +1,10 @@
 // Static equilibrium of the shell models (SHELL.md section 6) and what an evaluation reports
 // (section 10).
 //
-// [SECTION] Factorisation: pattern analysed once per problem, a growing diagonal shift on failure
-// [SECTION] Newton: projected Hessian, backtracking line search on E, round-off guard
+// [SECTION] Factorisation: 3 x 3 vertex blocks; pattern and analysis kept per thread and topology
+// [SECTION] Newton: projected Hessian, steps by conjugate gradients on an earlier factor (a fresh
+//           factorisation when they are slow, with a growing diagonal shift on failure),
+//           backtracking line search on E, round-off guard
 // [SECTION] Loads: pressure steps with bisection, sealed gas, volume control, axial force
 // [SECTION] Evaluation: outputs, statuses
 #include <algorithm>
@@ -113,6 +115,11 @@ struct Solver {
     double volumeLimit = std::numeric_limits<double>::infinity();  // Minimise stops as Runaway past it
     double forceTolerance;    // N
     EnergyTerms terms;
+    // Newton's steps by preconditioned conjugate gradients (PreconditionedStep).
+    static constexpr double kStepResidual = 1e-4;  // of the gradient's norm: the step's linear residual
+    static constexpr int kMaxStepIterations = 30;  // then a fresh factorisation is cheaper
+    bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
+    bool refresh = false;                          // the last preconditioned step was slow: factorise next time
 
     Solver(const ShellProblem& p, const SolverDef& d)
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
@@ -158,7 +165,7 @@ struct Solver {
     }
 
     // The Newton step by conjugate gradients on (H + c w w^T) s = -g, preconditioned by `factor`, the
-    // factorisation of an earlier (nearby) state's matrix: a factorisation costs about 40
+    // factorisation of an earlier (nearby) state's matrix: a factorisation costs about 35
     // back-substitutions, and a factor a few Newton iterations or a load step old still clusters the
     // spectrum tightly. False when the matrix is not positive definite along the search or the
     // iterations run out; `used` counts them.
@@ -188,11 +195,6 @@ struct Solver {
         }
         return false;
     }
-    static constexpr double kStepResidual = 1e-4;  // of the gradient's norm: the step's linear residual
-    static constexpr int kMaxStepIterations = 30;  // then a fresh factorisation is cheaper
-    bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
-    bool refresh = false;                          // the last preconditioned step was slow: factorise next time
-
     // A step from a fresh factorisation of H (+ the gas's rank-one term): a descent direction, or
     // empty. When H is not definite, the pressure's part is left out, which is positive
     // semi-definite by construction; a tiny growing shift takes care of what is singular.
