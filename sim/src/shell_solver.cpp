@@ -120,6 +120,7 @@ struct Solver {
     static constexpr int kMaxStepIterations = 30;  // then a fresh factorisation is cheaper
     bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
     bool refresh = false;                          // the last preconditioned step was slow: factorise next time
+    bool exactSteps = false;                       // Newton's steps on the exact Hessian first (see Minimise)
 
     Solver(const ShellProblem& p, const SolverDef& d)
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
@@ -233,17 +234,26 @@ struct Solver {
             const double gasTerm = load.gasConstant > 0 ? load.gasConstant / (r.volume * r.volume) : 0;
             Eigen::VectorXd w = r.volumeGradient;
             HoldGradient(w);
-            // Newton's step on the projected Hessian with the pressure's exact one (quadratic
-            // convergence near a stable equilibrium), by conjugate gradients on an earlier factor when
-            // there is one, else (or when they fail) from a fresh factorisation.
-            AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Projected);
-            HoldMatrix(pattern.matrix);
+            // Newton's step, by conjugate gradients on an earlier factor when there is one, else (or
+            // when they are slow) from a fresh factorisation. On the projected Hessian (elastic parts
+            // positive semi-definite by construction, the pressure's exact), until a whole step shows
+            // it converging linearly: it clamps compressed membrane parts and leaves out the hinges'
+            // curvature term, and on curved or wrinkled walls needs 100-1,800 iterations where the
+            // exact one needs 30-70. From then on the exact Hessian first, the projected one where
+            // that is not positive definite along the search (far from equilibrium, past a limit point).
             Eigen::VectorXd step;
+            bool projected = false;
+            auto assembleProjected = [&] {
+                AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Projected);
+                HoldMatrix(pattern.matrix);
+                projected = true;
+            };
             if (!preconditioner) {
                 // The solve's first factorisation: of the Hessian without the pressure's part. From
                 // the rest state the whole one is rarely definite, and a factorisation that fails
                 // costs as much as one that succeeds. It preconditions the whole Hessian, or gives
                 // the step itself.
+                assembleProjected();
                 AssembleEnergy(problem, q, load, terms, false, &exactPattern, HessianKind::Definite);
                 HoldMatrix(exactPattern.matrix);
                 const Eigen::VectorXd fallback = FactorisedStep(q, load, r, gasTerm, w, exactPattern.matrix, true);
@@ -252,16 +262,27 @@ struct Solver {
                 refresh = used > kMaxStepIterations / 2;
             } else if (!refresh) {
                 int used = 0;
-                if (!PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) || !(step.dot(r.gradient) < 0)) step.resize(0);
+                for (HessianKind kind : {HessianKind::Exact, HessianKind::Projected}) {
+                    if (kind == HessianKind::Exact && !exactSteps) continue;
+                    if (kind == HessianKind::Projected) assembleProjected();
+                    else {
+                        AssembleEnergy(problem, q, load, terms, false, &pattern, kind);
+                        HoldMatrix(pattern.matrix);
+                    }
+                    if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) && step.dot(r.gradient) < 0) break;
+                    step.resize(0);
+                }
                 refresh = step.size() == 0 || used > kMaxStepIterations / 2;
             }
             if (step.size() == 0) {
                 refresh = false;
+                if (!projected) assembleProjected();
                 step = FactorisedStep(q, load, r, gasTerm, w, pattern.matrix, false);
             }
             if (step.size() == 0) return NewtonEnd::NotConverged;
             // Backtracking on E. When the predicted decrease is below round-off, energy can no longer
             // judge the step: take it whole (a clamped tube would otherwise stall near 5e-10).
+            const double lastGradientNorm = r.gradient.norm();  // held
             const double slope = step.dot(r.gradient);
             const bool roundOff = std::fabs(slope) < 1e-13 * std::max(1.0, std::fabs(r.energy));
             double alpha = 1;
@@ -279,6 +300,12 @@ struct Solver {
                 alpha *= 0.5;
             }
             if (!accepted) return NewtonEnd::NotConverged;
+            // A whole step that left more than a quarter of the force: the projected Hessian is
+            // converging linearly; exact steps from here on (for the rest of the evaluation).
+            if (alpha == 1 && !exactSteps) {
+                HoldGradient(r.gradient);
+                exactSteps = r.gradient.norm() > 0.25 * lastGradientNorm;
+            }
             const double moved = (alpha * step).lpNorm<Eigen::Infinity>();
             const double largest = (next - UnknownsOf(problem, problem.rest)).lpNorm<Eigen::Infinity>();
             q = std::move(next);
