@@ -121,6 +121,9 @@ struct Solver {
     bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
     bool refresh = false;                          // the last preconditioned step was slow: factorise next time
     bool exactSteps = false;                       // Newton's steps on the exact Hessian first (see Minimise)
+    bool stepIndefinite = false;                   // the last PreconditionedStep failed on negative curvature
+    bool direct = false;                           // factorise at every step (see Minimise)
+    int factorAge = 0;                             // Newton steps taken since `factor` was computed
 
     Solver(const ShellProblem& p, const SolverDef& d)
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
@@ -170,7 +173,9 @@ struct Solver {
     // back-substitutions, and a factor a few Newton iterations or a load step old still clusters the
     // spectrum tightly. False when the matrix is not positive definite along the search or the
     // iterations run out; `used` counts them.
-    bool PreconditionedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, Eigen::VectorXd& step, int* used) {
+    bool PreconditionedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, Eigen::VectorXd& step, int* used,
+                            int maxIterations = kMaxStepIterations) {
+        stepIndefinite = false;
         step = Eigen::VectorXd::Zero(g.size());
         Eigen::VectorXd r = -g;
         Eigen::VectorXd z = factor->Solve(r);
@@ -179,12 +184,15 @@ struct Solver {
         // Relative to the gradient, but never below a tenth of the convergence tolerance: the step
         // that ends a solve needs no more than that.
         const double target = std::max(kStepResidual * g.norm(), 0.1 * forceTolerance);
-        for (int k = 1; k <= kMaxStepIterations; ++k) {
+        for (int k = 1; k <= maxIterations; ++k) {
             *used = k;
             Ap = H * p;
             if (c != 0) Ap += (c * w.dot(p)) * w;
             const double curvature = p.dot(Ap);
-            if (!(curvature > 0) || !(rz > 0)) return false;
+            if (!(curvature > 0) || !(rz > 0)) {
+                stepIndefinite = true;
+                return false;
+            }
             const double alpha = rz / curvature;
             step += alpha * p;
             r -= alpha * Ap;
@@ -205,6 +213,7 @@ struct Solver {
         double shift = 0;
         for (int attempt = 0; attempt < 12; ++attempt) {
             preconditioner = factor->Compute(H, workspace->places, shift, true, counters);
+            factorAge = 0;
             if (preconditioner) {
                 step = -SolveWithRankOne(r.gradient, gasTerm, w);
                 if (step.allFinite() && step.dot(r.gradient) < 0) return step;
@@ -260,7 +269,7 @@ struct Solver {
                 int used = 0;
                 if (preconditioner && !(PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) && step.dot(r.gradient) < 0)) step = fallback;
                 refresh = used > kMaxStepIterations / 2;
-            } else if (!refresh) {
+            } else if (!refresh && !direct) {
                 int used = 0;
                 for (HessianKind kind : {HessianKind::Exact, HessianKind::Projected}) {
                     if (kind == HessianKind::Exact && !exactSteps) continue;
@@ -271,13 +280,28 @@ struct Solver {
                     }
                     if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) && step.dot(r.gradient) < 0) break;
                     step.resize(0);
+                    if (!stepIndefinite) break;  // too slow, not indefinite: the projected one would be too
                 }
                 refresh = step.size() == 0 || used > kMaxStepIterations / 2;
+                // Not even a factor one step old preconditions this matrix: far from equilibrium,
+                // with threads going taut and slack, it changes faster than a factor pays back.
+                // Factorise at every step until Newton settles.
+                if (step.size() == 0 && factorAge <= 1) direct = true;
             }
             if (step.size() == 0) {
                 refresh = false;
                 if (!projected) assembleProjected();
                 step = FactorisedStep(q, load, r, gasTerm, w, pattern.matrix, false);
+                // Exact steps: the fresh factor of the projected Hessian preconditions the exact one
+                // at the same state, for a few iterations at most; else the projected step stands.
+                if (exactSteps && step.size() != 0 && preconditioner) {
+                    AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Exact);
+                    HoldMatrix(pattern.matrix);
+                    Eigen::VectorXd exact;
+                    int used = 0;
+                    if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, exact, &used, kMaxStepIterations / 3) && exact.dot(r.gradient) < 0)
+                        step = std::move(exact);
+                }
             }
             if (step.size() == 0) return NewtonEnd::NotConverged;
             // Backtracking on E. When the predicted decrease is below round-off, energy can no longer
@@ -302,10 +326,11 @@ struct Solver {
             if (!accepted) return NewtonEnd::NotConverged;
             // A whole step that left more than a quarter of the force: the projected Hessian is
             // converging linearly; exact steps from here on (for the rest of the evaluation).
-            if (alpha == 1 && !exactSteps) {
-                HoldGradient(r.gradient);
-                exactSteps = r.gradient.norm() > 0.25 * lastGradientNorm;
-            }
+            HoldGradient(r.gradient);
+            if (alpha == 1 && !exactSteps) exactSteps = r.gradient.norm() > 0.25 * lastGradientNorm;
+            // Newton settled (a whole step took away nine tenths of the force): preconditioned steps again.
+            if (direct && alpha == 1 && r.gradient.norm() < 0.1 * lastGradientNorm) direct = false;
+            ++factorAge;
             const double moved = (alpha * step).lpNorm<Eigen::Infinity>();
             const double largest = (next - UnknownsOf(problem, problem.rest)).lpNorm<Eigen::Infinity>();
             q = std::move(next);
@@ -348,6 +373,8 @@ struct Solver {
         std::swap(factor, exactFactor);
         preconditioner = true;
         refresh = false;
+        direct = false;
+        factorAge = 0;
     }
 
     // The exact Hessian at q, factorised (indefinite allowed); its negative pivots.
