@@ -6,6 +6,7 @@
 // [SECTION] Solve and inertia
 #include "sim/block_ldlt.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <cassert>
@@ -226,6 +227,24 @@ Eigen::VectorXd BlockLdlt::Solve(const Eigen::VectorXd& b) const {
     for (int j = blocks_ - 1; j >= 0; --j)
         for (int p = columnStart_[j]; p < columnStart_[j + 1]; ++p) y[j].noalias() -= valuesOfL_[p].transpose() * y[rowOfL_[p]];
     Eigen::VectorXd x(b.size());
+    for (size_t d = 0; d < placeOf_.size(); ++d) x[d] = y[placeOf_[d] / 3][placeOf_[d] % 3];
+    return x;
+}
+
+Eigen::VectorXd BlockLdlt::NegativeCurvatureDirection() const {
+    int worst = -1;
+    for (size_t k = 0; k < pivots_.size(); ++k)
+        if (used_[k] && pivots_[k] < 0 && (worst < 0 || pivots_[k] < pivots_[worst])) worst = static_cast<int>(k);
+    if (worst < 0) return Eigen::VectorXd();
+    // D's block has the negative eigenvalue its pivot shows (Sylvester), and its inverse the same
+    // eigenvectors: z with z^T D z < 0. Then y = L^-T z has y^T L D L^T y = z^T D z < 0.
+    const int block = worst / 3;
+    Eigen::SelfAdjointEigenSolver<Block> eigen(dInverse_[block]);
+    std::vector<Eigen::Vector3d> y(blocks_, Eigen::Vector3d::Zero());
+    y[block] = eigen.eigenvectors().col(0);  // eigenvalues ascending: the most negative first
+    for (int j = blocks_ - 1; j >= 0; --j)
+        for (int p = columnStart_[j]; p < columnStart_[j + 1]; ++p) y[j].noalias() -= valuesOfL_[p].transpose() * y[rowOfL_[p]];
+    Eigen::VectorXd x(placeOf_.size());
     for (size_t d = 0; d < placeOf_.size(); ++d) x[d] = y[placeOf_[d] / 3][placeOf_[d] % 3];
     return x;
 }

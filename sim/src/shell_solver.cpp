@@ -50,6 +50,7 @@ public:
     double SmallestPivot() const { return ldlt_.SmallestPivot(); }
     // Negative pivots: by Sylvester's law of inertia, the number of negative eigenvalues.
     int NegativePivots() const { return ldlt_.NegativePivots(); }
+    Eigen::VectorXd NegativeCurvatureDirection() const { return ldlt_.NegativeCurvatureDirection(); }
 
 private:
     BlockLdlt ldlt_;
@@ -230,11 +231,12 @@ struct Solver {
         return Eigen::VectorXd();
     }
 
-    // Minimises the total energy at `load` from q (in place).
-    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load) {
+    // Minimises the total energy at `load` from q (in place), in at most def.maxIterations (or
+    // `budget`, when smaller) iterations.
+    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, int budget = std::numeric_limits<int>::max()) {
         // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
-        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
+        for (int iteration = 0; iteration < std::min(budget, def.maxIterations); ++iteration) {
             ++counters.iterations;
             if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
             if (r.volume > volumeLimit) return NewtonEnd::Runaway;
@@ -586,6 +588,49 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
         out.targetPressureKpa = gaugeKpa(reached);
     }
 
+    // The exact Hessian's inertia at the end of the path tells a stable equilibrium from one past the
+    // pressure maximum. Newton's steps find stationary points, and on a wavy wall they can end on a
+    // saddle beside a stable state at the same load: then step down along the negative curvature and
+    // minimise again, once. A stable state no further than the load path allows is the actuator's;
+    // otherwise the inertia check below reports the limit point.
+    const LoadTerms finalLoad = load.kind == ShellLoad::Volume ? [&] {
+        LoadTerms l;
+        l.pressure = out.targetPressureKpa * 1e-3;
+        return l;
+    }() : loadAt(1.0);
+    constexpr int kEscapeIterations = 50;  // a stable state nearby is reached in 20-40; none: up to the cap, wasted
+    int negative = -1;  // the exact Hessian's negative pivots at q (its factor stays in solver.exactFactor)
+    EnergyResult exact;
+    if (status == Status::Ok) {
+        negative = solver.ExactInertia(q, finalLoad, &exact);
+        Eigen::VectorXd down = negative > 0 && load.kind != ShellLoad::Volume ? solver.exactFactor->NegativeCurvatureDirection() : Eigen::VectorXd();
+        if (down.size() == q.size() && down.allFinite() && down.lpNorm<Eigen::Infinity>() > 0) {
+            solver.HoldGradient(down);
+            down *= 0.1 * problem.meanEdgeMm / down.lpNorm<Eigen::Infinity>();  // a tenth of an edge at most
+            const double energy = exact.energy;
+            Eigen::VectorXd escaped = q + down;
+            if (!(AssembleEnergy(problem, escaped, finalLoad, solver.terms, false, nullptr, HessianKind::Projected).energy < energy)) escaped = q - down;
+            PositionsOf(problem, q, x);
+            const double volume = EnclosedVolume(problem, x);
+            solver.volumeLimit = load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : 3 * volume;
+            const NewtonEnd end = solver.Minimise(escaped, finalLoad, kEscapeIterations);
+            solver.volumeLimit = std::numeric_limits<double>::infinity();
+            PositionsOf(problem, escaped, x);
+            if (end == NewtonEnd::Converged && (load.kind == ShellLoad::Force || EnclosedVolume(problem, x) <= 3 * volume) &&
+                solver.ExactInertia(escaped, finalLoad, &exact) == 0) {
+                q = std::move(escaped);
+                negative = 0;
+                out.targetPressureKpa = gaugeKpa(1.0);  // status ok: the path reached its target
+                out.curvePressureKpa.back() = out.targetPressureKpa;
+                out.curveContractionPercent.back() = Contraction(problem, q, length);
+                out.curveVolumeMm3.back() = EnclosedVolume(problem, x);
+                out.steps.back() = x;
+            } else {
+                negative = solver.ExactInertia(q, finalLoad, &exact);  // the factor at q again, for what follows
+            }
+        }
+    }
+
     PositionsOf(problem, q, x);
     result.final = x;
     out.newtonIterations = solver.counters.iterations;
@@ -606,16 +651,8 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     }
 
     // Stiffness at the free equilibrium: 1 / (K^-1)_uu of the exact Hessian (its Schur complement).
-    const LoadTerms finalLoad = load.kind == ShellLoad::Volume ? [&] {
-        LoadTerms l;
-        l.pressure = out.targetPressureKpa * 1e-3;
-        return l;
-    }() : loadAt(1.0);
-    // The exact Hessian's inertia tells a stable equilibrium from one past the pressure maximum.
     Eigen::VectorXd axialResponse;  // dq per unit axial force: K^-1 e_u
     {
-        EnergyResult exact;
-        const int negative = solver.ExactInertia(q, finalLoad, &exact);
         if (negative > 0 && load.kind != ShellLoad::Volume) {
             out.limitPressureKpa = out.targetPressureKpa;
             out.factorizations = solver.counters.factorizations;

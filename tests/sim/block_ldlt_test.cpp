@@ -67,8 +67,15 @@ TEST(BlockLdlt, SolvesPositiveDefiniteAndIndefiniteSystemsWithTheirInertia) {
             const Eigen::VectorXd x = ldlt.Solve(b);
             EXPECT_LT((dense * x - b).norm(), 1e-10 * b.norm() * dense.norm()) << "seed " << seed << ", shift " << shiftDown;
             EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(dense)) << "seed " << seed << ", shift " << shiftDown;
-            if (shiftDown == 0) EXPECT_GT(ldlt.SmallestPivot(), 0);
-            else EXPECT_GT(NegativeEigenvalues(dense), 0) << "the shifted matrix should be indefinite";
+            const Eigen::VectorXd down = ldlt.NegativeCurvatureDirection();
+            if (shiftDown == 0) {
+                EXPECT_GT(ldlt.SmallestPivot(), 0);
+                EXPECT_EQ(down.size(), 0);
+            } else {
+                EXPECT_GT(NegativeEigenvalues(dense), 0) << "the shifted matrix should be indefinite";
+                ASSERT_EQ(down.size(), 61);
+                EXPECT_LT(down.dot(dense * down), -1e-6 * down.squaredNorm()) << "seed " << seed << ", shift " << shiftDown;
+            }
         }
 }
 

@@ -35,6 +35,9 @@ public:
     // eigenvalues; the smallest pivot (positive for a positive definite matrix).
     int NegativePivots() const;
     double SmallestPivot() const;
+    // A direction of negative curvature, y^T (H + shift I) y < 0, when a pivot is negative (else
+    // empty): L^-T applied to the most negative block's eigenvector of D.
+    Eigen::VectorXd NegativeCurvatureDirection() const;
 
     long FactorBlocks() const { return static_cast<long>(rowOfL_.size()); }  // 3 x 3 blocks of L below the diagonal
 
