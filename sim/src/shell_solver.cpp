@@ -80,10 +80,10 @@ struct Workspace {
     int unknowns = 0, axial = -1;
 
     std::vector<int> places;      // each unknown's place in the factors' vertex blocks
-    HessianPattern pattern;       // Newton's projected Hessian
+    HessianPattern pattern;       // Newton's Hessian (projected, exact or definite, as each step needs)
     Factor factor;
     HessianPattern exactPattern;  // the exact Hessian (inertia, stiffness, volume control), factorised apart
-    Factor exactFactor;           // so that Newton's last factor stays for the predictor
+    Factor exactFactor;           // so that Newton's last factor stays to precondition with
 
     explicit Workspace(const ShellProblem& p)
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
@@ -122,7 +122,6 @@ struct Solver {
     bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
     bool refresh = false;                          // the last preconditioned step was slow: factorise next time
     bool exactSteps = false;                       // Newton's steps on the exact Hessian first (see Minimise)
-    bool stepIndefinite = false;                   // the last PreconditionedStep failed on negative curvature
     bool direct = false;                           // factorise at every step (see Minimise)
     int factorAge = 0;                             // Newton steps taken since `factor` was computed
 
@@ -172,11 +171,10 @@ struct Solver {
     // The Newton step by conjugate gradients on (H + c w w^T) s = -g, preconditioned by `factor`, the
     // factorisation of an earlier (nearby) state's matrix: a factorisation costs about 35
     // back-substitutions, and a factor a few Newton iterations or a load step old still clusters the
-    // spectrum tightly. False when the matrix is not positive definite along the search or the
-    // iterations run out; `used` counts them.
-    bool PreconditionedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, Eigen::VectorXd& step, int* used,
+    // spectrum tightly. Solved, or why not; `used` counts the iterations.
+    enum class Linear { Solved, Indefinite, Slow, NonFinite };  // Indefinite: negative curvature met; Slow: iterations ran out
+    Linear PreconditionedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, Eigen::VectorXd& step, int* used,
                             int maxIterations = kMaxStepIterations) {
-        stepIndefinite = false;
         step = Eigen::VectorXd::Zero(g.size());
         Eigen::VectorXd r = -g;
         Eigen::VectorXd z = factor->Solve(r);
@@ -190,20 +188,17 @@ struct Solver {
             Ap = H * p;
             if (c != 0) Ap += (c * w.dot(p)) * w;
             const double curvature = p.dot(Ap);
-            if (!(curvature > 0) || !(rz > 0)) {
-                stepIndefinite = true;
-                return false;
-            }
+            if (!(curvature > 0) || !(rz > 0)) return Linear::Indefinite;
             const double alpha = rz / curvature;
             step += alpha * p;
             r -= alpha * Ap;
-            if (r.norm() <= target) return step.allFinite();
+            if (r.norm() <= target) return step.allFinite() ? Linear::Solved : Linear::NonFinite;
             z = factor->Solve(r);
             const double next = r.dot(z);
             p = z + (next / rz) * p;
             rz = next;
         }
-        return false;
+        return Linear::Slow;
     }
     // A step from a fresh factorisation of H (+ the gas's rank-one term): a descent direction, or
     // empty. When H is not definite, the pressure's part is left out, which is positive
@@ -253,36 +248,34 @@ struct Solver {
             // exact one needs 30-70. From then on the exact Hessian first, the projected one where
             // that is not positive definite along the search (far from equilibrium, past a limit point).
             Eigen::VectorXd step;
-            bool projected = false;
-            auto assembleProjected = [&] {
-                AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Projected);
+            bool projected = false;  // pattern.matrix holds the projected Hessian at q
+            auto assemble = [&](HessianKind kind) {
+                AssembleEnergy(problem, q, load, terms, false, &pattern, kind);
                 HoldMatrix(pattern.matrix);
-                projected = true;
+                projected = kind == HessianKind::Projected;
             };
             if (!preconditioner) {
                 // The solve's first factorisation: of the Hessian without the pressure's part. From
                 // the rest state the whole one is rarely definite, and a factorisation that fails
                 // costs as much as one that succeeds. It preconditions the whole Hessian, or gives
                 // the step itself.
-                assembleProjected();
+                assemble(HessianKind::Projected);
                 AssembleEnergy(problem, q, load, terms, false, &exactPattern, HessianKind::Definite);
                 HoldMatrix(exactPattern.matrix);
                 const Eigen::VectorXd fallback = FactorisedStep(q, load, r, gasTerm, w, exactPattern.matrix, true);
                 int used = 0;
-                if (preconditioner && !(PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) && step.dot(r.gradient) < 0)) step = fallback;
+                if (preconditioner && !(PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) == Linear::Solved && step.dot(r.gradient) < 0))
+                    step = fallback;
                 refresh = used > kMaxStepIterations / 2;
             } else if (!refresh && !direct) {
                 int used = 0;
                 for (HessianKind kind : {HessianKind::Exact, HessianKind::Projected}) {
                     if (kind == HessianKind::Exact && !exactSteps) continue;
-                    if (kind == HessianKind::Projected) assembleProjected();
-                    else {
-                        AssembleEnergy(problem, q, load, terms, false, &pattern, kind);
-                        HoldMatrix(pattern.matrix);
-                    }
-                    if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) && step.dot(r.gradient) < 0) break;
+                    assemble(kind);
+                    const Linear end = PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used);
+                    if (end == Linear::Solved && step.dot(r.gradient) < 0) break;
                     step.resize(0);
-                    if (!stepIndefinite) break;  // too slow, not indefinite: the projected one would be too
+                    if (end != Linear::Indefinite) break;  // too slow (or not finite): the projected one would be too
                 }
                 refresh = step.size() == 0 || used > kMaxStepIterations / 2;
                 // Not even a factor one step old preconditions this matrix: far from equilibrium,
@@ -292,16 +285,16 @@ struct Solver {
             }
             if (step.size() == 0) {
                 refresh = false;
-                if (!projected) assembleProjected();
+                if (!projected) assemble(HessianKind::Projected);
                 step = FactorisedStep(q, load, r, gasTerm, w, pattern.matrix, false);
                 // Exact steps: the fresh factor of the projected Hessian preconditions the exact one
                 // at the same state, for a few iterations at most; else the projected step stands.
                 if (exactSteps && step.size() != 0 && preconditioner) {
-                    AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Exact);
-                    HoldMatrix(pattern.matrix);
+                    assemble(HessianKind::Exact);
                     Eigen::VectorXd exact;
                     int used = 0;
-                    if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, exact, &used, kMaxStepIterations / 3) && exact.dot(r.gradient) < 0)
+                    if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, exact, &used, kMaxStepIterations / 3) == Linear::Solved &&
+                        exact.dot(r.gradient) < 0)
                         step = std::move(exact);
                 }
             }
@@ -560,11 +553,12 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
                     lastVolume = volume;
                     if (predict) {
                         Eigen::VectorXd w = AssembleEnergy(problem, q, loadAt(reached), solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
-                        if (solver.holdAxial && problem.axial >= 0) w[problem.axial] = 0;
+                        solver.HoldGradient(w);
                         // With the last Newton step's Hessian (a moment before convergence), solved as
                         // Newton's steps are; the preconditioner alone when that fails.
                         int used = 0;
-                        if (!solver.preconditioner || !solver.PreconditionedStep(solver.pattern.matrix, 0, w, -w, tangent, &used)) tangent = solver.factor->Solve(w);
+                        if (!solver.preconditioner || solver.PreconditionedStep(solver.pattern.matrix, 0, w, -w, tangent, &used) != Solver::Linear::Solved)
+                            tangent = solver.factor->Solve(w);
                         if (!tangent.allFinite()) tangent.resize(0);
                     }
                     continue;
@@ -610,8 +604,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
             const double energy = exact.energy;
             Eigen::VectorXd escaped = q + down;
             if (!(AssembleEnergy(problem, escaped, finalLoad, solver.terms, false, nullptr, HessianKind::Projected).energy < energy)) escaped = q - down;
-            PositionsOf(problem, q, x);
-            const double volume = EnclosedVolume(problem, x);
+            const double volume = out.curveVolumeMm3.back();  // at q, the path's last point
             solver.volumeLimit = load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : 3 * volume;
             const NewtonEnd end = solver.Minimise(escaped, finalLoad, kEscapeIterations);
             solver.volumeLimit = std::numeric_limits<double>::infinity();

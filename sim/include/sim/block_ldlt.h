@@ -43,6 +43,10 @@ public:
 
 private:
     using Block = Eigen::Matrix3d;
+    // A vector over the unknowns in blocks (new order) and back; y <- L^-T y.
+    std::vector<Eigen::Vector3d> ToBlocks(const Eigen::VectorXd& b) const;
+    Eigen::VectorXd FromBlocks(const std::vector<Eigen::Vector3d>& y) const;
+    void SolveTransposedL(std::vector<Eigen::Vector3d>& y) const;
     bool analysed_ = false;
     int blocks_ = 0;
     std::vector<int> placeOf_;      // per unknown: 3 * (block in the new order) + coordinate
