@@ -168,7 +168,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
 
     md += "| experiment | designs evaluated | their statuses | thesis model's best (mesh units) | that design here | best here | best at 2x mesh | change |\n";
     md += "|---|---:|---|---:|---|---:|---:|---:|\n";
-    int evaluated = 0, ok = 0, contracting = 0, thesisBestsValid = 0, thesisBests = 0;
+    int evaluated = 0, ok = 0, contracting = 0, thesisBestsValid = 0, thesisBests = 0, thesisRows = 0;
     int fibreEvaluated = 0, fibreOk = 0, fibreContracting = 0;
     double bestOverall = NAN;
     // The best design of the isotropic experiments and of those with fibres, with their records.
@@ -201,6 +201,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
             ++meshChecked;
             meshWithin += change.within;
         }
+        thesisRows += row.thesis != nullptr;
         if (row.thesis && row.thesis->outcome.bestJob) {
             ++thesisBests;
             thesisBestsValid += row.thesisBestHere.status == sim::Status::Ok;
@@ -227,9 +228,13 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
               "pleated muscles) or vacuum.";
     else
         md += fmt::format("; {} of them contracted, the best by {:.2f} % (experiment {}).", contracting, bestOverall, bestWhere);
-    md += fmt::format(" Of the thesis model's {} best designs, {} reach equilibrium here; the others are refused or fail as the table says "
-                      "(sine and abs-sine profiles that pass through zero radius cannot be built as tubes).",
-                      thesisBests, thesisBestsValid);
+    if (thesisRows > 0)
+        md += fmt::format(" Of the thesis model's {} best designs, {} reach equilibrium here; the others are refused or fail as the table says "
+                          "(sine and abs-sine profiles that pass through zero radius cannot be built as tubes).",
+                          thesisBests, thesisBestsValid);
+    else  // part 2 alone (--part physical): there is nothing of part 1's to re-evaluate
+        md += " Part 1's results (the thesis model's runs) are not in this folder, so its best designs were not re-evaluated here: "
+              "run `actuator reproduce` with `--part both` (the default) for that comparison.";
     if (meshChecked > 0)
         md += fmt::format(" Mesh convergence (SHELL.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
                           "under 1 % contraction, within 0.05 percentage points): {} of {} best designs pass{}.",

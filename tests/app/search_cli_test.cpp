@@ -540,6 +540,17 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     EXPECT_EQ(files, 10 + 10 + 5 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparisons'";
 }
 
+// Part 2 alone has no thesis-model bests to re-evaluate: its finding says so instead of counting
+// "0 best designs".
+TEST_F(SearchCli, PartTwoAloneSaysPartOneIsMissing) {
+    const Result r = Run("reproduce --quick --part physical --out " + Path("physical"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string report = Slurp(dir_ / "physical" / "report.md");
+    EXPECT_THAT(report, HasSubstr("**Finding.**"));
+    EXPECT_THAT(report, HasSubstr("Part 1's results (the thesis model's runs) are not in this folder"));
+    EXPECT_THAT(report, Not(HasSubstr("Of the thesis model's 0 best designs")));
+}
+
 TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     const Result r = Run("reproduce --quick --out " + Path("thesis"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -551,6 +562,8 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     const auto comparison = app::ParseCsv(Slurp(dir_ / "thesis" / "comparison" / "comparison.csv"));
     EXPECT_EQ(comparison.size(), 10u) << "a row per experiment of part 2 that re-runs one of part 1 (the header, 7 isotropic, 2 with fibres)";
     EXPECT_THAT(report, HasSubstr("**With fibres.**"));
+    EXPECT_THAT(report, HasSubstr("Of the thesis model's "));
+    EXPECT_THAT(report, Not(HasSubstr("Part 1's results")));
     EXPECT_THAT(report, HasSubstr("| ours | thesis |"));
     // Every figure the report shows exists and is a real picture.
     size_t images = 0;
