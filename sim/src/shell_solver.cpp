@@ -319,16 +319,10 @@ struct Solver {
                 alpha *= 0.5;
             }
             if (!accepted) return NewtonEnd::NotConverged;
-            // A whole step that left between a quarter and all of the force: the projected Hessian
-            // is converging linearly; exact steps from here on (for the rest of the evaluation). A
-            // step that raised the force says nothing of the kind: it was taken far from
-            // equilibrium (a braided tube's first step from rest, with threads going taut), where
-            // exact steps do not help and their hinge terms cost three times the projected ones.
+            // A whole step that left more than a quarter of the force: the projected Hessian is
+            // converging linearly; exact steps from here on (for the rest of the evaluation).
             HoldGradient(r.gradient);
-            if (alpha == 1 && !exactSteps) {
-                const double left = r.gradient.norm() / lastGradientNorm;
-                exactSteps = left > 0.25 && left < 1;
-            }
+            if (alpha == 1 && !exactSteps) exactSteps = r.gradient.norm() > 0.25 * lastGradientNorm;
             // Newton settled (a whole step took away nine tenths of the force): preconditioned steps again.
             if (direct && alpha == 1 && r.gradient.norm() < 0.1 * lastGradientNorm) direct = false;
             ++factorAge;
