@@ -1,7 +1,8 @@
 // Speed of the membrane and shell models (issues 10 and 11): one evaluation of a thesis-sized design (the
 // 4.1 sine at A = 1.3, R = 5 mm, L = 150 mm, 3 kPa in 4 load steps, Ecoflex 00-30) at 30 x 30,
 // 60 x 60 and 120 x 120, beside the thesis model's evaluation measured in the same run, on one core.
-// The counters give the Newton iterations and factorisations per evaluation.
+// Fibres' cost (issue 11) on the same sine and on two of the GA's fibre designs, each beside the same
+// design without fibres. The counters give the Newton iterations and factorisations per evaluation.
 //   build/tests/shell_bench --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
@@ -25,10 +26,8 @@ void BM_Thesis30x30(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(sim::Evaluate(job).fitness);
 }
 
-void BM_Shell(benchmark::State& state, sim::ModelKind model, sim::FibreLayout fibres) {
-    const int n = static_cast<int>(state.range(0));
-    sim::EvalJob job = Job(model, n, n);
-    job.shell.fibres.layout = fibres;  // braid at the default 30 degrees, 50 N/mm
+// Evaluates `job` as often as the state asks; the last result's counters.
+void Measure(benchmark::State& state, const sim::EvalJob& job) {
     sim::SimResult last;
     for (auto _ : state) {
         last = sim::Evaluate(job);
@@ -40,6 +39,37 @@ void BM_Shell(benchmark::State& state, sim::ModelKind model, sim::FibreLayout fi
     state.counters["contraction_percent"] = last.contractionPercent;
 }
 
+void BM_Shell(benchmark::State& state, sim::ModelKind model, sim::FibreLayout fibres) {
+    const int n = static_cast<int>(state.range(0));
+    sim::EvalJob job = Job(model, n, n);
+    job.shell.fibres.layout = fibres;  // braid at the default 30 degrees, 50 N/mm
+    Measure(state, job);
+}
+
+// Two designs the thesis's GA found with fibre genes in reproduce part 2 (1 kPa), with their fibres
+// and without: the benchmark's sine is an easy design, and these show what fibres cost on the shapes
+// the optimizers actually visit. S5.2F's best (one B-spline over the middle, a single +43.6 degree
+// family) and an S5.4F individual (four sector B-splines, a single family at 11-31 degrees in four bands).
+sim::EvalJob GaDesign(int which, bool fibres) {
+    sim::EvalJob job;
+    job.model = sim::ModelKind::Shell;
+    job.shell.load.pressureKpa = 1;
+    sim::BSplineShape shape;
+    if (which == 0) {
+        shape.splines = {{7, 8, 1, 5, 7, 5, 5}};
+        job.shell.fibres.angleDeg = 43.6062675338317;
+    } else {
+        shape.splines = {{5, 7, 0, 2, 7, 3, 7}, {5, 2, 1, 4, 6}, {4, 2, 1, 1, 1}, {0, 5, 0, 8, 4, 3, 2, 5, 4, 6, 2, 7, 4}};
+        job.shell.fibres.bands = {{0, 0.25, 12.308510908575812}, {0.25, 0.5, 31.12818092256292}, {0.5, 0.75, 29.65807805103285}, {0.75, 1, 10.786319724686154}};
+    }
+    job.shape = shape;
+    job.shell.fibres.layout = fibres ? sim::FibreLayout::Braid : sim::FibreLayout::None;
+    job.shell.fibres.minus = false;
+    return job;
+}
+
+void BM_GaDesign(benchmark::State& state, int which, bool fibres) { Measure(state, GaDesign(which, fibres)); }
+
 }  // namespace
 
 BENCHMARK(BM_Thesis30x30)->Unit(benchmark::kMillisecond);
@@ -47,6 +77,10 @@ BENCHMARK_CAPTURE(BM_Shell, membrane, sim::ModelKind::Membrane, sim::FibreLayout
 BENCHMARK_CAPTURE(BM_Shell, shell, sim::ModelKind::Shell, sim::FibreLayout::None)->Arg(30)->Arg(60)->Unit(benchmark::kMillisecond)->MinTime(2);
 // What fibres cost (issue 11: at most 30 % more).
 BENCHMARK_CAPTURE(BM_Shell, shell_braid, sim::ModelKind::Shell, sim::FibreLayout::Braid)->Arg(30)->Arg(60)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_GaDesign, S5_2F_best, 0, true)->Unit(benchmark::kMillisecond)->MinTime(3);
+BENCHMARK_CAPTURE(BM_GaDesign, S5_2F_best_without_fibres, 0, false)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_GaDesign, S5_4F_individual, 1, true)->Unit(benchmark::kMillisecond)->MinTime(3);
+BENCHMARK_CAPTURE(BM_GaDesign, S5_4F_individual_without_fibres, 1, false)->Unit(benchmark::kMillisecond)->MinTime(2);
 // 120 x 120 once each (seconds: the first evaluation, pattern and analysis included).
 BENCHMARK_CAPTURE(BM_Shell, membrane, sim::ModelKind::Membrane, sim::FibreLayout::None)->Arg(120)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Shell, shell, sim::ModelKind::Shell, sim::FibreLayout::None)->Arg(120)->Unit(benchmark::kMillisecond)->Iterations(1);
