@@ -113,7 +113,6 @@ struct Solver {
     Factor* exactFactor;
     Counters counters;
     bool holdAxial = false;   // u is held at its current value (the blocked test)
-    double volumeLimit = std::numeric_limits<double>::infinity();  // Minimise stops as Runaway past it
     double forceTolerance;    // N
     EnergyTerms terms;
     // Newton's steps by preconditioned conjugate gradients (PreconditionedStep).
@@ -227,8 +226,9 @@ struct Solver {
     }
 
     // Minimises the total energy at `load` from q (in place), in at most def.maxIterations (or
-    // `budget`, when smaller) iterations.
-    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, int budget = std::numeric_limits<int>::max()) {
+    // `budget`, when smaller) iterations; Runaway once the volume passes `volumeLimit`.
+    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity(),
+                       int budget = std::numeric_limits<int>::max()) {
         // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
         for (int iteration = 0; iteration < std::min(budget, def.maxIterations); ++iteration) {
@@ -421,6 +421,10 @@ void FibreOutputs(const ShellProblem& p, const Positions& x, double length, Shel
     out.fibreAngleDeg = middle ? angles / middle : NAN;
 }
 
+// A state whose volume passes this multiple of the last converged one has left the load path: no
+// equilibrium nearby (past the pressure maximum), or a snap through to a distant branch.
+constexpr double kRunawayVolume = 3;
+
 // One pressure-controlled (or gas, or force) load path in steps to the target, each step tried
 // whole from the previous state and halved on failure.
 struct PathEnd {
@@ -503,6 +507,11 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
         return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
     };
 
+    // Where Newton stops as Runaway after a state of this volume (a force load has no such limit).
+    auto volumeLimitAfter = [&](double volume) {
+        return load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : kRunawayVolume * volume;
+    };
+
     Status status = Status::Ok;
     if (load.kind == ShellLoad::Volume) {
         double p = 0;
@@ -529,9 +538,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
                 const double next = std::min(goal, reached + increment);
                 Eigen::VectorXd trial = q;
                 if (predict && tangent.size() == q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
-                solver.volumeLimit = load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : 3 * lastVolume;
-                const NewtonEnd end = solver.Minimise(trial, loadAt(next));
-                solver.volumeLimit = std::numeric_limits<double>::infinity();
+                const NewtonEnd end = solver.Minimise(trial, loadAt(next), volumeLimitAfter(lastVolume));
                 if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
                 if (end == NewtonEnd::Runaway && increment <= smallest) {
                     out.limitPressureKpa = gaugeKpa(reached);
@@ -543,7 +550,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
                     const double volume = EnclosedVolume(problem, x);
                     // A converged state far beyond the last one has snapped through to a distant branch:
                     // past the pressure maximum. (An unstable state is caught at the end, by inertia.)
-                    if (load.kind != ShellLoad::Force && volume > 3 * lastVolume) {
+                    if (volume > volumeLimitAfter(lastVolume)) {
                         out.limitPressureKpa = gaugeKpa(reached);
                         status = Status::LimitPoint;
                         break;
@@ -604,22 +611,22 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
             const double energy = exact.energy;
             Eigen::VectorXd escaped = q + down;
             if (!(AssembleEnergy(problem, escaped, finalLoad, solver.terms, false, nullptr, HessianKind::Projected).energy < energy)) escaped = q - down;
-            const double volume = out.curveVolumeMm3.back();  // at q, the path's last point
-            solver.volumeLimit = load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : 3 * volume;
-            const NewtonEnd end = solver.Minimise(escaped, finalLoad, kEscapeIterations);
-            solver.volumeLimit = std::numeric_limits<double>::infinity();
+            const double limit = volumeLimitAfter(out.curveVolumeMm3.back());  // after q, the path's last point
+            const NewtonEnd end = solver.Minimise(escaped, finalLoad, limit, kEscapeIterations);
             PositionsOf(problem, escaped, x);
-            if (end == NewtonEnd::Converged && (load.kind == ShellLoad::Force || EnclosedVolume(problem, x) <= 3 * volume) &&
-                solver.ExactInertia(escaped, finalLoad, &exact) == 0) {
+            const double escapedVolume = EnclosedVolume(problem, x);
+            const bool inspected = end == NewtonEnd::Converged && (load.kind == ShellLoad::Force || escapedVolume <= limit);
+            if (inspected && solver.ExactInertia(escaped, finalLoad, &exact) == 0) {
                 q = std::move(escaped);
                 negative = 0;
                 out.targetPressureKpa = gaugeKpa(1.0);  // status ok: the path reached its target
                 out.curvePressureKpa.back() = out.targetPressureKpa;
                 out.curveContractionPercent.back() = Contraction(problem, q, length);
-                out.curveVolumeMm3.back() = EnclosedVolume(problem, x);
+                out.curveVolumeMm3.back() = escapedVolume;
                 out.steps.back() = x;
-            } else {
-                negative = solver.ExactInertia(q, finalLoad, &exact);  // the factor at q again, for what follows
+            } else if (inspected) {
+                // The escaped state's factor replaced q's: factorise at q again, for what follows.
+                negative = solver.ExactInertia(q, finalLoad, &exact);
             }
         }
     }
