@@ -2,13 +2,15 @@
 // 4.1 sine at A = 1.3, R = 5 mm, L = 150 mm, 3 kPa in 4 load steps, Ecoflex 00-30) at 30 x 30,
 // 60 x 60 and 120 x 120, beside the thesis model's evaluation measured in the same run, on one core.
 // Fibres' cost (issue 11) on the same sine and on two of the GA's fibre designs, each beside the same
-// design without fibres. The counters give the Newton iterations and factorisations per evaluation.
+// design without fibres; one assembly with and without the fibre terms. The counters give the
+// Newton iterations and factorisations per evaluation.
 //   build/tests/shell_bench --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
 #include <numbers>
 
 #include "sim/batch.h"
+#include "sim/shell_problem.h"
 
 namespace {
 
@@ -70,6 +72,32 @@ sim::EvalJob GaDesign(int which, bool fibres) {
 
 void BM_GaDesign(benchmark::State& state, int which, bool fibres) { Measure(state, GaDesign(which, fibres)); }
 
+// What the fibre terms cost in one assembly, apart from the iterations they make Newton take: the
+// braided sine's equilibrium (30 x 30, 3 kPa), assembled as a Newton iteration does (gradient and
+// projected Hessian) or as a line-search trial does (gradient only), with the fibres' terms and
+// without them, at the same state.
+void BM_Assembly(benchmark::State& state, bool hessian, bool fibres) {
+    sim::EvalJob job = Job(sim::ModelKind::Shell, 30, 30);
+    job.shell.fibres.layout = sim::FibreLayout::Braid;
+    const sim::SimResult solved = sim::Evaluate(job);
+    std::string error;
+    const sim::ShellProblem problem = sim::BuildTubeProblem(job.shell, job.shape, true, &error);
+    if (solved.status != sim::Status::Ok || !error.empty()) {
+        state.SkipWithError("the braided sine did not solve");
+        return;
+    }
+    const Eigen::VectorXd q = sim::UnknownsOf(problem, solved.final);
+    sim::LoadTerms load;
+    load.pressure = job.shell.load.pressureKpa * 1e-3;  // MPa
+    sim::EnergyTerms terms;
+    terms.fibres = fibres;
+    sim::HessianPattern pattern(problem);
+    for (auto _ : state) {
+        const sim::EnergyResult r = sim::AssembleEnergy(problem, q, load, terms, true, hessian ? &pattern : nullptr, sim::HessianKind::Projected);
+        benchmark::DoNotOptimize(r.energy);
+    }
+}
+
 }  // namespace
 
 BENCHMARK(BM_Thesis30x30)->Unit(benchmark::kMillisecond);
@@ -81,6 +109,10 @@ BENCHMARK_CAPTURE(BM_GaDesign, S5_2F_best, 0, true)->Unit(benchmark::kMillisecon
 BENCHMARK_CAPTURE(BM_GaDesign, S5_2F_best_without_fibres, 0, false)->Unit(benchmark::kMillisecond)->MinTime(2);
 BENCHMARK_CAPTURE(BM_GaDesign, S5_4F_individual, 1, true)->Unit(benchmark::kMillisecond)->MinTime(3);
 BENCHMARK_CAPTURE(BM_GaDesign, S5_4F_individual_without_fibres, 1, false)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_Assembly, newton_braid, true, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Assembly, newton_without_fibres, true, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Assembly, gradient_braid, false, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_Assembly, gradient_without_fibres, false, false)->Unit(benchmark::kMicrosecond);
 // 120 x 120 once each (seconds: the first evaluation, pattern and analysis included).
 BENCHMARK_CAPTURE(BM_Shell, membrane, sim::ModelKind::Membrane, sim::FibreLayout::None)->Arg(120)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Shell, shell, sim::ModelKind::Shell, sim::FibreLayout::None)->Arg(120)->Unit(benchmark::kMillisecond)->Iterations(1);
