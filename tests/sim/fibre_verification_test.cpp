@@ -92,6 +92,24 @@ TEST(FibreClosedForms, TheBlockedForceIsChouAndHannafords) {
                                                           << Reproduce(job);
 }
 
+// Every inflate evaluation reports a blocking force by pulling the clamp back from the free state,
+// here from a muscle contracted by 31 %: it must be the state a blocked inflation reaches from rest
+// (one equilibrium, two routes), and so Chou and Hannaford's force too.
+TEST(FibreClosedForms, TheFreeMusclesBlockingForceIsTheBlockedInflations) {
+    const double angle = 30, pressureKpa = 10;
+    const sim::EvalJob freeJob = McKibben(angle, pressureKpa), blockedJob = McKibben(angle, pressureKpa, sim::ShellLoad::Blocked);
+    const sim::SimResult free = sim::Evaluate(freeJob), blocked = sim::Evaluate(blockedJob);
+    ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(freeJob);
+    ASSERT_EQ(blocked.status, sim::Status::Ok) << Reproduce(blockedJob);
+    EXPECT_GT(free.contractionPercent, 25) << "the free muscle contracts; " << Reproduce(freeJob);
+    EXPECT_NEAR(free.shell.blockingForceN / blocked.shell.blockingForceN, 1, 1e-6)
+        << "pulled back from the free state " << free.shell.blockingForceN << " N, blocked from rest " << blocked.shell.blockingForceN << " N; "
+        << Reproduce(freeJob);
+    const double R0 = freeJob.shell.geometry.radiusMm;
+    const double expected = pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
+    EXPECT_NEAR(free.shell.blockingForceN / expected, 1, 0.05) << Reproduce(freeJob);
+}
+
 TEST(FibreClosedForms, TheAxialStrainChangesSignAtTheMagicAngle) {
     for (double pressureKpa : {1.0, 3.0, 10.0}) {
         const sim::EvalJob below = McKibben(50, pressureKpa), above = McKibben(60, pressureKpa);
