@@ -249,7 +249,7 @@ py::dict ShellOutputs(const Evaluated& e) {
     d["curve_pressure_kpa"] = array(o.curvePressureKpa);
     d["curve_contraction_percent"] = array(o.curveContractionPercent);
     d["curve_volume_mm3"] = array(o.curveVolumeMm3);
-    d["target_pressure_kpa"] = o.targetPressureKpa;
+    d["pressure_kpa"] = o.targetPressureKpa;  // the names of `actuator simulate`'s JSON
     d["limit_pressure_kpa"] = o.limitPressureKpa;
     d["blocking_force_n"] = o.blockingForceN;
     d["axial_stiffness_n_per_mm"] = o.axialStiffnessNPerMm;
@@ -349,7 +349,7 @@ PYBIND11_MODULE(actuator, m) {
         .def_property_readonly("final", [](const Evaluated& e) { return Rows(e.result.final); }, "(N, 3) positions after the load")
         .def_property_readonly("shell", &ShellOutputs,
                                "membrane and shell models: the pressure-contraction-volume curve (NumPy arrays) and the numbers at the "
-                               "target pressure, units in the names; {} for the thesis model")
+                               "target pressure, named as in `actuator simulate`'s JSON, units in the names; {} for the thesis model")
         .def("__repr__", [](const Evaluated& e) {
             return fmt::format("<actuator.Result {} {} fitness={:.6g} contraction={:.4g}%>", sim::Name(e.job.model), sim::Name(e.result.status),
                                e.result.fitness, e.result.contractionPercent);

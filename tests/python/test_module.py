@@ -62,6 +62,24 @@ def test_shell_model_contraction_at_pressure():
     assert r.fitness == r.contraction_percent
 
 
+def test_shell_outputs_are_named_and_valued_as_on_the_command_line():
+    ours = actuator.evaluate(actuator.cylinder(), model="shell", geometry=actuator.Geometry(ring_vertices=12, rings=16),
+                             load=actuator.Load(pressure_kpa=1.0, steps=2), fibres=actuator.Fibres(fibres="braid"))
+    cli = simulate("--shape", "cylinder", "--model", "shell", "--ring-vertices", "12", "--rings", "16", "--pressure-kpa", "1",
+                   "--steps", "2", "--fibres", "braid")
+    numbers = [k for k, v in cli.items() if k not in ("status", "fitness", "contraction_percent", "elapsed_ms") and not isinstance(v, (dict, list, str))]
+    assert "pressure_kpa" in numbers and "blocking_force_n" in numbers and "max_fibre_strain" in numbers
+    for key in numbers:
+        assert key in ours.shell, f"the command line's {key} is missing from Result.shell"
+        value = ours.shell[key]
+        if cli[key] is None:
+            assert math.isnan(value), key
+        else:
+            assert float(value).hex() == float(cli[key]).hex(), key
+    assert [p["pressure_kpa"] for p in cli["curve"]] == list(ours.shell["curve_pressure_kpa"])
+    assert [p["contraction_percent"] for p in cli["curve"]] == list(ours.shell["curve_contraction_percent"])
+
+
 def test_bad_input_raises_value_error_with_the_message():
     with pytest.raises(ValueError, match="out of range"):
         actuator.ThesisParams(iterations=-5)
