@@ -225,13 +225,12 @@ struct Solver {
         return Eigen::VectorXd();
     }
 
-    // Minimises the total energy at `load` from q (in place), in at most def.maxIterations (or
-    // `budget`, when smaller) iterations; Runaway once the volume passes `volumeLimit`.
-    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity(),
-                       int budget = std::numeric_limits<int>::max()) {
+    // Minimises the total energy at `load` from q (in place), in at most def.maxIterations
+    // iterations; Runaway once the volume passes `volumeLimit`.
+    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity()) {
         // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
-        for (int iteration = 0; iteration < std::min(budget, def.maxIterations); ++iteration) {
+        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
             ++counters.iterations;
             if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
             if (r.volume > volumeLimit) return NewtonEnd::Runaway;
@@ -592,14 +591,15 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     // The exact Hessian's inertia at the end of the path tells a stable equilibrium from one past the
     // pressure maximum. Newton's steps find stationary points, and on a wavy wall they can end on a
     // saddle beside a stable state at the same load: then step down along the negative curvature and
-    // minimise again, once. A stable state no further than the load path allows is the actuator's;
+    // minimise again, once, with a load step's budget (def.maxIterations): a smaller one of its own
+    // made the verdict depend on it (a fibre design whose stable state lies 100 iterations away was a
+    // limit point with 50). A stable state no further than the load path allows is the actuator's;
     // otherwise the inertia check below reports the limit point.
     const LoadTerms finalLoad = load.kind == ShellLoad::Volume ? [&] {
         LoadTerms l;
         l.pressure = out.targetPressureKpa * 1e-3;
         return l;
     }() : loadAt(1.0);
-    constexpr int kEscapeIterations = 50;  // a stable state nearby is reached in 20-40; none: up to the cap, wasted
     int negative = -1;  // the exact Hessian's negative pivots at q (its factor stays in solver.exactFactor)
     EnergyResult exact;
     if (status == Status::Ok) {
@@ -612,7 +612,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
             Eigen::VectorXd escaped = q + down;
             if (!(AssembleEnergy(problem, escaped, finalLoad, solver.terms, false, nullptr, HessianKind::Projected).energy < energy)) escaped = q - down;
             const double limit = volumeLimitAfter(out.curveVolumeMm3.back());  // after q, the path's last point
-            const NewtonEnd end = solver.Minimise(escaped, finalLoad, limit, kEscapeIterations);
+            const NewtonEnd end = solver.Minimise(escaped, finalLoad, limit);
             PositionsOf(problem, escaped, x);
             const double escapedVolume = EnclosedVolume(problem, x);
             const bool inspected = end == NewtonEnd::Converged && (load.kind == ShellLoad::Force || escapedVolume <= limit);

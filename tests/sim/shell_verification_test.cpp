@@ -449,6 +449,33 @@ TEST(ShellConvergence, StrainErrorsFallSecondOrder) {
     }
 }
 
+// A path that ends on a saddle steps off it to the stable state beside it, with a load step's budget.
+// This fibre design (reproduce part 2's GA, S5.2F) reaches 1 kPa on an unstable state (+3.70 %); its
+// stable one (+3.59 %) lies 100 Newton iterations away. With a smaller budget of its own, the escape
+// called the design a limit point, though its volume rises smoothly to the target.
+TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
+    sim::EvalJob job;
+    job.model = sim::ModelKind::Shell;
+    sim::BSplineShape shape;  // over the middle
+    shape.splines = {{7, 8, 1, 3, 5, 7}};
+    job.shape = shape;
+    job.shell.load.pressureKpa = 1;
+    job.shell.fibres.layout = sim::FibreLayout::Braid;
+    job.shell.fibres.minus = false;  // one family
+    job.shell.fibres.angleDeg = 43.6062675338317;
+    const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 7,8,1,3,5,7 --model shell "
+                            "--pressure-kpa 1 --fibres single --fibre-angle-deg 43.6062675338317";
+    const sim::SimResult base = sim::Evaluate(job);
+    ASSERT_EQ(base.status, sim::Status::Ok) << how;
+    EXPECT_GT(base.contractionPercent, 3) << how;
+    EXPECT_LT(base.contractionPercent, 3.65) << "the stable state, not the saddle; " << how;
+    sim::EvalJob longer = job;
+    longer.shell.solver.maxIterations *= 2;
+    const sim::SimResult twice = sim::Evaluate(longer);
+    EXPECT_EQ(twice.status, sim::Status::Ok) << how << " --max-iterations 400";
+    EXPECT_EQ(sim::PositionsHash(twice.final), sim::PositionsHash(base.final)) << "twice the iteration cap; " << how;
+}
+
 // The answer does not depend on the solver's budget, or on threads.
 TEST(ShellSolver, TheResultDoesNotDependOnTheBudgetOrTheThreads) {
     sim::EvalJob job;
