@@ -126,25 +126,77 @@ PrincipalValues Principal(const MembraneMaterial& material, const Matrix32& F) {
 }
 
 namespace {
+
 #include "hinge_angle.inc"
+
+// The hinge angle's Hessian in closed form (12 x 12, row-major). With e = p1 - p0, a = q - p0 and
+// b = r - p0 the angle is atan2(Y, X), where nA x nB = Y e / |e| and nA . nB = X:
+//     Y = |e| s,  s = (a x e) . b,      X = (e . a)(e . b) - (e . e)(a . b)   (Binet-Cauchy).
+// Both are polynomials (and a norm) in (e, a, b), with simple gradients and Hessians; then
+//     H = (X H_Y - Y H_X) / R - [(X^2 - Y^2)(g_X g_Y^T + g_Y g_X^T) + 2 X Y (g_Y g_Y^T - g_X g_X^T)] / R^2,
+// R = X^2 + Y^2 (the derivative of (X g_Y - Y g_X) / R, its antisymmetric part dropped: it
+// cancels). Over (p0, p1, q, r): d/dp1 = d/de, d/dq = d/da, d/dr = d/db, d/dp0 = -(all three).
+void HingeAngleHessian(const double* x, double* hessian) {
+    using Vector3 = Eigen::Vector3d;
+    using Matrix3 = Eigen::Matrix3d;
+    const Vector3 p0(x[0], x[1], x[2]);
+    const Vector3 e = Vector3(x[3], x[4], x[5]) - p0, a = Vector3(x[6], x[7], x[8]) - p0, b = Vector3(x[9], x[10], x[11]) - p0;
+    const double ea = e.dot(a), eb = e.dot(b), ee = e.dot(e), ab = a.dot(b), length = std::sqrt(ee);
+    const Vector3 axe = a.cross(e), unit = e / length;
+    const double s = axe.dot(b);
+    const double X = ea * eb - ee * ab, Y = length * s, R = X * X + Y * Y;
+    // ds over e, a and b; g_X and g_Y over (e, a, b).
+    const Vector3 dsE = b.cross(a), dsA = e.cross(b), dsB = axe;
+    Eigen::Matrix<double, 9, 1> gX, gY;
+    gX << eb * a + ea * b - 2 * ab * e, eb * e - ee * b, ea * e - ee * a;
+    gY << s * unit + length * dsE, length * dsA, length * dsB;
+    const double c1 = (X * X - Y * Y) / (R * R), c2 = 2 * X * Y / (R * R), cY = X / R, cX = Y / R;
+    Eigen::Matrix<double, 9, 9> H = -c1 * (gX * gY.transpose() + gY * gX.transpose()) - c2 * (gY * gY.transpose() - gX * gX.transpose());
+    // (X H_Y - Y H_X) / R, block by block (H_X and H_Y vanish on (a, a) and (b, b)):
+    //   H_Y = s H_|e| + g_|e| ds^T + ds g_|e|^T + |e| H_s, with H_|e| = (I - u u^T) / |e| on (e, e);
+    //   H_s: (e, a) = [b]x, (e, b) = -[a]x, (a, b) = [e]x;
+    //   H_X: (e, e) = a b^T + b a^T - 2 (a . b) I, (e, a) = (e . b) I + b e^T - 2 e b^T,
+    //        (e, b) = (e . a) I + a e^T - 2 e a^T, (a, b) = e e^T - (e . e) I.
+    const Matrix3 I = Matrix3::Identity();
+    H.block<3, 3>(0, 0) += cY * (s * (I - unit * unit.transpose()) / length + unit * dsE.transpose() + dsE * unit.transpose()) -
+                           cX * (a * b.transpose() + b * a.transpose() - 2 * ab * I);
+    const Matrix3 blockEA = cY * (unit * dsA.transpose() + length * Cross(b)) - cX * (eb * I + b * e.transpose() - 2 * e * b.transpose());
+    const Matrix3 blockEB = cY * (unit * dsB.transpose() - length * Cross(a)) - cX * (ea * I + a * e.transpose() - 2 * e * a.transpose());
+    const Matrix3 blockAB = cY * length * Cross(e) - cX * (e * e.transpose() - ee * I);
+    H.block<3, 3>(0, 3) += blockEA;
+    H.block<3, 3>(3, 0) += blockEA.transpose();
+    H.block<3, 3>(0, 6) += blockEB;
+    H.block<3, 3>(6, 0) += blockEB.transpose();
+    H.block<3, 3>(3, 6) += blockAB;
+    H.block<3, 3>(6, 3) += blockAB.transpose();
+    Eigen::Map<Eigen::Matrix<double, 12, 12, Eigen::RowMajor>> h(hessian);
+    h.bottomRightCorner<9, 9>() = H;
+    for (int v = 0; v < 3; ++v) {
+        const Matrix3 column = -(H.block<3, 3>(0, 3 * v) + H.block<3, 3>(3, 3 * v) + H.block<3, 3>(6, 3 * v));
+        h.block<3, 3>(0, 3 + 3 * v) = column;
+        h.block<3, 3>(3 + 3 * v, 0) = column.transpose();
+    }
+    h.block<3, 3>(0, 0) = -(h.block<3, 3>(0, 3) + h.block<3, 3>(0, 6) + h.block<3, 3>(0, 9));
+}
+
 }  // namespace
 
 double HingeAngle(const Eigen::Matrix<double, 12, 1>& x, Eigen::Matrix<double, 12, 1>* gradient, Eigen::Matrix<double, 12, 12>* hessian) {
-    double theta = 0;
-    Eigen::Matrix<double, 12, 1> g;
-    if (hessian) {
-        Eigen::Matrix<double, 12, 12, Eigen::RowMajor> h;
-        HingeAngleHessian(x.data(), &theta, g.data(), h.data());
-        *hessian = h;
-    } else if (gradient) {
-        HingeAngleGradient(x.data(), &theta, g.data());
-    } else {
+    if (!gradient && !hessian) {
         // The angle alone: the same formula, without derivatives.
         const Eigen::Vector3d p0 = x.segment<3>(0), p1 = x.segment<3>(3), q = x.segment<3>(6), r = x.segment<3>(9);
         const Eigen::Vector3d e = p1 - p0, nA = e.cross(q - p0), nB = (r - p0).cross(e);
         return std::atan2(nA.cross(nB).dot(e) / e.norm(), nA.dot(nB));
     }
+    double theta = 0;
+    Eigen::Matrix<double, 12, 1> g;
+    HingeAngleGradient(x.data(), &theta, g.data());
     if (gradient) *gradient = g;
+    if (hessian) {
+        Eigen::Matrix<double, 12, 12, Eigen::RowMajor> h;
+        HingeAngleHessian(x.data(), h.data());
+        *hessian = h;
+    }
     return theta;
 }
 
