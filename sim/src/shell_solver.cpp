@@ -615,7 +615,7 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
             const NewtonEnd end = solver.Minimise(escaped, finalLoad, limit);
             PositionsOf(problem, escaped, x);
             const double escapedVolume = EnclosedVolume(problem, x);
-            const bool inspected = end == NewtonEnd::Converged && (load.kind == ShellLoad::Force || escapedVolume <= limit);
+            const bool inspected = end == NewtonEnd::Converged && escapedVolume <= limit;  // limit: infinite for a force load
             if (inspected && solver.ExactInertia(escaped, finalLoad, &exact) == 0) {
                 q = std::move(escaped);
                 negative = 0;

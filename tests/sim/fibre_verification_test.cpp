@@ -45,6 +45,12 @@ sim::EvalJob McKibben(double angleDeg, double pressureKpa = 10, sim::ShellLoad l
     return job;
 }
 
+// Chou and Hannaford's blocked force at the initial length, N: p pi R0^2 (3 cos^2 a0 - 1) / sin^2 a0.
+double ChouHannafordForceN(const sim::EvalJob& job) {
+    const double angle = job.shell.fibres.angleDeg, R0 = job.shell.geometry.radiusMm;
+    return job.shell.load.pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
+}
+
 std::string Reproduce(const sim::EvalJob& job) {
     const auto& f = job.shell.fibres;
     return "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm 5 --length-mm 100 --thickness-mm 1 --material custom "
@@ -85,9 +91,7 @@ TEST(FibreClosedForms, TheBlockedForceIsChouAndHannafords) {
     const sim::EvalJob job = McKibben(angle, pressureKpa, sim::ShellLoad::Blocked);
     const sim::SimResult r = sim::Evaluate(job);
     ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
-    // F = p pi R0^2 (3 cos^2 a0 - 1) / sin^2 a0 at the initial length (N, with p in MPa).
-    const double R0 = job.shell.geometry.radiusMm;
-    const double expected = pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
+    const double expected = ChouHannafordForceN(job);
     EXPECT_NEAR(r.shell.blockingForceN / expected, 1, 0.05) << "blocked force " << r.shell.blockingForceN << " N against " << expected << " N; "
                                                           << Reproduce(job);
 }
@@ -105,9 +109,7 @@ TEST(FibreClosedForms, TheFreeMusclesBlockingForceIsTheBlockedInflations) {
     EXPECT_NEAR(free.shell.blockingForceN / blocked.shell.blockingForceN, 1, 1e-6)
         << "pulled back from the free state " << free.shell.blockingForceN << " N, blocked from rest " << blocked.shell.blockingForceN << " N; "
         << Reproduce(freeJob);
-    const double R0 = freeJob.shell.geometry.radiusMm;
-    const double expected = pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
-    EXPECT_NEAR(free.shell.blockingForceN / expected, 1, 0.05) << Reproduce(freeJob);
+    EXPECT_NEAR(free.shell.blockingForceN / ChouHannafordForceN(freeJob), 1, 0.05) << Reproduce(freeJob);
 }
 
 TEST(FibreClosedForms, TheAxialStrainChangesSignAtTheMagicAngle) {

@@ -292,8 +292,7 @@ std::string Reproduce(const sim::ShellDef& def, double pressureKpa) {
            std::to_string(def.geometry.lengthMm) + " --thickness-mm " + std::to_string(def.geometry.thicknessMm) + " --material custom --mu-kpa " +
            std::to_string(def.material.muKpa) + " --elongation-at-break " + std::to_string(def.material.elongationAtBreak) + " --ring-vertices " +
            std::to_string(def.geometry.ringVertices) + " --rings " + std::to_string(def.geometry.rings) + " --steps " + std::to_string(def.load.steps) +
-           " --pressure-kpa " + std::to_string(pressureKpa) +
-           " --ends sliding";
+           " --pressure-kpa " + std::to_string(pressureKpa) + " --ends sliding";
 }
 
 }  // namespace
