@@ -4,7 +4,8 @@
 // [SECTION] Factorisation: 3 x 3 vertex blocks; pattern and analysis kept per thread and topology
 // [SECTION] Newton: projected Hessian, steps by conjugate gradients on an earlier factor (a fresh
 //           factorisation when they are slow, with a growing diagonal shift on failure),
-//           backtracking line search on E, round-off guard
+//           backtracking line search on E, round-off guard; a trust region where the exact
+//           Hessian shows negative curvature
 // [SECTION] Loads: pressure steps with bisection, sealed gas, volume control, axial force
 // [SECTION] Evaluation: outputs, statuses
 #include <algorithm>
@@ -123,6 +124,11 @@ struct Solver {
     bool exactSteps = false;                       // Newton's steps on the exact Hessian first (see Minimise)
     bool direct = false;                           // factorise at every step (see Minimise)
     int factorAge = 0;                             // Newton steps taken since `factor` was computed
+    // Trust-region steps (TrustRegionStep): the radius carries over from step to step and load to
+    // load, as the curvature it was fitted to does.
+    static constexpr double kFirstTrustRadius = 0.1;  // of the mean edge: the saddle escape's step
+    static constexpr int kTrustTries = 10;            // radii tried from one state, each a quarter of the last
+    double trustRadiusMm = 0;                         // 0: not yet needed
 
     Solver(const ShellProblem& p, const SolverDef& d)
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
@@ -199,6 +205,78 @@ struct Solver {
         }
         return Linear::Slow;
     }
+    // Steihaug and Toint's truncated conjugate gradients on the model m(s) = g.s + s.(H + c w w^T)s / 2
+    // within |s| <= radius, preconditioned by `factor`: conjugate gradients until the step leaves the
+    // region or meets negative curvature, then on to the boundary. Every iterate lowers the model, so
+    // the step is one of descent; `predicted` is the model's decrease (> 0).
+    Eigen::VectorXd TruncatedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, double radius,
+                                  double* predicted) const {
+        Eigen::VectorXd s = Eigen::VectorXd::Zero(g.size());
+        Eigen::VectorXd r = -g;
+        Eigen::VectorXd z = factor->Solve(r);
+        Eigen::VectorXd p = z, Ap;
+        double rz = r.dot(z);
+        const double target = std::max(kStepResidual * g.norm(), 0.1 * forceTolerance);
+        // s + tau p on the boundary, tau >= 0.
+        auto toBoundary = [&] {
+            const double a = p.squaredNorm(), b = s.dot(p), outside = s.squaredNorm() - radius * radius;
+            s += ((-b + std::sqrt(b * b - a * outside)) / a) * p;
+        };
+        for (int k = 1; k <= kMaxStepIterations; ++k) {
+            Ap = H * p;
+            if (c != 0) Ap += (c * w.dot(p)) * w;
+            const double curvature = p.dot(Ap);
+            if (!(curvature > 0)) {
+                toBoundary();
+                break;
+            }
+            const double alpha = rz / curvature;
+            if ((s + alpha * p).norm() >= radius) {
+                toBoundary();
+                break;
+            }
+            s += alpha * p;
+            r -= alpha * Ap;
+            if (r.norm() <= target) break;
+            z = factor->Solve(r);
+            const double next = r.dot(z);
+            p = z + (next / rz) * p;
+            rz = next;
+        }
+        Eigen::VectorXd Hs = H * s;
+        if (c != 0) Hs += (c * w.dot(s)) * w;
+        *predicted = -(g.dot(s) + 0.5 * s.dot(Hs));
+        return s;
+    }
+
+    // A trust-region step from q on the exact Hessian H that has shown negative curvature: Newton's
+    // steps on the projected Hessian (positive definite by construction) walk off a saddle at a
+    // fixed ratio per step (1.5 on a fibre design: 25 iterations, each with a fresh factor), and the
+    // unstable path curves within a tenth of an edge, so no straight step along the negative
+    // curvature serves. Here the radius grows while the model predicts the energy well and shrinks
+    // when it does not. True with the step and its state (energy and gradient assembled) when one
+    // lowered E; false after kTrustTries radii (the caller's other steps then stand).
+    bool TrustRegionStep(const Eigen::VectorXd& q, const LoadTerms& load, const EnergyResult& r, double c, const Eigen::VectorXd& w,
+                         const SparseMatrix& H, Eigen::VectorXd& step, EnergyResult& reached) {
+        if (trustRadiusMm == 0) trustRadiusMm = kFirstTrustRadius * problem.meanEdgeMm;
+        for (int attempt = 0; attempt < kTrustTries; ++attempt) {
+            double predicted = 0;
+            Eigen::VectorXd s = TruncatedStep(H, c, w, r.gradient, trustRadiusMm, &predicted);
+            if (!s.allFinite() || !(predicted > 0)) return false;
+            EnergyResult trial = AssembleEnergy(problem, q + s, load, terms, true, nullptr, HessianKind::Projected);
+            const double agreement = (r.energy - trial.energy) / predicted;  // actual decrease / predicted
+            const bool onBoundary = s.norm() > 0.99 * trustRadiusMm;
+            if (!(agreement >= 0.25)) trustRadiusMm *= 0.25;  // NaN too
+            else if (agreement > 0.75 && onBoundary) trustRadiusMm *= 2;
+            if (std::isfinite(trial.energy) && trial.gradient.allFinite() && agreement > 1e-4) {
+                step = std::move(s);
+                reached = std::move(trial);
+                return true;
+            }
+        }
+        return false;
+    }
+
     // A step from a fresh factorisation of H (+ the gas's rank-one term): a descent direction, or
     // empty. When H is not definite, the pressure's part is left out, which is positive
     // semi-definite by construction; a tiny growing shift takes care of what is singular.
@@ -244,9 +322,12 @@ struct Solver {
             // positive semi-definite by construction, the pressure's exact), until a whole step shows
             // it converging linearly: it clamps compressed membrane parts and leaves out the hinges'
             // curvature term, and on curved or wrinkled walls needs 100-1,800 iterations where the
-            // exact one needs 30-70. From then on the exact Hessian first, the projected one where
-            // that is not positive definite along the search (far from equilibrium, past a limit point).
+            // exact one needs 30-70. From then on the exact Hessian first: where conjugate gradients
+            // meet negative curvature on it (a saddle, a buckle), a trust-region step on it; the
+            // projected one's when that fails, or when the exact one's are slow.
             Eigen::VectorXd step;
+            EnergyResult trusted;    // a trust-region step's state, energy and gradient assembled
+            bool trustStep = false;  // step is a trust-region step: taken whole, no line search
             bool projected = false;  // pattern.matrix holds the projected Hessian at q
             auto assemble = [&](HessianKind kind) {
                 AssembleEnergy(problem, q, load, terms, false, &pattern, kind);
@@ -274,6 +355,9 @@ struct Solver {
                     const Linear end = PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used);
                     if (end == Linear::Solved && step.dot(r.gradient) < 0) break;
                     step.resize(0);
+                    if (kind == HessianKind::Exact && end == Linear::Indefinite &&
+                        (trustStep = TrustRegionStep(q, load, r, gasTerm, w, pattern.matrix, step, trusted)))
+                        break;
                     if (end != Linear::Indefinite) break;  // too slow (or not finite): the projected one would be too
                 }
                 refresh = step.size() == 0 || used > kMaxStepIterations / 2;
@@ -298,15 +382,20 @@ struct Solver {
                 }
             }
             if (step.size() == 0) return NewtonEnd::NotConverged;
-            // Backtracking on E. When the predicted decrease is below round-off, energy can no longer
-            // judge the step: take it whole (a clamped tube would otherwise stall near 5e-10).
+            // Backtracking on E (a trust-region step has been judged already). When the predicted
+            // decrease is below round-off, energy can no longer judge the step: take it whole (a
+            // clamped tube would otherwise stall near 5e-10).
             const double lastGradientNorm = r.gradient.norm();  // held
             const double slope = step.dot(r.gradient);
             const bool roundOff = std::fabs(slope) < 1e-13 * std::max(1.0, std::fabs(r.energy));
             double alpha = 1;
             Eigen::VectorXd next;
-            bool accepted = false;
-            for (int halving = 0; halving < 40; ++halving) {
+            bool accepted = trustStep;
+            if (trustStep) {
+                next = q + step;
+                r = std::move(trusted);
+            }
+            for (int halving = 0; halving < 40 && !accepted; ++halving) {
                 next = q + alpha * step;
                 // With the gradient: the next iteration's (most steps are taken whole).
                 EnergyResult trial = AssembleEnergy(problem, next, load, terms, true, nullptr, HessianKind::Projected);
