@@ -1,5 +1,6 @@
 #include "figures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <map>
@@ -129,7 +130,9 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             if (thesis) break;  // refused earlier (ColouringError)
             const sim::ShellFields fields = sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed);
             AddFibres(panel, fields, colouring == Colouring::Stretch);
-            if (!fields.fibres.empty()) scene.lines.push_back("lines: the fibres, coloured by their stretch on the same scale");
+            const std::string fibreLine = "lines: the fibres, coloured by their stretch on the same scale";
+            if (!fields.fibres.empty() && std::find(scene.lines.begin(), scene.lines.end(), fibreLine) == scene.lines.end())
+                scene.lines.push_back(fibreLine);  // once for a scene of many panels
             const bool stretch = colouring == Colouring::Stretch;
             panel.values = stretch ? fields.stretch : fields.stressKpa;
             scene.colorBy = render::ColorBy::Values;
@@ -165,10 +168,9 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     return scene;
 }
 
-render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow,
-                         const sim::EvalJob& job) {
+render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow) {
     render::Scene scene;
-    scene.surface = SharedSurface(job);
+    scene.surface = SharedSurface(*pairs.front().job);
     scene.title = title;
     scene.lines = lines;
     scene.columns = 2 * std::max(1, pairsPerRow);
@@ -176,7 +178,7 @@ render::Scene PairsScene(const std::string& title, const std::vector<std::string
     for (const DesignPair& pair : pairs) {
         const sim::SimResult& r = *pair.result;
         scene.panels.push_back({r.initial, {}, pair.label + ": before", 0, {}, {}});
-        scene.panels.push_back(ColouredPanel(scene, r.final, r, job, Colouring::Auto, "after: " + FitnessCaption(r)));
+        scene.panels.push_back(ColouredPanel(scene, r.final, r, *pair.job, Colouring::Auto, "after: " + FitnessCaption(r)));
         framed.push_back(&r.initial);
         if (r.status == sim::Status::Ok) framed.push_back(&r.final);
     }

@@ -50,13 +50,15 @@ render::Scene LoadStepScene(const std::string& title, const sim::SimResult& resu
 
 // Several designs, each before and after, `pairsPerRow` pairs to a row, on one camera and one colour
 // scale (the report's "best of each run" and "the thesis's specimen beside ours"). Each pair is
-// captioned "<label>: before" and "after: <fitness or status>"; all results share `job`'s mesh.
+// captioned "<label>: before" and "after: <fitness or status>". Each is drawn with its own job (its
+// shape is the rest its stretch is measured from; its fibre genes say which fibres it has); all
+// share one mesh size. Precondition: pairs is not empty.
 struct DesignPair {
     const sim::SimResult* result;
+    const sim::EvalJob* job;  // what was evaluated
     std::string label;
 };
-render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow,
-                         const sim::EvalJob& job);
+render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow);
 // One design before and after each of several runs of the same load (e.g. 100 and 10,000 iterations:
 // the thesis's Figure 5.2), one camera and colour scale.
 render::Scene StagesScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<const sim::SimResult*>& stages,

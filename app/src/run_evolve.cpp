@@ -207,14 +207,14 @@ void RunEvolution(RunContext& c) {
     // The thesis's own designs (its tables' genomes), evaluated here like any other design.
     const auto& specimens = e.thesisResult.specimens;
     std::vector<sim::SimResult> specimenResults(specimens.size());
+    std::vector<sim::EvalJob> specimenJobs;
     {
-        std::vector<sim::EvalJob> jobs;
         std::vector<EvaluationTag> tags;
         for (const auto& specimen : specimens) {
-            jobs.push_back(JobOf(e, specimen.design.shape));
+            specimenJobs.push_back(JobOf(e, specimen.design.shape));
             tags.push_back({Role::ThesisPoint, specimen.run, -1, "thesis specimen: " + specimen.design.label});
         }
-        c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&& r) { specimenResults[k] = std::move(r); });
+        c.recorder.Evaluate(specimenJobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&& r) { specimenResults[k] = std::move(r); });
     }
     auto specimenOfRun = [&](int run) -> int {
         for (size_t k = 0; k < specimens.size(); ++k)
@@ -309,15 +309,14 @@ void RunEvolution(RunContext& c) {
         }
         std::vector<DesignPair> pairs;
         for (size_t b = 0; b < bests.size(); ++b) {
-            pairs.push_back({&bests[b].result, fmt::format("run {}, ours", bestRuns[b])});
+            pairs.push_back({&bests[b].result, &bests[b].job, fmt::format("run {}, ours", bestRuns[b])});
             if (const int k = specimenOfRun(bestRuns[b]); k >= 0)
-                pairs.push_back({&specimenResults[k], fmt::format("{} (thesis {:g})", specimens[k].design.label, specimens[k].design.thesisFitness)});
+                pairs.push_back({&specimenResults[k], &specimenJobs[k], fmt::format("{} (thesis {:g})", specimens[k].design.label, specimens[k].design.thesisFitness)});
         }
         if (!pairs.empty()) {
             const std::vector<std::string> lines{specimens.empty() ? "the best design of each run" : "each run's best (left) beside the thesis's design for that run, evaluated here (right)"};
             WritePng((c.dir / "run_bests.png").string(),
-                     PairsImage(PairsScene(ExperimentTitle(e) + "  -  best of each run", lines, pairs, specimens.empty() ? std::min<int>(3, pairs.size()) : 2,
-                                           JobOf(e, e.sweep.base))),
+                     PairsImage(PairsScene(ExperimentTitle(e) + "  -  best of each run", lines, pairs, specimens.empty() ? std::min<int>(3, pairs.size()) : 2)),
                      6);
             c.outcome.figures.push_back("run_bests.png");
         }

@@ -150,9 +150,9 @@ void RunSweep(RunContext& c) {
 
     // Designs the thesis names in a table (e.g. Table 4.4), evaluated as it states them.
     std::vector<sim::SimResult> pointResults;
+    std::vector<sim::EvalJob> pointJobs;
     std::vector<std::string> pointNames;
     if (!e.thesisResult.points.empty()) {
-        std::vector<sim::EvalJob> pointJobs;
         std::vector<EvaluationTag> pointTags;
         for (const auto& point : e.thesisResult.points) {
             sim::EvalJob job = JobOf(e, e.sweep.base);
@@ -191,12 +191,11 @@ void RunSweep(RunContext& c) {
         std::vector<DesignPair> pairs;
         std::vector<std::string> lines{"each design the thesis names, evaluated here:"};
         for (size_t k = 0; k < pointResults.size(); ++k) {
-            pairs.push_back({&pointResults[k], fmt::format("design {}", k + 1)});
+            pairs.push_back({&pointResults[k], &pointJobs[k], fmt::format("design {}", k + 1)});
             lines.push_back(fmt::format("design {}: {}", k + 1, pointNames[k]));
         }
         WritePng((c.dir / "thesis_points.png").string(),
-                 PairsImage(PairsScene(ExperimentTitle(e) + "  -  the thesis's designs", lines, pairs,
-                                       std::min<int>(3, static_cast<int>(pairs.size())), grid.front())),
+                 PairsImage(PairsScene(ExperimentTitle(e) + "  -  the thesis's designs", lines, pairs, std::min<int>(3, static_cast<int>(pairs.size())))),
                  6);
         c.outcome.figures.push_back("thesis_points.png");
     }
