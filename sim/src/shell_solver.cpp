@@ -165,6 +165,13 @@ struct Solver {
                 if (it.row() == problem.axial || it.col() == problem.axial) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
     }
 
+    // (H + c w w^T) v: the sealed gas's term beside the sparse matrix, never formed.
+    static Eigen::VectorXd WithRankOne(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& v) {
+        Eigen::VectorXd Hv = H * v;
+        if (c != 0) Hv += (c * w.dot(v)) * w;
+        return Hv;
+    }
+
     // Solves (H + c w w^T) x = b by Sherman-Morrison on the sparse factor (the sealed gas's term).
     Eigen::VectorXd SolveWithRankOne(const Eigen::VectorXd& b, double c, const Eigen::VectorXd& w) const {
         Eigen::VectorXd x = factor->Solve(b);
@@ -190,8 +197,7 @@ struct Solver {
         const double target = std::max(kStepResidual * g.norm(), 0.1 * forceTolerance);
         for (int k = 1; k <= maxIterations; ++k) {
             *used = k;
-            Ap = H * p;
-            if (c != 0) Ap += (c * w.dot(p)) * w;
+            Ap = WithRankOne(H, c, w, p);
             const double curvature = p.dot(Ap);
             if (!(curvature > 0) || !(rz > 0)) return Linear::Indefinite;
             const double alpha = rz / curvature;
@@ -223,8 +229,7 @@ struct Solver {
             s += ((-b + std::sqrt(b * b - a * outside)) / a) * p;
         };
         for (int k = 1; k <= kMaxStepIterations; ++k) {
-            Ap = H * p;
-            if (c != 0) Ap += (c * w.dot(p)) * w;
+            Ap = WithRankOne(H, c, w, p);
             const double curvature = p.dot(Ap);
             if (!(curvature > 0)) {
                 toBoundary();
@@ -243,9 +248,7 @@ struct Solver {
             p = z + (next / rz) * p;
             rz = next;
         }
-        Eigen::VectorXd Hs = H * s;
-        if (c != 0) Hs += (c * w.dot(s)) * w;
-        *predicted = -(g.dot(s) + 0.5 * s.dot(Hs));
+        *predicted = -(g.dot(s) + 0.5 * s.dot(WithRankOne(H, c, w, s)));
         return s;
     }
 
