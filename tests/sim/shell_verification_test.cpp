@@ -503,6 +503,46 @@ TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) 
     EXPECT_NEAR(twice.contractionPercent, base.contractionPercent, 1e-6) << how << " --max-iterations 400";
 }
 
+// The blocking force is measured at a stable held state. Pulled back to its rest length, this
+// isotropic design (reproduce part 2's S5.2F GA, both fibre families off) came to rest on a saddle
+// (two negative pivots, -0.306 N); the stable state beside it, the actuator's, holds the clamp with
+// -0.177 N, with any budget.
+TEST(ShellSolver, TheBlockingForceIsThatOfAStableHeldState) {
+    sim::EvalJob job;
+    job.model = sim::ModelKind::Shell;
+    sim::BSplineShape shape;  // over the middle
+    shape.splines = {{7, 2, 7, 7, 1, 1, 2, 0, 3, 8, 1, 2, 8, 1}};
+    job.shape = shape;
+    job.shell.load.pressureKpa = 1;
+    const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 7,2,7,7,1,1,2,0,3,8,1,2,8,1 "
+                            "--model shell --pressure-kpa 1";
+    const sim::SimResult base = sim::Evaluate(job);
+    ASSERT_EQ(base.status, sim::Status::Ok) << how;
+    EXPECT_NEAR(base.shell.blockingForceN, -0.1767, 1e-3) << how;
+    sim::EvalJob longer = job;
+    longer.shell.solver.maxIterations *= 2;
+    EXPECT_NEAR(sim::Evaluate(longer).shell.blockingForceN, base.shell.blockingForceN, 1e-6) << how << " --max-iterations 400";
+}
+
+// A pivot near zero can take the wrong sign in a factorisation without pivoting. Held at its rest
+// length, this design (reproduce part 2's S5.2 GA) is at its buckling load: its factor shows one
+// negative pivot, but no direction has negative curvature (the energy grows as the fourth power of a
+// step along the factor's direction, either way). Its blocking force stands, where taking the pivot
+// at its word left the design without one.
+TEST(ShellSolver, ANegativePivotWithoutNegativeCurvatureIsNoInstability) {
+    sim::EvalJob job;
+    job.model = sim::ModelKind::Shell;
+    sim::BSplineShape shape;  // over the middle
+    shape.splines = {{4, 0, 0, 0, 4, 1, 5, 0, 4}};
+    job.shape = shape;
+    job.shell.load.pressureKpa = 1;
+    const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 4,0,0,0,4,1,5,0,4 "
+                            "--model shell --pressure-kpa 1";
+    const sim::SimResult result = sim::Evaluate(job);
+    ASSERT_EQ(result.status, sim::Status::Ok) << how;
+    EXPECT_NEAR(result.shell.blockingForceN, -5.32e-4, 1e-6) << how;
+}
+
 // The answer does not depend on the solver's budget, or on threads.
 TEST(ShellSolver, TheResultDoesNotDependOnTheBudgetOrTheThreads) {
     sim::EvalJob job;
