@@ -448,17 +448,27 @@ TEST(ShellConvergence, StrainErrorsFallSecondOrder) {
     }
 }
 
+namespace {
+
+// A design of reproduce part 2's GA runs: one B-spline over the middle of the tube, at 1 kPa.
+sim::EvalJob PartTwoDesign(std::vector<double> controlPoints) {
+    sim::EvalJob job;
+    job.model = sim::ModelKind::Shell;
+    sim::BSplineShape shape;  // over the middle
+    shape.splines = {std::move(controlPoints)};
+    job.shape = shape;
+    job.shell.load.pressureKpa = 1;
+    return job;
+}
+
+}  // namespace
+
 // A path that ends on a saddle steps off it to the stable state beside it, with a load step's budget.
 // This fibre design (reproduce part 2's GA, S5.2F) reaches 1 kPa on an unstable state (+3.70 %); its
 // stable one (+3.59 %) lies 100 Newton iterations away. With a smaller budget of its own, the escape
 // called the design a limit point, though its volume rises smoothly to the target.
 TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
-    sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
-    sim::BSplineShape shape;  // over the middle
-    shape.splines = {{7, 8, 1, 3, 5, 7}};
-    job.shape = shape;
-    job.shell.load.pressureKpa = 1;
+    sim::EvalJob job = PartTwoDesign({7, 8, 1, 3, 5, 7});
     job.shell.fibres.layout = sim::FibreLayout::Braid;
     job.shell.fibres.minus = false;  // one family
     job.shell.fibres.angleDeg = 43.6062675338317;
@@ -482,12 +492,7 @@ TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
 // limit point though its volume rises smoothly to the target. Its stable state (-4.67 %) is the same
 // with twice the budget, which changes the path (a load step that runs out at 200 iterations is halved).
 TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) {
-    sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
-    sim::BSplineShape shape;  // over the middle
-    shape.splines = {{3, 4, 8, 3, 5, 6, 2, 2, 0, 7, 0, 0}};
-    job.shape = shape;
-    job.shell.load.pressureKpa = 1;
+    sim::EvalJob job = PartTwoDesign({3, 4, 8, 3, 5, 6, 2, 2, 0, 7, 0, 0});
     job.shell.fibres.layout = sim::FibreLayout::Braid;
     job.shell.fibres.plus = false;  // one family, at -48.2 deg
     job.shell.fibres.angleDeg = 48.20305967865278;
@@ -508,12 +513,7 @@ TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) 
 // (two negative pivots, -0.306 N); the stable state beside it, the actuator's, holds the clamp with
 // -0.177 N, with any budget.
 TEST(ShellSolver, TheBlockingForceIsThatOfAStableHeldState) {
-    sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
-    sim::BSplineShape shape;  // over the middle
-    shape.splines = {{7, 2, 7, 7, 1, 1, 2, 0, 3, 8, 1, 2, 8, 1}};
-    job.shape = shape;
-    job.shell.load.pressureKpa = 1;
+    sim::EvalJob job = PartTwoDesign({7, 2, 7, 7, 1, 1, 2, 0, 3, 8, 1, 2, 8, 1});
     const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 7,2,7,7,1,1,2,0,3,8,1,2,8,1 "
                             "--model shell --pressure-kpa 1";
     const sim::SimResult base = sim::Evaluate(job);
@@ -530,12 +530,7 @@ TEST(ShellSolver, TheBlockingForceIsThatOfAStableHeldState) {
 // step along the factor's direction, either way). Its blocking force stands, where taking the pivot
 // at its word left the design without one.
 TEST(ShellSolver, ANegativePivotWithoutNegativeCurvatureIsNoInstability) {
-    sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
-    sim::BSplineShape shape;  // over the middle
-    shape.splines = {{4, 0, 0, 0, 4, 1, 5, 0, 4}};
-    job.shape = shape;
-    job.shell.load.pressureKpa = 1;
+    sim::EvalJob job = PartTwoDesign({4, 0, 0, 0, 4, 1, 5, 0, 4});
     const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 4,0,0,0,4,1,5,0,4 "
                             "--model shell --pressure-kpa 1";
     const sim::SimResult result = sim::Evaluate(job);
