@@ -479,13 +479,14 @@ struct Solver {
     // its own made the verdict depend on it (a fibre design whose stable state lies 100 iterations
     // away was a limit point with 50). Newton may end on another saddle on the way down; it is
     // stepped off in turn, kEscapes times at most. A stable state within volumeLimit replaces q
-    // (*escaped); otherwise q stays, with its own inertia.
+    // (then *escaped, if given); otherwise q stays, with its own inertia.
     static constexpr int kEscapes = 3;
     static constexpr int kInverseIterations = 8;  // a back-substitution each
     static constexpr double kConfirmedCurvature = 1e-9;  // of the Hessian's median diagonal entry
-    int StableState(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit, EnergyResult* exact, bool* escaped) {
-        *escaped = false;
+    int StableState(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit, EnergyResult* exact, bool* escaped = nullptr) {
+        if (escaped) *escaped = false;
         int negative = ExactInertia(q, load, exact);
+        if (negative <= 0) return negative;  // most states: nothing to copy or confirm
         Eigen::VectorXd from = q;  // the state examined (its factor and matrix in exactFactor, exactPattern)
         EnergyResult fromExact = *exact;
         bool moved = false;        // exactFactor is no longer q's
@@ -533,7 +534,7 @@ struct Solver {
             negative = reachedNegative;
         }
         if (negative == 0) {
-            *escaped = moved;
+            if (escaped) *escaped = moved;
             q = std::move(from);
             *exact = std::move(fromExact);
             return 0;
@@ -821,11 +822,11 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
         solver.holdAxial = true;
         // Only a stable held state's force is the actuator's: pulled back, a buckled wall can come to
         // rest on a saddle (12 of 285 GA designs of reproduce's part 2), whose force no clamp would measure.
-        EnergyResult heldExact;
-        bool escaped = false;
         if (solver.Minimise(held, finalLoad) == NewtonEnd::Converged) {
-            PositionsOf(problem, held, x);
-            if (solver.StableState(held, finalLoad, volumeLimitAfter(EnclosedVolume(problem, x)), &heldExact, &escaped) == 0)
+            Positions heldPositions;
+            PositionsOf(problem, held, heldPositions);
+            EnergyResult heldExact;
+            if (solver.StableState(held, finalLoad, volumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0)
                 out.blockingForceN = heldExact.axialForce;
         }
         solver.holdAxial = false;
