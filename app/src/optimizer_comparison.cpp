@@ -12,6 +12,7 @@
 #include "experiment_runner.h"
 #include "files.h"
 #include "plots.h"
+#include "table.h"
 #include "render/plot.h"
 
 namespace app {
@@ -32,20 +33,22 @@ std::string Label(const Experiment& e) {
 
 std::string Folder(const Experiment& e) { return e.id.empty() ? fs::path(e.path).stem().string() : e.id; }
 
-// The run's best so far against the evaluations it had made, from its logbook.
+// The run's best so far against the evaluations it had made, from its logbook, read by column name.
+// An optimizer's logbook counts evaluations cumulatively and has a best-so-far column; the GA's counts
+// each generation's evaluations, and its best so far is the running best of the generations' bests
+// (the GA maximises its fitness).
 std::vector<std::pair<double, double>> CurveOf(const Experiment& e, const fs::path& runDir) {
-    const auto rows = ParseCsv(ReadInputFile((runDir / "logbook.csv").string()));
+    const Table logbook = Table::Read((runDir / "logbook.csv").string());
     std::vector<std::pair<double, double>> curve;
     double evaluations = 0, best = NAN;
-    for (size_t k = 1; k < rows.size(); ++k) {
+    for (size_t k = 0; k < logbook.Rows(); ++k) {
         if (e.kind == ExperimentKind::Evolve) {
-            // The GA logs each generation's evaluations, and (elitist) its best is the run's so far.
-            evaluations += std::stod(rows[k].at(1));
-            const double b = rows[k].at(2).empty() ? NAN : std::stod(rows[k].at(2));
-            if (std::isfinite(b)) best = b;
+            evaluations += logbook.Number(k, "evaluations");
+            const double b = logbook.Number(k, "best");
+            if (std::isfinite(b) && !(b <= best)) best = b;
         } else {
-            evaluations = std::stod(rows[k].at(1));
-            best = rows[k].at(6).empty() ? NAN : std::stod(rows[k].at(6));
+            evaluations = logbook.Number(k, "evaluations");
+            best = logbook.Number(k, "best_so_far");
         }
         curve.push_back({evaluations, best});
     }
@@ -140,12 +143,17 @@ ComparisonResult CompareOptimizers(const std::vector<Experiment>& contenders, co
         result.contenders.push_back(std::move(c));
     }
 
-    // The table: every run's end, then each contender's median and range.
-    std::string csv = CsvRow({"contender", "seed", "evaluations", "best"});
+    // The tables: every run's end, and every run's curve (what the figure draws).
+    Table ends({"contender", "seed", "evaluations", "best"});
+    Table curves({"contender", "seed", "evaluations", "best_so_far"});
     for (const auto& c : result.contenders)
-        for (size_t s = 0; s < c.finalBest.size(); ++s)
-            csv += CsvRow({CsvField(c.label), std::to_string(s + 1), std::to_string(c.evaluations[s]), CsvNumber(c.finalBest[s])});
-    WriteFileAtomically((dir / "comparison.csv").string(), csv);
+        for (size_t s = 0; s < c.finalBest.size(); ++s) {
+            ends.AddRow({c.label, std::to_string(s + 1), std::to_string(c.evaluations[s]), CsvNumber(c.finalBest[s])});
+            for (const auto& [evaluations, best] : c.curves[s])
+                curves.AddRow({c.label, std::to_string(s + 1), CsvNumber(evaluations), CsvNumber(best)});
+        }
+    WriteFileAtomically((dir / "comparison.csv").string(), ends.Csv());
+    WriteFileAtomically((dir / "comparison_curves.csv").string(), curves.Csv());
 
     // The figure: at evaluations 0..budget, each contender's median best so far over its seeds, and
     // the range from the worst seed to the best shaded (where every seed has a value).

@@ -8,6 +8,7 @@
 
 #include "cli_fixture.h"
 #include "csv.h"
+#include "table.h"
 #include "thesis_report_check.h"
 
 namespace fs = std::filesystem;
@@ -335,12 +336,39 @@ TEST_F(SearchCli, CompareRunsEveryContenderWithTheSameSeedsToTheSameBudget) {
     const std::string ga = SmallGa(10, 1, true), cmaes = SmallOptimizer("cmaes", 10);
     const Result r = Run("compare " + ga + " " + cmaes + " --seeds 2 --evaluations 20 --out " + Path("cmp"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const auto rows = app::ParseCsv(Slurp(dir_ / "cmp" / "comparison.csv"));
-    ASSERT_EQ(rows.size(), 5u);  // header + 2 contenders x 2 seeds
-    for (size_t k = 1; k < rows.size(); ++k) {
-        EXPECT_GE(std::stoi(rows[k][2]), 20) << rows[k][0];
-        EXPECT_LT(std::stoi(rows[k][2]), 20 + 10) << rows[k][0] << ": stops at the first generation past the budget";
+    const auto ends = app::Table::Read((dir_ / "cmp" / "comparison.csv").string());
+    ASSERT_EQ(ends.Rows(), 4u);  // 2 contenders x 2 seeds
+    for (size_t k = 0; k < ends.Rows(); ++k) {
+        EXPECT_GE(ends.Number(k, "evaluations"), 20) << ends.Text(k, "contender");
+        EXPECT_LT(ends.Number(k, "evaluations"), 20 + 10) << ends.Text(k, "contender") << ": stops at the first generation past the budget";
     }
+    // Each curve is the quantity its header names: it never falls, and it ends at the run's own best so
+    // far (the optimizer's logbook column of that name; the GA's best individual, its hall of fame's
+    // first). A reader that took another logbook column (a quartile) fails here.
+    const auto curves = app::Table::Read((dir_ / "cmp" / "comparison_curves.csv").string());
+    for (const std::string contender : {"o (cmaes)", "test (thesis GA)"})
+        for (const std::string seed : {"1", "2"}) {
+            double last = -INFINITY, lastEvaluations = 0;
+            int points = 0;
+            for (size_t k = 0; k < curves.Rows(); ++k) {
+                if (curves.Text(k, "contender") != contender || curves.Text(k, "seed") != seed) continue;
+                ++points;
+                EXPECT_GE(curves.Number(k, "best_so_far"), last) << contender << " seed " << seed << ": a best so far that falls";
+                last = curves.Number(k, "best_so_far");
+                lastEvaluations = curves.Number(k, "evaluations");
+            }
+            ASSERT_GT(points, 1) << contender << " seed " << seed;
+            const fs::path run = dir_ / "cmp" / (contender[0] == 'o' ? "o" : "test") / ("seed_" + seed) / "run_1";
+            const auto logbook = app::Table::Read((run / "logbook.csv").string());
+            if (contender[0] == 'o') {
+                EXPECT_EQ(last, logbook.Number(logbook.Rows() - 1, "best_so_far")) << contender << " seed " << seed;
+                EXPECT_EQ(lastEvaluations, logbook.Number(logbook.Rows() - 1, "evaluations"));
+            } else {
+                EXPECT_EQ(last, app::Table::Read((run / "halloffame.csv").string()).Number(0, "fitness")) << contender << " seed " << seed;
+            }
+            for (size_t k = 0; k < ends.Rows(); ++k)
+                if (ends.Text(k, "contender") == contender && ends.Text(k, "seed") == seed) EXPECT_EQ(ends.Number(k, "best"), last);
+        }
     // Each run is an ordinary results folder, seeded 1, 2, ...
     EXPECT_EQ(nlohmann::json::parse(Slurp(dir_ / "cmp" / "o" / "seed_2" / "experiment.json"))["seed"], 2);
     ExpectPicture(dir_ / "cmp" / "comparison.png");
