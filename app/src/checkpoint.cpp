@@ -1,3 +1,4 @@
+#include "json_out.h"
 #include "checkpoint.h"
 
 #include <cmath>
@@ -95,8 +96,8 @@ std::string FormatCheckpoint(const RunCheckpoint& c) {
 RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, const Experiment& e) {
     Json j;
     try {
-        j = Json::parse(text);
-    } catch (const std::exception&) {
+        j = ParseJson(text, path);
+    } catch (const Json::exception&) {
         throw UsageError(path + ": not a checkpoint (not valid JSON); remove it to restart this run, or --overwrite");
     }
     RunCheckpoint c;
@@ -185,7 +186,7 @@ std::string FormatOptimizerCheckpoint(const OptimizerCheckpoint& c, const Experi
 
 OptimizerCheckpoint ParseOptimizerCheckpoint(const std::string& text, const std::string& path, const Experiment& e) {
     try {
-        const Json j = Json::parse(text);
+        const Json j = ParseJson(text, path);
         if (j.at("kind") != "optimizer checkpoint" || j.at("version") != kOptimizerCheckpointVersion)
             throw std::runtime_error("not an optimizer checkpoint of this version");
         if (j.at("experiment_hash").get<std::string>() != ExperimentHash(e)) {

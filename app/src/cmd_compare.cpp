@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "json_out.h"
 #include "commands.h"
 #include "errors.h"
 #include "files.h"
@@ -41,8 +42,13 @@ int RunCompare(int argc, char** argv, int first) {
     std::error_code ec;
     if (mode == FolderMode::Resume && files.empty()) {
         if (!fs::exists(saved, ec)) throw UsageError("--resume: " + Quote(dir) + " holds no comparison (no contenders.json)");
-        const auto j = nlohmann::ordered_json::parse(ReadInputFile(saved.string()), nullptr, false);
-        if (j.is_discarded() || !j.contains("files") || !j.contains("sets") || !j.contains("seeds") || !j.contains("evaluations"))
+        Json j;
+        try {
+            j = ParseJson(ReadInputFile(saved.string()), saved.string());
+        } catch (const Json::exception&) {
+            j = nullptr;
+        }
+        if (!j.is_object() || !j.contains("files") || !j.contains("sets") || !j.contains("seeds") || !j.contains("evaluations"))
             throw UsageError(saved.string() + ": not a comparison's record");
         if (!o.sets.empty()) throw UsageError("--set: a resumed comparison keeps the --set it was started with (" + saved.string() + ")");
         files = j["files"].get<std::vector<std::string>>();

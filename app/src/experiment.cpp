@@ -2,6 +2,7 @@
 // [SECTION] --set
 // [SECTION] Experiment files
 // [SECTION] Saved experiments, hashes, titles
+#include "json_out.h"
 #include "experiment.h"
 
 #include <algorithm>
@@ -220,7 +221,9 @@ void Apply(Json& document, const Override& o, const std::string& file) {
     size_t pos = 0;
     const std::string& path = o.path;
     auto fail = [&](const std::string& why) { throw UsageError("--set " + o.path + "=" + o.value + ": " + why + " (in " + file + ")"); };
+    int depth = 0;
     while (pos < path.size()) {
+        if (++depth > kMaxJsonDepth) fail("the path is more than " + std::to_string(kMaxJsonDepth) + " levels deep");
         if (path[pos] == '[') {
             const size_t close = path.find(']', pos);
             if (close == std::string::npos) fail("unclosed '['");
@@ -243,7 +246,7 @@ void Apply(Json& document, const Override& o, const std::string& file) {
     }
     Json value;
     try {
-        value = Json::parse(o.value);
+        value = ParseJson(o.value, "--set " + o.path);
     } catch (const Json::exception&) {
         value = o.value;  // not JSON: a string ("sine", "pi/2")
     }
@@ -643,7 +646,7 @@ Override ParseOverride(const std::string& text) {
 Experiment ParseExperiment(const std::string& text, const std::string& path, const std::vector<Override>& overrides) {
     Json root;
     try {
-        root = Json::parse(text);
+        root = ParseJson(text, path);
     } catch (const Json::parse_error& error) {
         std::string what = error.what();
         if (auto colon = what.find("syntax error"); colon != std::string::npos) what = what.substr(colon);

@@ -1,3 +1,4 @@
+#include "json_out.h"
 #include "experiment_runner.h"
 
 #include <chrono>
@@ -25,7 +26,7 @@ void CheckOrRecordExperiment(const Experiment& e, const fs::path& dir, bool resu
     if (!fs::exists(path, ec)) throw UsageError("--resume: " + Quote(dir.string()) + " holds no run.json; it was not made by this version");
     Json run;
     try {
-        run = Json::parse(ReadInputFile(path.string()));
+        run = ParseJson(ReadInputFile(path.string()), path.string());
         if (run.at("experiment_hash").get<std::string>() == ExperimentHash(e)) return;
     } catch (const Json::exception&) {
         throw UsageError(Quote(path.string()) + " is damaged; start afresh with --overwrite");

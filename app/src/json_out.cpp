@@ -2,12 +2,38 @@
 
 #include <cmath>
 
+#include "errors.h"
 #include "fields.h"
 #include "sim/search.h"
 
 namespace app {
 
 Json NumberJson(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+void CheckJsonDepth(std::string_view text, const std::string& source) {
+    int depth = 0;
+    bool inString = false;
+    size_t line = 1, lineStart = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') line += 1, lineStart = i + 1;
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+            continue;
+        }
+        if (c == '"') inString = true;
+        else if (c == ']' || c == '}') --depth;
+        else if ((c == '[' || c == '{') && ++depth > kMaxJsonDepth)
+            throw UsageError(source + ": JSON nested more than " + std::to_string(kMaxJsonDepth) + " levels deep at line " + std::to_string(line) +
+                             ", column " + std::to_string(i - lineStart + 1));
+    }
+}
+
+Json ParseJson(std::string_view text, const std::string& source) {
+    CheckJsonDepth(text, source);
+    return Json::parse(text);
+}
 
 Json ShapeJson(const sim::Shape& shape) {
     Json j{{"name", sim::ShapeName(shape)}};

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 
 #include "sim/batch.h"
 
@@ -13,6 +14,17 @@ namespace app {
 using Json = nlohmann::ordered_json;
 
 Json NumberJson(double value);  // null when not finite
+
+// How deeply JSON we read may nest: our documents need fewer than 10 levels. Deeper ones are refused
+// before they are parsed, because copying and destroying a document recurse once per level (100,000
+// levels overflow the stack).
+constexpr int kMaxJsonDepth = 64;
+// Throws UsageError naming `source`, the line and the column where `text` nests deeper than
+// kMaxJsonDepth (arrays and objects; brackets inside strings do not count).
+void CheckJsonDepth(std::string_view text, const std::string& source);
+// Every JSON we read goes through here: the depth check, then nlohmann's parser (whose exceptions,
+// for text that is not JSON, pass to the caller).
+Json ParseJson(std::string_view text, const std::string& source);
 
 // The design with every parameter: sine amplitude and phase; B-spline region and each spline's
 // control points; free-xy offsets; a mesh's vertex count.
