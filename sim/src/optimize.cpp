@@ -301,6 +301,12 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
     }
     if (def.algorithm == Algorithm::Sga && ParameterValue(def, "param_s") > def.population)
         return fmt::format("sga's tournament (param_s {}) is larger than the population ({})", ParameterValue(def, "param_s"), def.population);
+    // pso's ring (lbest) takes neighb_param / 2 neighbours on each side: none below 2, and it reads past
+    // the swarm when they are more than the swarm.
+    if (def.algorithm == Algorithm::Pso && ParameterValue(def, "neighb_type") == 2 &&
+        (ParameterValue(def, "neighb_param") < 2 || ParameterValue(def, "neighb_param") > def.population))
+        return fmt::format("pso's ring topology (neighb_type 2) needs neighb_param from 2 to the population ({}), got {:g}", def.population,
+                           ParameterValue(def, "neighb_param"));
     if (def.algorithm == Algorithm::Moead && ParameterValue(def, "neighbours") >= def.population)
         return fmt::format("moead's neighbours ({:g}) must be smaller than the population ({})", ParameterValue(def, "neighbours"), def.population);
     if (def.objectives.empty()) return "at least one objective is needed";
@@ -332,6 +338,8 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
     if (g.fibreAngles < 0 || g.fibreAngles > 64) return "fibre angle genes must number 0 to 64";
     if (!(g.fibreAngleMin >= -90 && g.fibreAngleMax <= 90 && g.fibreAngleMin <= g.fibreAngleMax))
         return "the fibre angle range must lie within -90 to 90 degrees, low end first";
+    if (g.fibreAngles > 0 && g.fibreAngleMin == g.fibreAngleMax)
+        return "the fibre angle range is a single value: a gene needs a range (to fix the angle, give no fibre_angles and the model's fibre_angle_deg)";
     if (g.HasFibreGenes() && model == ModelKind::Thesis) return "fibre genes need the membrane or shell model";
     if (VectorBounds(v, mesh).first.empty()) return "the genome has no gene: every bound is fixed";
     const StopDef& s = def.stop;

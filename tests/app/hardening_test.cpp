@@ -5,6 +5,7 @@
 
 #include "cli_fixture.h"
 #include "csv.h"
+#include "sim/optimize.h"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -225,4 +226,87 @@ TEST_F(Hardening, AFailedRunIsPicturedAsFarAsItIsFinite) {
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width / 2; ++x) dark += image.rgba[4 * (y * image.width + x)] < 200;
     EXPECT_GT(dark, 500);
+}
+
+TEST_F(Hardening, DeeplyNestedJsonIsRefusedByEveryReader) {
+    // 100,000 levels: copying or destroying such a document recurses once per level.
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    Write("deep.json", R"({"id": "d", "note": )" + deep + R"(, "sim": {"iterations": 100},
+        "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
+    for (const std::string command : {"sweep", "evolve"}) ExpectRefused(command + " " + Path("deep.json") + " --out " + Path("o"), "levels deep at line 1");
+    ExpectRefused("compare " + Path("deep.json") + " " + Path("deep.json") + " --out " + Path("o"), "levels deep");
+    fs::create_directories(dir_ / "experiments");
+    fs::copy_file(Path("deep.json"), dir_ / "experiments" / "deep.json");
+    ExpectRefused("reproduce --experiments " + Path("experiments") + " --part thesis --out " + Path("o"), "levels deep");
+    // One argument holds at most 128 KiB: 50,000 levels.
+    ExpectRefused("evolve " + Ga(1) + " --out " + Path("o") + " --set 'note=" + std::string(50000, '[') + std::string(50000, ']') + "'", "levels deep");
+    std::string path;
+    for (int k = 0; k < 1000; ++k) path += "a.";
+    ExpectRefused("evolve " + Ga(1) + " --out " + Path("o") + " --set " + path + "b=1", "levels deep");
+    EXPECT_FALSE(fs::exists(Path("o")));
+    // The files a resume reads back: the run's record, its checkpoint, a comparison's contenders.
+    ASSERT_EQ(Run("evolve " + Ga(1) + " --out " + Path("a")).exitCode, 0);
+    for (const std::string file : {"run.json", "run_1/checkpoint.json"}) {
+        const std::string good = Slurp(dir_ / "a" / file);
+        Write("a/" + file, R"({"note": )" + deep + "}");
+        ExpectRefused("evolve --resume " + Path("a"), "levels deep");
+        Write("a/" + file, good);
+    }
+    fs::create_directories(dir_ / "c");
+    Write("c/contenders.json", R"({"files": )" + deep + "}");
+    ExpectRefused("compare --resume " + Path("c"), "levels deep");
+}
+
+// Every algorithm with each parameter at the ends of its range, at populations around its smallest:
+// what the definition's check lets through runs (pagmo neither throws nor reads past its swarm; the
+// sanitizer build would see it), and what would not run is refused.
+TEST(HardeningOptimizers, EveryDefinitionTheCheckAcceptsRuns) {
+    using namespace sim;
+    const MeshDef mesh{30, 30};
+    const VectorEvaluator bowl = [](const std::vector<std::vector<double>>& xs) {
+        std::vector<DesignScore> out;
+        for (const auto& x : xs) {
+            double d = 0;
+            for (double v : x) d += (v - 3) * (v - 3);
+            out.push_back({{5 - d, 1 + d}, Status::Ok});
+        }
+        return out;
+    };
+    int accepted = 0, refused = 0;
+    for (const auto& [algorithm, name] : EnumNames<Algorithm>::table) {
+        std::vector<std::pair<std::string, double>> settings{{"", 0}};
+        for (const AlgorithmParameter& p : AlgorithmParameters())
+            if (p.algorithm == algorithm)
+                for (double v : {p.min, p.max}) settings.push_back({p.name, v});
+        for (const auto& [parameter, value] : settings)
+            for (int population : {1, 2, 3, 4, 5, 7, 8, 12, 16}) {
+                OptimizerDef def;
+                def.algorithm = algorithm;
+                def.population = population;
+                def.generations = 2;
+                def.objectives = {Objective{ObjectiveKind::Contraction, true}};
+                if (IsMultiObjective(algorithm)) def.objectives.push_back(Objective{ObjectiveKind::MaxStretch, false});
+                if (!parameter.empty()) def.parameters[parameter] = value;
+                def.genome.family = VectorFamily::Sine;
+                def.genome.amplitude = {0, 10};
+                def.genome.phaseStart = {0, 10};
+                const std::string error = OptimizerDefError(def, ModelKind::Shell, mesh);
+                if (!error.empty()) {
+                    ++refused;
+                    continue;
+                }
+                ++accepted;
+                const std::string what = std::string(name) + " population " + std::to_string(population) + " " + parameter + "=" + std::to_string(value);
+                EXPECT_NO_THROW(RunOptimizer(def, mesh, 1, bowl, {})) << what;
+            }
+    }
+    EXPECT_GT(accepted, 100);
+    EXPECT_GT(refused, 20);
+}
+
+TEST_F(Hardening, OptimizerParametersAreCheckedAgainstThePopulation) {
+    Write("pso.json", R"({"id": "p", "sim": {"iterations": 100}, "optimizer": {"algorithm": "pso", "population": 8, "generations": 1,
+        "parameters": {"neighb_param": 1000}, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
+    ExpectRefused("evolve " + Path("pso.json") + " --out " + Path("o"), "pso's ring topology (neighb_type 2) needs neighb_param from 2 to the population (8), got 1000");
+    EXPECT_FALSE(fs::exists(Path("o")));
 }
