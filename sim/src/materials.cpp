@@ -1,5 +1,6 @@
 // Silicone presets and the checks of a shell model's definition.
 #include <cmath>
+#include <cstdio>
 
 #include "sim/shell.h"
 
@@ -74,7 +75,6 @@ std::string ShellDefError(const ShellDef& d) {
     if (g.clampRings < 1) return "each clamp holds at least one ring";
     const int rings = RingCount(g);
     if (rings < 2 * g.clampRings + 2) return "the tube needs at least two free rings between its clamps (" + std::to_string(2 * g.clampRings + 2) + " rings)";
-    if (static_cast<long long>(rings) * g.ringVertices > 1'000'000) return "the mesh would have more than 1,000,000 vertices";
     const MaterialDef& m = d.material;
     const double modulus = ShearModulusKpa(m);
     if (!positive(modulus)) return "the material's shear modulus must be positive (set mu, or C10 and C01)";
@@ -111,6 +111,15 @@ std::string ShellDefError(const ShellDef& d) {
         if (!angleOk(a)) return "a fibre sector's angle must be a number of degrees from -90 to 90";
     if (!positive(d.solver.tolerance)) return "the tolerance must be positive";
     if (d.solver.maxIterations < 1) return "Newton needs at least one iteration";
+    // Last: the estimate reads the whole definition.
+    if (const double bytes = EvaluationBytesEstimate(d); !(bytes <= kMaxEvaluationBytes)) {
+        char text[256];
+        std::snprintf(text, sizeof text,
+                      "the mesh (%d vertices a ring x %d rings) would need about %.1f GB per evaluation, more than the %.1f GB limit (about 270,000 "
+                      "vertices, 520 x 520)",
+                      g.ringVertices, RingCount(g), bytes / 1e9, kMaxEvaluationBytes / 1e9);
+        return text;
+    }
     return "";
 }
 

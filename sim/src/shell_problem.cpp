@@ -112,11 +112,25 @@ double MembraneMaterialShearModulus(const MembraneMaterial& m) {
     return m.mu;
 }
 
+namespace {
+// Rings for near-equilateral triangles (ring spacing sqrt(3)/2 of the edge along the ring), as a real
+// number: it may be far beyond what an int holds for a long thin tube.
+double EquilateralRings(const GeometryDef& g) {
+    const double edge = 2 * std::numbers::pi * g.radiusMm / g.ringVertices;
+    return std::max<double>(2 * g.clampRings + 2, std::round(g.lengthMm / (0.5 * std::sqrt(3.0) * edge)) + 1);
+}
+}  // namespace
+
 int RingCount(const GeometryDef& g) {
     if (g.rings > 0) return g.rings;
-    // Near-equilateral triangles: ring spacing sqrt(3)/2 of the edge along the ring.
-    const double edge = 2 * std::numbers::pi * g.radiusMm / g.ringVertices;
-    return std::max(2 * g.clampRings + 2, static_cast<int>(std::lround(g.lengthMm / (0.5 * std::sqrt(3.0) * edge))) + 1);
+    return static_cast<int>(std::min(EquilateralRings(g), 1e9));
+}
+
+double EvaluationBytesEstimate(const ShellDef& def) {
+    const GeometryDef& g = def.geometry;
+    const double vertices = double(std::max(1, g.ringVertices)) * (g.rings > 0 ? g.rings : EquilateralRings(g)) + 2;
+    const double positionsPerStep = 24 * vertices;
+    return 40e6 + 1750 * vertices * std::log2(std::max(2.0, vertices)) + positionsPerStep * (std::max(1, def.load.steps) + 2);
 }
 
 ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bending, std::string* error) {

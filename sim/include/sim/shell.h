@@ -133,6 +133,15 @@ std::string ShellDefError(const ShellDef& def);
 // The mesh size a definition gives: rings chosen for near-equilateral triangles when rings is 0.
 int RingCount(const GeometryDef& geometry);
 
+// The memory one evaluation needs, estimated from its mesh before anything is built: 1,750 bytes x
+// V log2 V (the sparse factor's fill under nested dissection and the solver's workspaces; fitted to
+// the peak resident memory of shell evaluations from 30 x 30 to 240 x 240 vertices, within 5 %) and
+// the positions kept at every load step.
+double EvaluationBytesEstimate(const ShellDef& def);
+// The largest evaluation accepted: 8 GiB, about 270,000 vertices (520 x 520). A larger one is refused
+// up front, before any allocation (ShellDefError).
+constexpr double kMaxEvaluationBytes = 8.0 * 1024 * 1024 * 1024;
+
 // What an evaluation of a shell model says beyond the common result fields (SHELL.md section 10).
 struct ShellOutputs {
     std::vector<double> curvePressureKpa;          // the load steps' pressures
