@@ -10,13 +10,17 @@
 // Visiting a const def hands out const references (for writing).
 #pragma once
 
+#include <fmt/format.h>
+
 #include <functional>
 #include <limits>
 #include <map>
 #include <string>
 
+#include "sim/batch.h"
 #include "sim/mesh.h"
 #include "sim/shell.h"
+#include "sim/solid.h"
 #include "sim/solver.h"
 
 namespace app {
@@ -134,6 +138,54 @@ inline sim::MaterialDef MaterialWithOverrides(sim::MaterialPreset preset, const 
     if (isGiven("mu_kpa") && !isGiven("law")) material.law = sim::MaterialLaw::NeoHookean;
     material.preset = preset;  // named after the preset it started from; the fields say what changed
     return material;
+}
+
+// The mold around an exported part (sim/solid.h). Option names: --margin-mm, --end-wall-mm, ...
+template <class Def, class Visitor>
+void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::MoldDef> {
+    v.Number("margin_mm", m.marginMm, "block beyond the actuator's widest point, mm", 0.1, 1e4);
+    v.Number("end_wall_mm", m.endWallMm, "block beyond each end of the actuator, mm", 0.1, 1e4);
+    v.Number("handle_mm", m.handleMm, "core beyond the block at each end, to hold and pull it, mm", 0.1, 1e4);
+    v.Number("sprue_deg", m.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120);
+    v.Number("vent_deg", m.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60);
+    v.Number("pin_clearance_mm", m.pinClearanceMm, "the registration pins' taper: their tops this much inside their holes, mm", 0, 10);
+}
+
+namespace detail {
+// The first field outside its range, as "key: value is out of range (min to max)".
+struct RangeChecker {
+    std::string& error;
+    static std::string Bound(double b) { return b == -kUnbounded || b == kUnbounded ? std::string("any") : fmt::format("{}", b); }
+    void Integer(const char* key, const int& v, const char*, long long min, long long max) {
+        if (error.empty() && (v < min || v > max)) error = fmt::format("{}: {} is out of range ({} to {})", key, v, min, max);
+    }
+    void Number(const char* key, const double& v, const char*, double min, double max) {
+        if (error.empty() && !(v >= min && v <= max)) error = fmt::format("{}: {} is out of range ({} to {})", key, v, Bound(min), Bound(max));
+    }
+    template <class E>
+    void Enum(const char* key, const E& v, const char*) {
+        if (error.empty() && sim::Name(v) == std::string("?")) error = std::string(key) + ": not one of " + sim::Choices<E>();
+    }
+};
+}  // namespace detail
+
+// Empty when every field of the job's model lies in the range the command line and experiment files
+// accept; otherwise the first that does not (for jobs that come from elsewhere: the evaluation
+// server's requests, Python).
+inline std::string JobFieldsError(const sim::EvalJob& job) {
+    std::string error;
+    detail::RangeChecker check{error};
+    if (job.model == sim::ModelKind::Thesis) {
+        VisitFields(job.mesh, check);
+        VisitFields(job.params, check);
+    } else {
+        VisitFields(job.shell.geometry, check);
+        VisitFields(job.shell.material, check);
+        VisitFields(job.shell.load, check);
+        VisitFields(job.shell.solver, check);
+        VisitFields(job.shell.fibres, check);
+    }
+    return error;
 }
 
 // "spring_constant" -> "--spring-constant".

@@ -9,14 +9,18 @@
 #include <kj/timer.h>
 #include <malloc.h>
 
+#include <atomic>
 #include <cctype>
+#include <condition_variable>
 #include <cmath>
 #include <deque>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <thread>
 
 #include "errors.h"
+#include "fields.h"
 #include "number_expression.h"
 #include "schema_convert.h"
 
@@ -112,17 +116,100 @@ sim::EvalJob CheckedJob(schema::EvalRequest::Reader request, unsigned index, con
             throw std::runtime_error(which + "more than " + std::to_string(limits.maxIterations) + " iterations");
     }
     sim::EvalJob job = GetJob(request);
-    // ShellDefError bounds the ring mesh before anything is built from it.
+    // The ranges the command line accepts, then the model's own checks (ShellDefError bounds the
+    // ring mesh before anything is built from it).
+    if (const std::string error = JobFieldsError(job); !error.empty()) throw std::runtime_error(which + error);
     if (const std::string error = sim::JobError(job); !error.empty()) throw std::runtime_error(which + error);
     if (Vertices(job) > limits.maxVertices) throw std::runtime_error(which + "more than " + std::to_string(limits.maxVertices) + " vertices");
     return job;
 }
 
+// The server's calls, run one at a time on every thread in the order they came: memory is that of
+// one call's jobs, however many clients there are. Waiting calls hold only their requests, and at
+// most kMaxWaitingCalls wait. A call whose client has gone (disconnected, or the call cancelled) is
+// dropped before it starts, or stops after the shapes in hand.
+class CallQueue {
+public:
+    static constexpr size_t kMaxWaitingCalls = 64;
+
+    explicit CallQueue(int threads) : threads_(threads), runner_([this] { Run(); }) {}
+    ~CallQueue() {
+        {
+            std::lock_guard lock(mutex_);
+            stopping_ = true;
+        }
+        changed_.notify_all();
+        runner_.join();
+    }
+
+    // The call's results, in job order. Throws when too many calls wait already.
+    kj::Promise<std::vector<sim::SimResult>> Submit(std::vector<sim::EvalJob> jobs) {
+        auto paf = kj::newPromiseAndCrossThreadFulfiller<std::vector<sim::SimResult>>();
+        auto dropped = std::make_shared<std::atomic<bool>>(false);
+        {
+            std::lock_guard lock(mutex_);
+            if (waiting_.size() >= kMaxWaitingCalls)
+                throw std::runtime_error("the server is busy: " + std::to_string(kMaxWaitingCalls) + " calls wait already; try again later");
+            waiting_.push_back(Call{std::move(jobs), dropped, kj::mv(paf.fulfiller)});
+        }
+        changed_.notify_all();
+        // The promise is destroyed when the call ends: answered, or cancelled because its client went.
+        return paf.promise.attach(kj::defer([dropped] { dropped->store(true); }));
+    }
+
+private:
+    struct Call {
+        std::vector<sim::EvalJob> jobs;
+        std::shared_ptr<std::atomic<bool>> dropped;
+        kj::Own<kj::CrossThreadPromiseFulfiller<std::vector<sim::SimResult>>> fulfiller;
+    };
+    struct Dropped {};
+
+    void Run() {
+        for (;;) {
+            Call call;
+            {
+                std::unique_lock lock(mutex_);
+                changed_.wait(lock, [&] { return stopping_ || !waiting_.empty(); });
+                if (stopping_) return;
+                call = std::move(waiting_.front());
+                waiting_.pop_front();
+            }
+            std::vector<sim::SimResult> results(call.jobs.size());
+            size_t done = 0;
+            try {
+                if (*call.dropped) throw Dropped{};
+                EvaluateInOrder(call.jobs, 0, call.jobs.size(), threads_, 4 * static_cast<size_t>(threads_), [&](size_t k, sim::SimResult&& r) {
+                    results[k] = std::move(r);
+                    ++done;
+                    if (*call.dropped) throw Dropped{};
+                });
+            } catch (const Dropped&) {
+                std::cout << "a call was dropped by its client: " << call.jobs.size() - done << " of " << call.jobs.size() << " shapes not evaluated"
+                          << std::endl;
+                continue;  // its fulfiller goes unanswered: nobody waits for it
+            }
+            call.fulfiller->fulfill(std::move(results));
+            malloc_trim(0);  // give the call's memory back: a server idles small
+        }
+    }
+
+    int threads_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<Call> waiting_;
+    bool stopping_ = false;
+    std::thread runner_;  // last: it starts once the rest is built
+};
+
 class EvaluatorImpl final : public schema::Evaluator::Server {
 public:
-    explicit EvaluatorImpl(int threads) : threads_(threads > 0 ? threads : sim::HardwareThreads()) {}
+    explicit EvaluatorImpl(int threads) : threads_(threads > 0 ? threads : sim::HardwareThreads()), calls_(threads_) {}
 
     kj::Promise<void> evaluate(EvaluateContext context) override {
+        // A client that cancels its call or disconnects cancels the work (Cap'n Proto 0.9 keeps
+        // running a call to its end unless it says it may be cancelled).
+        context.allowCancellation();
         std::vector<sim::EvalJob> jobs;
         try {
             const auto requests = context.getParams().getRequests();
@@ -134,12 +221,11 @@ public:
                 work += Work(jobs.back());
                 words += ReplyWords(jobs.back());
             }
-            // Bounded by work and by the reply: a call inside the other limits could still need
-            // many gigabytes (4,096 shapes of 65,536 vertices) or hours. One shape alone is bounded by
-            // the vertex and iteration limits (a shell job's estimate counts its whole Newton budget).
-            if (jobs.size() > 1 && work > limits_.maxWork)
-                throw std::runtime_error("the call asks for " + std::to_string(work) + " vertex-iterations, more than " +
-                                         std::to_string(limits_.maxWork) + "; split it (see info)");
+            // Bounded by work and by the reply, one shape or many: a call inside the other limits
+            // could still need many gigabytes (4,096 shapes of 65,536 vertices) or hours.
+            if (work > limits_.maxWork)
+                throw std::runtime_error("the call asks for " + std::to_string(work) + " units of work, more than " + std::to_string(limits_.maxWork) +
+                                         "; split it or lower its budget (see info)");
             if (words > limits_.maxReplyWords)
                 throw std::runtime_error("the reply would take " + std::to_string(words * 8 >> 20) + " MiB, more than " +
                                          std::to_string(limits_.maxReplyWords * 8 >> 20) + "; split it (see info)");
@@ -148,24 +234,18 @@ public:
         }
         std::vector<sim::ModelKind> models;
         for (const auto& job : jobs) models.push_back(job.model);
-        // The batch runs on its own threads; the event loop keeps serving other clients meanwhile.
-        auto paf = kj::newPromiseAndCrossThreadFulfiller<std::vector<sim::SimResult>>();
-        // shared_ptr: kj::Own's destructor may throw, which std::thread's callable must not.
-        auto fulfiller = std::make_shared<kj::Own<kj::CrossThreadPromiseFulfiller<std::vector<sim::SimResult>>>>(kj::mv(paf.fulfiller));
-        std::thread([jobs = std::move(jobs), fulfiller, threads = threads_]() mutable {
-            std::vector<sim::SimResult> results(jobs.size());
-            EvaluateInOrder(jobs, 0, jobs.size(), threads, 4 * static_cast<size_t>(threads),
-                            [&](size_t k, sim::SimResult&& r) { results[k] = std::move(r); });
-            (*fulfiller)->fulfill(std::move(results));
-        }).detach();
-        return paf.promise.then([context, models = std::move(models)](std::vector<sim::SimResult> results) mutable {
+        kj::Promise<std::vector<sim::SimResult>> results = nullptr;
+        try {
+            results = calls_.Submit(std::move(jobs));
+        } catch (const std::exception& error) {
+            return KJ_EXCEPTION(OVERLOADED, error.what());
+        }
+        return results.then([context, models = std::move(models)](std::vector<sim::SimResult> results) mutable {
             auto responses = context.getResults().initResponses(static_cast<unsigned>(results.size()));
             for (unsigned k = 0; k < results.size(); ++k) {
                 SetResponse(responses[k], results[k], models[k]);
                 results[k] = sim::SimResult{};
             }
-            results = {};
-            malloc_trim(0);  // give the batch's memory back: a server idles small
         });
     }
 
@@ -183,6 +263,7 @@ public:
 private:
     int threads_;
     ServerLimits limits_;
+    CallQueue calls_;
 };
 
 }  // namespace

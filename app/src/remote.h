@@ -19,7 +19,9 @@ struct ServerLimits {
     std::uint32_t maxVertices = 65536;
     std::uint32_t maxIterations = 1'000'000;
     std::uint32_t maxRequests = 4096;                  // shapes in one call
-    std::uint64_t maxWork = 65536ull * 1'000'000;      // sum of vertices x iterations: one largest job
+    // The sum of the call's work (see Work): one shell job of the largest mesh at the default budget
+    // (4 load steps, 200 Newton iterations a step), about half an hour of one core at worst.
+    std::uint64_t maxWork = 65536ull * 4 * 200 * 10000;
     std::uint64_t maxReplyWords = 12ull << 20;         // 96 MiB, under the 128 MiB message limit
 };
 constexpr std::uint64_t kMessageWords = 16ull << 20;  // 128 MiB: Cap'n Proto's traversal limit per message

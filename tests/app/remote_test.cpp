@@ -260,3 +260,85 @@ TEST_F(Remote, AHungServerTimesOutAndItsShapesGoToTheOthers) {
     EXPECT_THAT(r.err, HasSubstr("no answer within the worker timeout"));
     EXPECT_EQ(Slurp(dir_ / "remote" / "results.csv"), Slurp(dir_ / "local" / "results.csv"));
 }
+
+// A request is checked with the command line's field ranges, and every call, one shape or many, is
+// bounded by the work limit; calls beyond what the threads can run wait their turn; a call whose
+// client has gone is dropped rather than computed.
+TEST_F(Remote, RequestsAreRangedBoundedQueuedAndDroppedWithTheirClient) {
+    Server server(Path("s.log"));
+    ASSERT_GT(server.Port(), 0);
+    auto shellJob = [](auto edit) {
+        sim::EvalJob job;
+        job.model = sim::ModelKind::Shell;
+        job.shell = sim::DefaultShellDef();
+        job.shell.geometry.ringVertices = 12;
+        job.shell.geometry.rings = 16;
+        job.shape = sim::CylinderShape{};
+        edit(job);
+        return job;
+    };
+    auto refusal = [&](const std::vector<sim::EvalJob>& jobs) -> std::string {
+        capnp::EzRpcClient client(server.Address());
+        auto call = client.getMain<app::schema::Evaluator>().evaluateRequest();
+        auto list = call.initRequests(static_cast<unsigned>(jobs.size()));
+        for (unsigned k = 0; k < jobs.size(); ++k) app::SetJob(list[k], jobs[k]);
+        try {
+            call.send().wait(client.getWaitScope());
+        } catch (const kj::Exception& error) {
+            return error.getDescription().cStr();
+        }
+        return "accepted";
+    };
+    EXPECT_THAT(refusal({shellJob([](auto& j) { j.shell.solver.maxBisections = 31; })}), HasSubstr("max_bisections: 31 is out of range (0 to 30)"));
+    EXPECT_THAT(refusal({shellJob([](auto& j) { j.shell.geometry.lengthMm = 1e6; })}), HasSubstr("length_mm: 1000000 is out of range"));
+    // One shape alone, inside every field's range, but asking for more work than a call may.
+    EXPECT_THAT(refusal({shellJob([](auto& j) {
+                    j.shell.geometry.ringVertices = 200;
+                    j.shell.geometry.rings = 200;
+                    j.shell.load.steps = 1000;
+                    j.shell.solver.maxIterations = 10000;
+                })}),
+                HasSubstr("units of work, more than"));
+
+    // A long call (40 thesis shapes of 300,000 steps, about 20 s on the server's one thread) whose
+    // client goes away after a moment: the server says so and answers the next call at once.
+    {
+        capnp::EzRpcClient doomed(server.Address());
+        auto call = doomed.getMain<app::schema::Evaluator>().evaluateRequest();
+        auto list = call.initRequests(40);
+        for (unsigned k = 0; k < 40; ++k) {
+            sim::EvalJob job;
+            job.shape = sim::SineShape{1 + 0.01 * k, 0.5, 2.64};
+            job.params.iterations = 300000;
+            app::SetJob(list[k], job);
+        }
+        auto pending = call.send();
+        doomed.getWaitScope().poll();
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        doomed.getWaitScope().poll();
+    }  // the client and its call are gone
+    testing_support::WaitUntil([&] { return Slurp(Path("s.log")).find("a call was dropped by its client") != std::string::npos; }, 10);
+    EXPECT_THAT(Slurp(Path("s.log")), HasSubstr("shapes not evaluated"));
+
+    // Three clients at once: their calls queue and each gets its own answer.
+    std::vector<std::thread> clients;
+    std::vector<double> fitness(3, NAN);
+    for (int c = 0; c < 3; ++c)
+        clients.emplace_back([&, c] {
+            capnp::EzRpcClient client(server.Address());
+            auto call = client.getMain<app::schema::Evaluator>().evaluateRequest();
+            sim::EvalJob job;
+            job.shape = sim::SineShape{1.0 + c, 0.5, 2.64};
+            job.params.iterations = 3000;
+            app::SetJob(call.initRequests(1)[0], job);
+            fitness[c] = call.send().wait(client.getWaitScope()).getResponses()[0].getResult().getFitness();
+        });
+    for (auto& t : clients) t.join();
+    for (int c = 0; c < 3; ++c) {
+        sim::EvalJob job;
+        job.shape = sim::SineShape{1.0 + c, 0.5, 2.64};
+        job.params.iterations = 3000;
+        EXPECT_EQ(fitness[c], sim::Evaluate(job).fitness) << "client " << c;
+    }
+    EXPECT_TRUE(server.Alive());
+}
