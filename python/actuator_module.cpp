@@ -277,6 +277,8 @@ PYBIND11_MODULE(actuator, m) {
             if (p) std::rethrow_exception(p);
         } catch (const app::UsageError& e) {
             PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const app::OutputError& e) {
+            PyErr_SetString(PyExc_OSError, e.what());  // a full disk: nothing of the output was kept
         }
     });
     m.attr("__version__") = app::Version();

@@ -59,15 +59,21 @@ ArchiveRecord Decode(capnp::MessageReader& message, bool withMeshes) {
     return r;
 }
 
-bool WriteAll(int fd, const kj::byte* data, size_t size) {
+// Appends the bytes whole, or takes back what part of them was written and throws (OutputError for
+// a full disk): the archive stays whole records.
+void AppendAll(int fd, const kj::byte* data, size_t size, const std::string& path) {
+    const off_t before = lseek(fd, 0, SEEK_END);
     size_t written = 0;
     while (written < size) {
         const ssize_t n = ::write(fd, data + written, size - written);
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) return false;
+        if (n <= 0) {
+            const int code = n < 0 ? errno : ENOSPC;
+            if (before >= 0 && ftruncate(fd, before) != 0) {}
+            ThrowWriteError("cannot write archive " + Quote(path), code);
+        }
         written += static_cast<size_t>(n);
     }
-    return true;
 }
 
 // Reads up to `size` bytes; fewer only at the end of the file.
@@ -81,8 +87,7 @@ ArchiveWriter::ArchiveWriter(const std::string& path) : path_(path) {
     struct stat info {};
     fstat(fd_, &info);
     if (info.st_size == 0) {
-        if (!WriteAll(fd_, reinterpret_cast<const kj::byte*>(kMagic), sizeof kMagic))
-            throw UsageError("cannot write archive " + Quote(path) + ": " + std::strerror(errno));
+        AppendAll(fd_, reinterpret_cast<const kj::byte*>(kMagic), sizeof kMagic, path);
         return;
     }
     const ArchiveScan scan = ScanArchive(path, false, [](ArchiveRecord&&) { return true; });
@@ -118,7 +123,7 @@ std::uint64_t ArchiveWriter::Append(ArchiveRecord& r) {
     PutU32(frame.data(), static_cast<std::uint32_t>(bytes.size()));
     PutU32(frame.data() + 4, Crc(bytes.begin(), bytes.size()));
     std::memcpy(frame.data() + 8, bytes.begin(), bytes.size());
-    if (!WriteAll(fd_, frame.data(), frame.size())) throw UsageError("cannot write archive " + Quote(path_) + ": " + std::strerror(errno));
+    AppendAll(fd_, frame.data(), frame.size(), path_);
     return next_++;
 }
 

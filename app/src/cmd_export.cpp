@@ -82,8 +82,10 @@ int RunExport(int argc, char** argv, int first) {
     std::error_code ec;
     if (fs::exists(out, ec) && !(fs::is_directory(out, ec) && fs::is_empty(out, ec)))
         throw UsageError("--out " + Quote(out) + " exists and is not an empty folder; export writes into a new or empty one");
-    fs::create_directories(out, ec);
-    if (!fs::is_directory(out, ec)) throw UsageError("cannot create folder " + Quote(out));
+    // Every file or none: a full disk leaves no part of the set, and no folder that was not there.
+    CreatedFolders folders;
+    folders.Create(out, "--out");
+    OutputBatch batch;
 
     const std::string extension = Extension(format);
     std::vector<std::pair<std::string, const sim::TriangleMesh*>> files{
@@ -131,6 +133,7 @@ int RunExport(int argc, char** argv, int first) {
     manifest["design"] = Json{{"shape", ShapeJson(job.shape)}, {"model", ModelJson(job)}};
     if (cli.Given("--from")) manifest["design"]["from"] = Json{{"archive", from}, {"index", index}};
     WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");
+    batch.Commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::cout << Json{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}}.dump() << "\n";
     return 0;

@@ -95,6 +95,7 @@ int RunInspect(int argc, char** argv, int first) {
         });
     if (cli.Given("--limit") || cli.Given("--top")) shown.resize(std::min<size_t>(shown.size(), static_cast<size_t>(limit)));
 
+    OutputBatch batch;  // every mesh or none
     if (cli.Given("--export-obj"))
         for (const ArchiveRecord* r : shown) {
             const auto surface = sim::SurfaceOf(r->job);
@@ -103,6 +104,7 @@ int RunInspect(int argc, char** argv, int first) {
                 WriteFileAtomically(path.string(), FormatObj(*positions, surface, fmt::format("actuator workbench evaluation {}, {} mesh", r->id, which)));
             }
         }
+    batch.Commit();
 
     if (json) {
         Json records = Json::array();

@@ -41,10 +41,19 @@ std::string ShellQuote(const std::string& text) {
 
 bool HaveFfmpeg() { return std::system("command -v ffmpeg > /dev/null 2>&1") == 0; }
 
-void EncodeVideo(const fs::path& frames, const fs::path& output) {
+// The frames as an MP4, written beside it under a temporary name and renamed when whole: a failed
+// encoding (a full disk) leaves no part of a video. False when there is none.
+bool EncodeVideo(const fs::path& frames, const fs::path& output) {
+    const fs::path partial = output.parent_path() / (".act" + std::to_string(getpid()) + "-video.tmp");
     const std::string command = "ffmpeg -y -loglevel error -framerate 30 -i " + ShellQuote((frames / "frame_%04d.png").string()) +
-                                " -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' " + ShellQuote(output.string());
-    if (std::system(command.c_str()) != 0) std::cerr << "note: ffmpeg failed to make " << output.string() << "\n";
+                                " -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -f mp4 " + ShellQuote(partial.string());
+    std::error_code ec;
+    if (std::system(command.c_str()) != 0 || std::rename(partial.c_str(), output.c_str()) != 0) {
+        fs::remove(partial, ec);
+        std::cerr << "note: ffmpeg failed to make " << output.string() << "\n";
+        return false;
+    }
+    return true;
 }
 
 // A folder for frames: refused early when something that is not a folder is in the way.
@@ -247,9 +256,8 @@ int RunRender(int argc, char** argv, int first) {
         const sim::PartDef part = PartDefOf(cli, partOptions, job);
         const sim::PartSolids solids = BuildSolids(job, part, partOptions.mold);
         const fs::path out = p.out;
-        std::error_code ec;
-        fs::create_directories(out, ec);
-        if (!fs::is_directory(out, ec)) throw UsageError("--out: cannot create folder " + Quote(out.string()));
+        CreatedFolders folders;
+        folders.Create(out, "--out");
         const std::string file = (out / (solid + ".png")).string();
         CheckOutputPath(file, "--out");
         RefuseOutputThatIsInput(file, "--out", {shape.meshFile, shape.offsets, from});
@@ -267,8 +275,8 @@ int RunRender(int argc, char** argv, int first) {
     // Every output checked before any work: nothing is half-written on bad input.
     const fs::path out = p.out;
     std::error_code ec;
-    fs::create_directories(out, ec);
-    if (!fs::is_directory(out, ec)) throw UsageError("--out: cannot create folder " + Quote(out.string()));
+    CreatedFolders folders;  // before the batch: removed, when left empty, after its temporaries
+    folders.Create(out, "--out");
     const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
     std::vector<std::string> files;
     if (stored) files.push_back(fmt::format("evaluation_{:06}.png", index));
@@ -304,6 +312,10 @@ int RunRender(int argc, char** argv, int first) {
 
     std::vector<std::string> written;
     const auto renderStarted = std::chrono::steady_clock::now();
+    // Every picture or none (a full disk leaves no part of the set); the videos are made from the
+    // frames once they are in place.
+    OutputBatch batch;
+    std::vector<std::pair<fs::path, fs::path>> videos;  // (frames, mp4)
     const std::string loadName = thesis ? sim::Name(job.params.load) : sim::Name(job.shell.load.kind);
     const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
                                                    ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", loadName)
@@ -325,8 +337,7 @@ int RunRender(int argc, char** argv, int first) {
     // Sequences: camera and colour scale fixed over all frames, so only the mesh moves.
     auto sequence = [&](const char* folderName, int frames, auto&& sceneOf) {
         const fs::path folder = out / folderName;
-        fs::create_directories(folder, ec);
-        if (!fs::is_directory(folder, ec)) throw UsageError("cannot create folder " + Quote(folder.string()));
+        folders.Create(folder, folderName);
         FrameWriter writer(frameLevel);
         Progress progress(folderName, isatty(STDERR_FILENO), "frames");
         for (int k = 0; k < frames; ++k) {
@@ -335,11 +346,7 @@ int RunRender(int argc, char** argv, int first) {
         }
         writer.Wait();
         written.push_back((folder / "frame_%04d.png").string() + " x " + std::to_string(frames));
-        if (video) {
-            const fs::path mp4 = out / (std::string(folderName) + ".mp4");
-            EncodeVideo(folder, mp4);
-            if (fs::exists(mp4, ec)) written.push_back(mp4.string());
-        }
+        if (video) videos.push_back({folder, out / (std::string(folderName) + ".mp4")});
     };
     if (p.turntable > 0)
         sequence("turntable", p.turntable,
@@ -356,6 +363,9 @@ int RunRender(int argc, char** argv, int first) {
             sequence("timelapse", static_cast<int>(scenes.size()), [&](int k) { return scenes[k]; });
         }
     }
+    batch.Commit();
+    for (const auto& [frames, mp4] : videos)
+        if (EncodeVideo(frames, mp4)) written.push_back(mp4.string());
     const double renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - renderStarted).count();
 
     Json summary;

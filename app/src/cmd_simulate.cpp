@@ -95,8 +95,10 @@ int RunSimulate(int argc, char** argv, int first) {
                                  ? fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.mesh.resolution, job.mesh.turns)
                                  : fmt::format("{} vertices per ring x {} rings and two cap centres, millimetres", job.shell.geometry.ringVertices,
                                                sim::RingCount(job.shell.geometry));
+    OutputBatch batch;  // both meshes or neither
     if (cli.Given("--save-initial")) WriteFileAtomically(saveInitial, FormatObj(result.initial, surface, "actuator workbench initial mesh: " + size));
     if (cli.Given("--save-mesh")) WriteFileAtomically(saveMesh, FormatObj(result.final, surface, "actuator workbench final mesh: " + size));
+    batch.Commit();
     Json out = ResultNumbersJson(result, job);
     out["final_positions_hash"] = fmt::format("{:016x}", sim::PositionsHash(result.final));
     out["shape"] = ShapeJson(job.shape);

@@ -102,11 +102,17 @@ CsvLog& CsvLog::operator=(CsvLog&& other) noexcept {
 
 void CsvLog::Append(const std::vector<std::string>& fields) {
     const std::string row = CsvRow(fields);
+    const off_t before = lseek(fd_, 0, SEEK_END);
     size_t written = 0;
     while (written < row.size()) {
         const ssize_t n = ::write(fd_, row.data() + written, row.size() - written);
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw UsageError("cannot write " + Quote(path_) + ": " + std::strerror(errno));
+        if (n <= 0) {
+            // A part of a row is taken back: the log stays whole rows.
+            const int code = n < 0 ? errno : ENOSPC;
+            if (before >= 0 && ftruncate(fd_, before) != 0) {}
+            ThrowWriteError("cannot write " + Quote(path_), code);
+        }
         written += static_cast<size_t>(n);
     }
 }

@@ -1,5 +1,8 @@
 #include "errors.h"
 
+#include <cerrno>
+#include <cstring>
+
 namespace app {
 
 std::string Quote(std::string_view text) {
@@ -18,6 +21,12 @@ std::string Quote(std::string_view text) {
     quoted += "...";
     append(text.substr(text.size() - 37));
     return quoted + "' (" + std::to_string(text.size()) + " characters)";
+}
+
+[[noreturn]] void ThrowWriteError(const std::string& what, int code) {
+    const std::string message = what + ": " + std::strerror(code);
+    if (code == ENOSPC || code == EDQUOT || code == EFBIG || code == EIO) throw OutputError(message);
+    throw UsageError(message);
 }
 
 }  // namespace app

@@ -19,6 +19,16 @@ struct WorkersGone : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The output itself could not be written: a full disk, a quota, a file-size limit, an I/O error
+// (exit code 74, EX_IOERR). Not the user's input at fault: what was written is taken back.
+struct OutputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// "cannot write X: <reason>" as an OutputError when the system's error `code` says the storage failed
+// (ENOSPC, EDQUOT, EFBIG, EIO), else as a UsageError (a path the user can change).
+[[noreturn]] void ThrowWriteError(const std::string& what, int code);
+
 // A user's text inside a message: quoted, at most 80 characters (a 10 MB number stays one short
 // line; a long path keeps its start and its file name), control characters shown as '?'.
 std::string Quote(std::string_view text);

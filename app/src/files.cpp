@@ -11,6 +11,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
+#include <stdexcept>
 #include <sstream>
 
 #include "errors.h"
@@ -21,34 +23,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Temporaries in flight, kept where a signal handler can reach them without allocating.
-constexpr int kTemporarySlots = 32;
-struct TemporarySlot {
-    std::atomic<bool> used{false};
-    char path[PATH_MAX]{};
-};
-std::array<TemporarySlot, kTemporarySlots> gTemporaries;
+// Temporaries in flight or staged in an OutputBatch, kept where a signal handler can reach them
+// without allocating: each slot holds a heap copy of the path, published with one atomic store.
+constexpr int kTemporarySlots = 4096;
+std::array<std::atomic<char*>, kTemporarySlots> gTemporaries{};
 std::atomic<void (*)()> gRestore{nullptr};
 std::atomic<unsigned> gTemporaryCounter{0};
 
 int Register(const std::string& path) {
-    if (path.size() >= PATH_MAX) return -1;
+    char* copy = strdup(path.c_str());
+    if (!copy) return -1;
     for (int k = 0; k < kTemporarySlots; ++k) {
-        bool expected = false;
-        if (gTemporaries[k].used.load() || !gTemporaries[k].used.compare_exchange_strong(expected, true)) continue;
-        std::memcpy(gTemporaries[k].path, path.c_str(), path.size() + 1);
-        return k;
+        char* expected = nullptr;
+        if (gTemporaries[k].load() == nullptr && gTemporaries[k].compare_exchange_strong(expected, copy)) return k;
     }
-    return -1;  // more than 32 writes at once: this one is not cleaned up on a signal
+    free(copy);
+    return -1;  // more than 4,096 at once: this one is removed by the next run in its folder, not on a signal
 }
 
 void Unregister(int slot) {
-    if (slot >= 0) gTemporaries[slot].used.store(false);
+    if (slot >= 0) free(gTemporaries[slot].exchange(nullptr));
 }
+
+// The open OutputBatch's files: written, waiting for their rename.
+struct StagedFile {
+    std::string temporary, target;
+    int slot = -1;
+};
+std::mutex gBatchMutex;
+std::vector<StagedFile>* gBatch = nullptr;
 
 void OnInterrupt(int signal) {
     for (auto& slot : gTemporaries)
-        if (slot.used.load()) unlink(slot.path);
+        if (const char* path = slot.load()) unlink(path);
     if (auto restore = gRestore.load()) restore();
     ::signal(signal, SIG_DFL);
     raise(signal);
@@ -138,6 +145,17 @@ void RefuseOutputThatIsInput(const std::string& output, const std::string& outpu
     }
 }
 
+std::string FolderNameError(const std::string& name) {
+    if (name.empty()) return "is empty";
+    if (name == "." || name == "..") return "is " + Quote(name) + ", which names no folder of its own";
+    if (name.size() > 100) return "is longer than 100 bytes";
+    for (const unsigned char c : name) {
+        if (c == '/' || c == '\\') return "contains " + Quote(std::string(1, static_cast<char>(c))) + ", a path separator";
+        if (c < 0x20 || c == 0x7f) return "contains a control character";
+    }
+    return "";
+}
+
 void WriteFileAtomically(const std::string& path, const std::string& contents) {
     CheckOutputPath(path, "cannot write " + Quote(path));
     const fs::path target(path);
@@ -146,31 +164,90 @@ void WriteFileAtomically(const std::string& path, const std::string& contents) {
     const int slot = Register(temporary);
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) {
-        const std::string reason = Reason();
+        const int code = errno;
         Unregister(slot);
-        throw UsageError("cannot write " + Quote(path) + ": " + reason);
+        ThrowWriteError("cannot write " + Quote(path), code);
     }
     size_t written = 0;
-    bool ok = true;
+    int code = 0;
     while (written < contents.size()) {
         const ssize_t n = ::write(fd, contents.data() + written, contents.size() - written);
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) {
-            ok = false;
+            code = n < 0 ? errno : ENOSPC;
             break;
         }
         written += static_cast<size_t>(n);
     }
-    ok = ok && fsync(fd) == 0;
-    const int savedErrno = errno;
-    ok = ::close(fd) == 0 && ok;
-    if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0) {
-        const std::string reason = std::strerror(ok ? errno : savedErrno);
+    if (code == 0 && fsync(fd) != 0) code = errno;
+    if (::close(fd) != 0 && code == 0) code = errno;
+    if (code == 0) {
+        std::lock_guard lock(gBatchMutex);
+        if (gBatch) {
+            gBatch->push_back({temporary, path, slot});
+            return;
+        }
+    }
+    if (code == 0 && std::rename(temporary.c_str(), path.c_str()) != 0) code = errno;
+    if (code != 0) {
         unlink(temporary.c_str());
         Unregister(slot);
-        throw UsageError("cannot write " + Quote(path) + ": " + reason);
+        ThrowWriteError("cannot write " + Quote(path), code);
     }
     Unregister(slot);
+}
+
+OutputBatch::OutputBatch() {
+    std::lock_guard lock(gBatchMutex);
+    if (gBatch) throw std::logic_error("one OutputBatch at a time");
+    gBatch = new std::vector<StagedFile>;
+}
+
+OutputBatch::~OutputBatch() {
+    std::lock_guard lock(gBatchMutex);
+    if (!gBatch) return;
+    for (const StagedFile& f : *gBatch) {
+        unlink(f.temporary.c_str());
+        Unregister(f.slot);
+    }
+    delete gBatch;
+    gBatch = nullptr;
+}
+
+void OutputBatch::Commit() {
+    std::lock_guard lock(gBatchMutex);
+    std::vector<StagedFile> files = std::move(*gBatch);
+    delete gBatch;
+    gBatch = nullptr;
+    // A rename within a folder needs no space; should one fail all the same, what was renamed goes
+    // again, so that none of the batch appears.
+    size_t renamed = 0;
+    int code = 0;
+    for (; renamed < files.size() && code == 0; ++renamed)
+        if (std::rename(files[renamed].temporary.c_str(), files[renamed].target.c_str()) != 0) code = errno;
+    for (size_t k = 0; k < files.size(); ++k) {
+        if (code != 0) unlink(k < renamed - 1 ? files[k].target.c_str() : files[k].temporary.c_str());
+        Unregister(files[k].slot);
+    }
+    if (code != 0) ThrowWriteError("cannot write " + Quote(files[renamed - 1].target), code);
+}
+
+void CreatedFolders::Create(const fs::path& folder, const std::string& what) {
+    std::vector<fs::path> missing;
+    std::error_code ec;
+    for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec)); p = p.parent_path()) {
+        missing.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    fs::create_directories(folder, ec);
+    if (!fs::is_directory(folder, ec)) throw UsageError(what + ": cannot create folder " + Quote(folder.string()));
+    created_.insert(created_.end(), missing.rbegin(), missing.rend());
+}
+
+CreatedFolders::~CreatedFolders() {
+    std::error_code ec;
+    for (auto it = created_.rbegin(); it != created_.rend(); ++it)
+        if (fs::is_empty(*it, ec)) fs::remove(*it, ec);
 }
 
 void InstallInterruptCleanup() {

@@ -25,11 +25,47 @@ std::vector<double> ReadNumberFile(const std::string& path);
 // or too long name, a folder, a symlink or device in the way, a missing or read-only folder.
 void CheckOutputPath(const std::string& path, const std::string& what);
 
+// Empty when `name` can be one folder's name inside an output folder; otherwise why not (empty, "." or
+// "..", a '/' or '\\', a control character, longer than 100 bytes).
+std::string FolderNameError(const std::string& name);
+
 // Refuses an output that is also an input of the same command (it would be overwritten).
 void RefuseOutputThatIsInput(const std::string& output, const std::string& outputWhat, const std::vector<std::string>& inputs);
 
-// Writes the whole file or nothing. Throws UsageError (with the path and the system's reason).
+// Writes the whole file or nothing. Throws OutputError when the storage fails (a full disk, a quota,
+// a file-size limit), UsageError otherwise (with the path and the system's reason).
 void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+// The files one command writes appear together or not at all. While a batch is open, every
+// WriteFileAtomically (on any thread: the frame writer's too) writes its temporary and leaves the
+// rename to Commit; a batch that ends without Commit (bad input found late, a full disk) removes its
+// temporaries, so no output of the command appears. One batch at a time, for commands that write a
+// set of files once (simulate, render, export, inspect); runs that write as they go do not use it.
+class OutputBatch {
+public:
+    OutputBatch();
+    ~OutputBatch();
+    OutputBatch(const OutputBatch&) = delete;
+    OutputBatch& operator=(const OutputBatch&) = delete;
+    // Renames every staged file onto its target, in the order they were written.
+    void Commit();
+};
+
+// Folders a command creates for its outputs, removed again when it ends with them empty (it failed
+// before any file was in place), so that a refused or failed command leaves nothing behind.
+class CreatedFolders {
+public:
+    CreatedFolders() = default;
+    ~CreatedFolders();
+    CreatedFolders(const CreatedFolders&) = delete;
+    CreatedFolders& operator=(const CreatedFolders&) = delete;
+    // Creates `folder` and its missing parents, remembering those it made. Throws UsageError
+    // ("what: cannot create folder ...") when the folder cannot be made.
+    void Create(const std::filesystem::path& folder, const std::string& what);
+
+private:
+    std::vector<std::filesystem::path> created_;  // parents first
+};
 
 // On SIGINT and SIGTERM: remove this process's temporaries, run the registered restore step (see
 // ResultsFolder), then die of the signal as usual. Installed once by main().

@@ -1,5 +1,6 @@
 // actuator: the Actuator Workbench command line. Dispatches to subcommands; turns bad input into one
 // line on stderr and exit code 2, and output that could not be written into an error.
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -39,7 +40,8 @@ std::string MainHelp() {
     for (const auto& c : kCommands) text += "  " + std::string(c.name) + std::string(12 - std::strlen(c.name), ' ') + c.summary + "\n";
     text += "\nRun 'actuator COMMAND --help' for a command's options and their defaults.\n"
             "Exit codes: 0 success, 2 bad input (one line on stderr says what and where), 3 every evaluation\n"
-            "server (--workers) is gone, 70 an internal error (a bug: please report it).\n";
+            "server (--workers) is gone, 70 an internal error (a bug: please report it), 74 the output could not\n"
+            "be written (a full disk).\n";
     return text;
 }
 
@@ -56,6 +58,9 @@ int Finish(int code, const std::string& name) {
 
 int main(int argc, char** argv) {
     app::InstallInterruptCleanup();
+    // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported as output that could not
+    // be written, instead of killing the process.
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2) {
         std::cerr << MainHelp();
         return 2;
@@ -76,6 +81,9 @@ int main(int argc, char** argv) {
         } catch (const app::WorkersGone& error) {
             std::cerr << "actuator " << name << ": stopped: " << error.what() << "; continue later with --resume\n";
             return Finish(3, name);
+        } catch (const app::OutputError& error) {
+            std::cerr << "actuator " << name << ": error: could not write the output: " << error.what() << "\n";
+            return Finish(74, name);
         } catch (const app::UsageError& error) {
             std::cerr << "actuator " << name << ": error: " << error.what() << "\n";
             return Finish(2, name);
