@@ -18,13 +18,7 @@ void AddPartOptions(Cli& cli, PartOptions& o) {
     cli.Flag("--fittings", o.fittings.enabled, "also rigid end fittings: a plug for each end (insert and collar), the bottom one bored for the air line");
     cli.Number("--port-mm", o.fittings.portMm, "with --fittings: the bottom plug's through hole, diameter", 0.1, 1e3)->default_str("4");
     cli.Group("Mold");
-    cli.Number("--margin-mm", o.mold.marginMm, "block beyond the actuator's widest point", 0.1, 1e4)->default_str("5");
-    cli.Number("--end-wall-mm", o.mold.endWallMm, "block beyond each end of the actuator", 0.1, 1e4)->default_str("5");
-    cli.Number("--handle-mm", o.mold.handleMm, "core beyond the block at each end, to hold and pull it", 0.1, 1e4)->default_str("15");
-    cli.Number("--sprue-deg", o.mold.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120)->default_str("24");
-    cli.Number("--vent-deg", o.mold.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60)->default_str("6");
-    cli.Number("--pin-clearance-mm", o.mold.pinClearanceMm, "the registration pins' taper: their tops this much inside their holes", 0, 10)
-        ->default_str("0.15");
+    cli.Fields(o.mold);
 }
 
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {

@@ -18,9 +18,9 @@ Vec Sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b
 Vec Cross(const Vec& a, const Vec& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 double Dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-std::string Format(const char* format, double a, double b, double c = 0) {
-    char text[256];
-    std::snprintf(text, sizeof text, format, a, b, c);
+std::string Format(const char* format, double a, double b, double c = 0, double d = 0) {
+    char text[320];
+    std::snprintf(text, sizeof text, format, a, b, c, d);
     return text;
 }
 
@@ -322,6 +322,27 @@ std::vector<std::pair<int, int>> PinRows(int nz, int length) {
     return {{low, low + length}, {high - length, high}};
 }
 
+// Bands each pin spans: about as long (along z) as it is wide, half the margin.
+int PinBands(const PartDef& part, const MoldDef& mold, int nz) {
+    return std::max(1, static_cast<int>(std::lround(0.5 * mold.marginMm * (nz - 1) / part.lengthMm)));
+}
+
+// A pin's top is its foot inset by the clearance on every side: a clearance of half the foot or more
+// would turn it inside out (its facets reversed).
+std::string PinError(const Grid& outer, const PartDef& part, const MoldDef& mold) {
+    const double c = mold.pinClearanceMm, across = 0.5 * mold.marginMm;
+    if (!(c >= 0)) return "the pins' clearance must not be negative";
+    for (const auto& [ja, jb] : PinRows(outer.nz, PinBands(part, mold, outer.nz)))
+        for (const int i : {0, outer.nt / 2}) {
+            const double along = outer.At(jb, i)[2] - outer.At(ja, i)[2], foot = std::min(across, along);
+            if (!(2 * c < foot))
+                return Format("a pin clearance of %.3g mm does not fit the registration pins (%.3g x %.3g mm at their feet, set by the mold's margin): "
+                              "give a clearance below %.3g mm, or a wider margin",
+                              c, across, along, foot / 2);
+        }
+    return "";
+}
+
 bool InPin(int band, int nz, int length) {
     for (const auto& [a, b] : PinRows(nz, length))
         if (band >= a && band < b) return true;
@@ -397,7 +418,7 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
     // The split face (y = 0) on each meridian: bands between the cavity's profile and the box's edge.
     const Vec splitNormal{0, upper ? -1.0 : 1.0, 0};
     // Pins about as long (along z) as they are wide: half the margin.
-    const int pinBands = std::max(1, static_cast<int>(std::lround(0.5 * mold.marginMm * (nz - 1) / part.lengthMm)));
+    const int pinBands = PinBands(part, mold, nz);
     std::map<int, std::vector<int>> lineOf;  // meridian sample -> the box edge's vertices on y = 0, upward
     for (const int m : {0, half}) {
         const int i = first + m;
@@ -567,6 +588,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     const Grid inner = part.wall == WallSide::Centred ? Offset(rest, normals, -h / 2) : rest;
     for (const auto& [grid, which] : {std::pair{&outer, "outer"}, std::pair{&inner, "inner"}})
         if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
+    if (std::string error = PinError(outer, part, mold); !error.empty()) return error;
     const int nz = rest.nz, nt = rest.nt;
 
     PartSolids solids;

@@ -19,6 +19,7 @@
 
 #include "cli_fixture.h"
 #include "png.h"
+#include "fields.h"
 #include "solid_io.h"
 #include "sim/solid.h"
 
@@ -136,6 +137,62 @@ TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Designs, Solids, ::testing::ValuesIn(Cases()), [](const auto& info) { return info.param.name; });
+
+struct NumberField {
+    std::string key;
+    double* value;
+    double min, max;
+};
+// A def's number fields, with where they live and their ranges.
+struct CollectNumbers {
+    std::vector<NumberField>& fields;
+    void Number(const char* key, double& v, const char*, double min, double max) { fields.push_back({key, &v, min, max}); }
+    void Integer(const char*, int&, const char*, long long, long long) {}
+    template <class E>
+    void Enum(const char*, E&, const char*) {}
+};
+
+// Every mold option over its whole range (its ends, and points between them, log-spaced): the solids
+// are valid, or the design is refused saying why. The ranges are the options' own (fields.h).
+TEST(Solid, EveryMoldOptionOverItsRangeBuildsValidSolidsOrIsRefused) {
+    sim::MoldDef mold;
+    std::vector<NumberField> fields;
+    app::VisitFields(mold, CollectNumbers{fields});
+    ASSERT_EQ(fields.size(), 6u);
+    const Case c{"shell_sine", sim::SineShape{1.3, 0.5, kPi - 0.5}, false};
+    int built = 0, refused = 0;
+    for (const NumberField& f : fields) {
+        std::vector<double> values{f.min, f.max};
+        const double low = std::max(f.min, 1e-2);
+        for (int k = 1; k < 6; ++k) values.push_back(low * std::pow(f.max / low, k / 6.0));
+        for (const double value : values) {
+            const double saved = *f.value;
+            *f.value = value;
+            sim::PartSolids solids;
+            const std::string error = sim::BuildPartSolids(c.shape, PartOf(c), mold, &solids);
+            *f.value = saved;
+            const std::string what = f.key + " = " + std::to_string(value);
+            if (!error.empty()) {
+                ++refused;
+                EXPECT_THAT(error, HasSubstr("mm")) << what << ": a refusal says what to change";
+                continue;
+            }
+            ++built;
+            for (const auto& [name, mesh] : {std::pair{"core", &solids.core}, std::pair{"shell A", &solids.shellA}, std::pair{"shell B", &solids.shellB}})
+                EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty()) << what << ": " << name;
+        }
+    }
+    EXPECT_GT(built, 30);
+    EXPECT_GT(refused, 0) << "a clearance of 10 mm cannot fit 2.5 mm pins";
+    // The two found broken: a 2 mm clearance at the default margin, and the default clearance in a 0.5 mm margin.
+    sim::PartSolids solids;
+    sim::MoldDef wide;
+    wide.pinClearanceMm = 2;
+    EXPECT_THAT(sim::BuildPartSolids(c.shape, PartOf(c), wide, &solids), HasSubstr("give a clearance below 1.25 mm"));
+    sim::MoldDef thin;
+    thin.marginMm = 0.5;
+    EXPECT_THAT(sim::BuildPartSolids(c.shape, PartOf(c), thin, &solids), HasSubstr("does not fit the registration pins"));
+}
 
 TEST(Solid, TheWallVolumeIsTheAnnulusOfACylinder) {
     sim::PartDef part;  // R 5, L 150, wall 1 centred: pi ((R + h/2)^2 - (R - h/2)^2) L, less the polygon's shortfall
