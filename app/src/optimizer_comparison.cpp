@@ -11,6 +11,7 @@
 #include "errors.h"
 #include "experiment_runner.h"
 #include "files.h"
+#include "json_out.h"
 #include "plots.h"
 #include "table.h"
 #include "render/plot.h"
@@ -71,6 +72,29 @@ double Quantile(std::vector<double> values, double q) {
     return values[low] + (at - static_cast<double>(low)) * (values[high] - values[low]);
 }
 
+// The space a contender searches, in words: two contenders on one problem describe it alike. The
+// GA's splines vary in length between bounds; the optimizers' are fixed (a GA whose bounds are equal
+// searches the same space as they do).
+std::string DesignSpace(const Experiment& e) {
+    const bool ga = e.kind == ExperimentKind::Evolve;
+    const sim::GenomeDef& g = ga ? e.ga.genome : e.optimizer.genome.genes;
+    std::string space;
+    if (ga ? g.kind == sim::GenomeKind::BSpline : e.optimizer.genome.family == sim::VectorFamily::BSpline) {
+        const int low = ga ? g.lengthMin : e.optimizer.genome.controlPoints, high = ga ? g.lengthMax : e.optimizer.genome.controlPoints;
+        space = fmt::format("{} B-spline(s) over the {}, {} control points in [{}, {}]", g.splines, sim::Name(g.region),
+                            low == high ? std::to_string(low) : fmt::format("{} to {}", low, high), g.controlMin, g.controlMax);
+    } else if (ga ? g.kind == sim::GenomeKind::FreeXY : e.optimizer.genome.family == sim::VectorFamily::FreeXY) {
+        space = fmt::format("free-xy offsets over the {} within {}", sim::Name(g.region), g.bound);
+    } else {
+        const auto& v = e.optimizer.genome;
+        space = fmt::format("{} with A in [{}, {}], phase from [{}, {}] to [{}, {}]", sim::Name(v.family), v.amplitude[0], v.amplitude[1],
+                            v.phaseStart[0], v.phaseStart[1], v.phaseEnd[0], v.phaseEnd[1]);
+    }
+    if (g.fibreAngles > 0) space += fmt::format(", {} fibre angle gene(s) in [{}, {}] deg", g.fibreAngles, g.fibreAngleMin, g.fibreAngleMax);
+    if (g.fibreSwitches) space += ", fibre switches";
+    return space;
+}
+
 }  // namespace
 
 void CheckContenders(const std::vector<Experiment>& contenders) {
@@ -85,10 +109,18 @@ void CheckContenders(const std::vector<Experiment>& contenders) {
         if (e.model != first.model)
             throw UsageError(e.path + ": uses the " + sim::Name(e.model) + " model, " + first.path + " the " + sim::Name(first.model) +
                              " model; compare runs one problem");
+        // One problem: the same model settings (what a design is evaluated with) and the same space of designs.
+        const Json model = ModelJson(JobOf(e, sim::CylinderShape{})), firstModel = ModelJson(JobOf(first, sim::CylinderShape{}));
+        if (model != firstModel)
+            throw UsageError(e.path + ": evaluates designs with other model settings than " + first.path + " (" +
+                             ExperimentDifference(firstModel, model) + "); compare runs one problem");
+        if (DesignSpace(e) != DesignSpace(first))
+            throw UsageError(e.path + ": searches " + DesignSpace(e) + ", " + first.path + " " + DesignSpace(first) + "; compare runs one problem");
         if (FitnessOf(e) != FitnessOf(first))
             throw UsageError(e.path + ": is judged by " + sim::Name(FitnessOf(e)) + ", " + first.path + " by " + sim::Name(FitnessOf(first)) +
                              "; compare runs one problem");
-        if (Folder(e) == "." || Folder(e).find('/') != std::string::npos) throw UsageError(e.path + ": its id cannot name a folder");
+        if (const std::string why = FolderNameError(Folder(e)); !why.empty())
+            throw UsageError(e.path + ": its id " + why + "; compare runs each contender in a folder named by its id");
         for (const Experiment& other : contenders)
             if (&other != &e && Folder(other) == Folder(e)) throw UsageError(e.path + " and " + other.path + " have the same id " + Quote(Folder(e)));
     }

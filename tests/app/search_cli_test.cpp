@@ -333,7 +333,12 @@ TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
 }
 
 TEST_F(SearchCli, CompareRunsEveryContenderWithTheSameSeedsToTheSameBudget) {
-    const std::string ga = SmallGa(10, 1, true), cmaes = SmallOptimizer("cmaes", 10);
+    const std::string cmaes = SmallOptimizer("cmaes", 10);
+    // The GA on the optimizer's problem: one spline of 6 control points in [0, 8], 3,000 iterations.
+    Write("ga.json", R"({"id": "test", "title": "small GA", "seed": 99, "sim": {"iterations": 3000},
+        "evolve": {"runs": 1, "population": 10, "generations": 10, "tournament": 3, "elite": 1, "mutpb": 0.5, "indpb": 0.2,
+                   "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [0, 8], "length": [6, 6]}}})");
+    const std::string ga = Path("ga.json");
     const Result r = Run("compare " + ga + " " + cmaes + " --seeds 2 --evaluations 20 --out " + Path("cmp"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto ends = app::Table::Read((dir_ / "cmp" / "comparison.csv").string());
@@ -383,10 +388,18 @@ TEST_F(SearchCli, CompareRunsEveryContenderWithTheSameSeedsToTheSameBudget) {
     ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
     EXPECT_EQ(Slurp(dir_ / "cut" / "comparison.csv"), Slurp(dir_ / "whole" / "comparison.csv"));
     ExpectSameOutputs(dir_ / "whole" / "o" / "seed_1", dir_ / "cut" / "o" / "seed_1");
-    ExpectRefused("compare --resume " + Path("cut") + " --set seed=3", "a resumed comparison keeps the --set it was started with");
+    ExpectRefused("compare --resume " + Path("cut") + " --set seed=3", "--set '[\"seed=3\"]' is not what");
     // Contenders must share one problem and one objective.
     ExpectRefused("compare " + ga + " " + SmallOptimizer("nsga2", 2) + " --out " + Path("bad"), "compare draws one objective's best");
     ExpectRefused("compare " + ga + " --out " + Path("bad"), "compare needs two or more experiment files");
+    Write("other.json", Slurp(Path("ga.json")).replace(Slurp(Path("ga.json")).find("3000"), 4, "4000"));
+    ExpectRefused("compare " + Path("other.json") + " " + cmaes + " --out " + Path("bad"), "iterations: '4000' -> '3000'");
+    ExpectRefused("compare " + SmallGa(2, 1, false) + " " + cmaes + " --out " + Path("bad"),
+                  "ga.json 2 B-spline(s) over the middle, 5 to 9 control points in [0, 8]; compare runs one problem");
+    Write("dots.json", Slurp(Path("ga.json")).replace(Slurp(Path("ga.json")).find("\"test\""), 6, "\"..\""));
+    ExpectRefused("compare " + Path("dots.json") + " " + cmaes + " --out " + Path("bad"), "its id is '..', which names no folder of its own");
+    EXPECT_FALSE(fs::exists(Path("bad")));
+    EXPECT_FALSE(fs::exists(dir_ / "seed_1"));
 }
 
 TEST_F(SearchCli, SweepResumedAfterAKillEndsLikeAnUninterruptedRun) {
