@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "files.h"
+#include "json_out.h"
 #include "optimizer_comparison.h"
 #include "run_options.h"
 
@@ -36,33 +37,30 @@ int RunCompare(int argc, char** argv, int first) {
     if (!cli.Parse(argc, argv, first)) return 0;
     const std::string dir = ResultsDir(cli, o);
     const FolderMode mode = ResultsMode(cli, o);
-    // A resume re-reads the contenders saved with the comparison.
+    // What the comparison was started with: a resume continues it, and refuses other files, seeds,
+    // budget or --set.
+    std::vector<std::string> absolute;
+    for (const auto& file : files) absolute.push_back(fs::absolute(file).lexically_normal().string());
     const fs::path saved = fs::path(dir) / "contenders.json";
-    nlohmann::ordered_json record;
-    std::error_code ec;
-    if (mode == FolderMode::Resume && files.empty()) {
-        if (!fs::exists(saved, ec)) throw UsageError("--resume: " + Quote(dir) + " holds no comparison (no contenders.json)");
-        Json j;
-        try {
-            j = ParseJson(ReadInputFile(saved.string()), saved.string());
-        } catch (const Json::exception&) {
-            j = nullptr;
-        }
-        if (!j.is_object() || !j.contains("files") || !j.contains("sets") || !j.contains("seeds") || !j.contains("evaluations"))
-            throw UsageError(saved.string() + ": not a comparison's record");
-        if (!o.sets.empty()) throw UsageError("--set: a resumed comparison keeps the --set it was started with (" + saved.string() + ")");
-        files = j["files"].get<std::vector<std::string>>();
-        o.sets = j["sets"].get<std::vector<std::string>>();
-        def.seeds = j["seeds"].get<int>();
-        def.budget = j["evaluations"].get<long long>();
+    const auto record = RunRecord(saved, mode,
+                                  {{"files", "the experiment files", !files.empty(), absolute},
+                                   {"sets", "--set", !o.sets.empty(), o.sets},
+                                   {"seeds", "--seeds", cli.Given("--seeds"), def.seeds},
+                                   {"evaluations", "--evaluations", cli.Given("--evaluations"), def.budget}});
+    try {
+        files = record["files"].get<std::vector<std::string>>();
+        o.sets = record["sets"].get<std::vector<std::string>>();
+        def.seeds = record["seeds"].get<int>();
+        def.budget = record["evaluations"].get<long long>();
+    } catch (const Json::exception&) {
+        throw UsageError(Quote(saved.string()) + " is damaged; start afresh with --overwrite");
     }
     std::vector<Experiment> contenders;
     for (const auto& file : files) contenders.push_back(LoadExperiment(file, Overrides(o)));
     CheckContenders(contenders);
     const auto evaluator = MakeEvaluator(cli, o);
     ResultsFolder folder(dir, mode, "compare");
-    record = {{"files", files}, {"sets", o.sets}, {"seeds", def.seeds}, {"evaluations", def.budget}};
-    WriteFileAtomically(saved.string(), record.dump(2) + "\n");
+    if (mode != FolderMode::Resume) WriteFileAtomically(saved.string(), record.dump(2) + "\n");
     const ComparisonResult result = CompareOptimizers(contenders, def, dir, *evaluator, &folder, mode == FolderMode::Resume, true);
     WriteFileAtomically((fs::path(dir) / "report.md").string(), "# Optimizers compared\n\n" + result.markdown);
     folder.FirstResultDone();

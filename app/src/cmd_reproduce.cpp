@@ -42,11 +42,28 @@ int RunReproduce(int argc, char** argv, int first) {
     cli.App().footer("Examples:\n  actuator reproduce --out thesis/\n  actuator reproduce --out smoke/ --quick\n  actuator reproduce --resume thesis/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     const std::string dir = ResultsDir(cli, o);
+    const FolderMode mode = ResultsMode(cli, o);
 
     // The thesis's files: the source tree this was built from, else where `cmake --install` put them.
     fs::path folder = cli.Given("--experiments") ? fs::path(experiments) : fs::path(ACTUATOR_ASSETS_DIR) / "experiments";
     std::error_code ec;
     if (!cli.Given("--experiments") && !fs::is_directory(folder, ec)) folder = fs::path(ACTUATOR_INSTALLED_ASSETS_DIR) / "experiments";
+    // What the reproduction was started with: a resume continues that one (its folder of experiments,
+    // its part, --quick and --set) and refuses to mix another into it.
+    const fs::path recordPath = fs::path(dir) / "reproduce.json";
+    const auto record = RunRecord(recordPath, mode,
+                                  {{"experiments", "--experiments", cli.Given("--experiments"), fs::absolute(folder).lexically_normal().string()},
+                                   {"part", "--part", cli.Given("--part"), part == Part::Both ? "both" : part == Part::Thesis ? "thesis" : "physical"},
+                                   {"quick", "--quick", cli.Given("--quick"), quick},
+                                   {"sets", "--set", !o.sets.empty(), o.sets}});
+    try {
+        folder = record["experiments"].get<std::string>();
+        part = parts.at(record["part"].get<std::string>());
+        quick = record["quick"].get<bool>();
+        o.sets = record["sets"].get<std::vector<std::string>>();
+    } catch (const std::exception&) {
+        throw UsageError(Quote(recordPath.string()) + " is damaged; start afresh with --overwrite");
+    }
     if (!fs::is_directory(folder, ec)) throw UsageError("--experiments: no folder " + Quote(folder.string()));
     // Part 1 from the folder, part 2 from its shell/ subfolder: (file, results folder relative to DIR).
     auto filesIn = [&](const fs::path& from, const std::string& prefix) {
@@ -72,7 +89,8 @@ int RunReproduce(int argc, char** argv, int first) {
         entries.push_back({e, {}, name});
     }
     const auto evaluator = MakeEvaluator(cli, o);
-    ResultsFolder results(dir, ResultsMode(cli, o), "reproduce");
+    ResultsFolder results(dir, mode, "reproduce");
+    if (mode != FolderMode::Resume) WriteFileAtomically(recordPath.string(), record.dump(2) + "\n");
     const auto started = std::chrono::steady_clock::now();
     for (size_t k = 0; k < entries.size(); ++k) {
         const fs::path sub = fs::path(dir) / entries[k].folder;

@@ -1,5 +1,9 @@
 #include "results_folder.h"
 
+#include "errors.h"
+#include "files.h"
+#include "json_out.h"
+
 #include <fcntl.h>
 #include <limits.h>
 #include <sys/file.h>
@@ -131,6 +135,28 @@ ResultsFolder::~ResultsFolder() {
         fs::rename(setAside_, dir_, ec);
     }
     if (lockFd_ >= 0) ::close(lockFd_);  // the lock file stays; the lock goes with the descriptor
+}
+
+nlohmann::ordered_json RunRecord(const std::filesystem::path& record, FolderMode mode, const std::vector<RunSetting>& settings) {
+    nlohmann::ordered_json now = nlohmann::ordered_json::object();
+    for (const RunSetting& s : settings) now[s.key] = s.value;
+    if (mode != FolderMode::Resume) return now;
+    std::error_code ec;
+    if (!std::filesystem::exists(record, ec))
+        throw UsageError("--resume: " + Quote(record.parent_path().string()) + " holds no " + record.filename().string() + ": it holds no run of this command");
+    nlohmann::ordered_json saved;
+    try {
+        saved = ParseJson(ReadInputFile(record.string()), record.string());
+    } catch (const nlohmann::ordered_json::exception&) {
+        saved = nullptr;
+    }
+    for (const RunSetting& s : settings)
+        if (!saved.is_object() || !saved.contains(s.key)) throw UsageError(Quote(record.string()) + " is damaged (no " + s.key + "); start afresh with --overwrite");
+    for (const RunSetting& s : settings)
+        if (s.given && s.value != saved[s.key])
+            throw UsageError("--resume: " + s.option + " " + Quote(s.value.dump()) + " is not what " + Quote(record.parent_path().string()) +
+                             " was started with (" + Quote(saved[s.key].dump()) + "); a resumed run keeps it (leave it out, or start afresh with --overwrite)");
+    return saved;
 }
 
 }  // namespace app

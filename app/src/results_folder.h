@@ -9,7 +9,9 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace app {
 
@@ -43,5 +45,18 @@ private:
 
 // Whether a folder holds anything but its lock file and temporaries.
 bool HoldsResults(const std::filesystem::path& dir);
+
+// What a run was started with beyond its experiments (a comparison's files, seeds and budget, the
+// reproduction's folder and part), kept in a record in its folder so that --resume continues that
+// run and no other: a setting given again on resume must say what the record says.
+struct RunSetting {
+    std::string key;             // in the record
+    std::string option;          // as the user gives it, for messages ("--seeds")
+    bool given = false;          // given on this command line
+    nlohmann::ordered_json value;  // what this command line says (its default when not given)
+};
+// Fresh or overwritten runs: the settings as given. Resumed runs: the record's, after refusing
+// (UsageError) a given setting that differs from it, or a folder without the record.
+nlohmann::ordered_json RunRecord(const std::filesystem::path& record, FolderMode mode, const std::vector<RunSetting>& settings);
 
 }  // namespace app

@@ -158,7 +158,8 @@ TEST_F(Hardening, InterruptedRunsLeaveNoTemporaries) {
         const fs::path out = dir_ / ("frames_" + std::to_string(signal));
         {
             Child render({ACTUATOR_BIN, "render", "--shape", "sine", "--iterations", "100", "--turntable", "400", "--png-level", "9", "--out", out.string()});
-            ASSERT_TRUE(WaitUntil([&] { return fs::exists(out / "turntable" / "frame_0003.png"); }, 60));
+            // The frames wait as temporaries until the whole set is written (OutputBatch).
+            ASSERT_TRUE(WaitUntil([&] { return fs::exists(out / "turntable") && Temporaries(out).size() >= 4; }, 60));
             render.Kill(signal);
         }
         EXPECT_THAT(Temporaries(out), ::testing::IsEmpty()) << "signal " << signal;
@@ -205,6 +206,16 @@ TEST_F(Hardening, JobsTooLargeForTheMachineAreRefusedUpFront) {
     ExpectRefused("simulate --shape free-xy --offsets /dev/zero", "is a device");
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5);
     ExpectRefused("simulate --resolution 4096 --turns 4096", "vertices");
+    // The physical models' work is bounded from the mesh before anything is built: 1000 x 1000 would
+    // need about 35 GB; a long thin tube meshed near-equilateral (--rings 0) would need far more.
+    ExpectRefused("simulate --model shell --shape cylinder --ring-vertices 1000 --rings 1000", "would need about 35");
+    ExpectRefused("render --model membrane --shape cylinder --ring-vertices 1000 --rings 1000 --out " + Path("big"), "GB per evaluation");
+    ExpectRefused("simulate --model shell --shape cylinder --ring-vertices 4096 --rings 0 --length-mm 1e5", "GB per evaluation");
+    Write("big.json", R"({"id": "b", "model": {"name": "shell", "geometry": {"ring_vertices": 1000, "rings": 1000}},
+        "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
+    ExpectRefused("sweep " + Path("big.json") + " --out " + Path("big"), "GB per evaluation");
+    EXPECT_FALSE(fs::exists(Path("big")));
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 10);
 }
 
 TEST_F(Hardening, LongFileNamesWorkUpToTheSystemsLimit) {
@@ -309,4 +320,70 @@ TEST_F(Hardening, OptimizerParametersAreCheckedAgainstThePopulation) {
         "parameters": {"neighb_param": 1000}, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
     ExpectRefused("evolve " + Path("pso.json") + " --out " + Path("o"), "pso's ring topology (neighb_type 2) needs neighb_param from 2 to the population (8), got 1000");
     EXPECT_FALSE(fs::exists(Path("o")));
+}
+
+// A full disk (here a file-size limit, which fails a write the same way) is exit code 74, one line,
+// and never half of a set of files: a command that writes several writes all or none.
+TEST_F(Hardening, AFullDiskIsExit74AndLeavesNoHalfOfAnOutput) {
+    auto limited = [&](int kilobytes, const std::string& args) {
+        return testing_support::RunShell("ulimit -f " + std::to_string(kilobytes) + "; exec " ACTUATOR_BIN " " + args, dir_);
+    };
+    auto expectFull = [&](const Result& r, std::source_location where = std::source_location::current()) {
+        const ::testing::ScopedTrace trace(where.file_name(), static_cast<int>(where.line()), "");
+        EXPECT_EQ(r.exitCode, 74) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_THAT(r.err, HasSubstr("could not write the output"));
+    };
+    // export: the first solid is larger than the limit; nothing, not even the folder, is left.
+    expectFull(limited(64, "export --model shell --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --out " + Path("part")));
+    EXPECT_FALSE(fs::exists(Path("part")));
+    // render: the two figures (about 130 and 110 kB) fit, the turntable's frames (about 210 kB) do not.
+    expectFull(limited(180, "render --shape sine --amplitude 4.1 --turntable 2 --out " + Path("pictures")));
+    EXPECT_FALSE(fs::exists(Path("pictures")));
+    ASSERT_EQ(Run("render --shape sine --amplitude 4.1 --turntable 2 --out " + Path("pictures")).exitCode, 0);
+    EXPECT_GT(fs::file_size(Path("pictures/turntable/frame_0000.png")), 180u << 10) << "the case no longer tests a set cut in the middle";
+    EXPECT_LT(fs::file_size(Path("pictures/inflation.png")), 180u << 10);
+    // simulate: both meshes or neither (the thesis OBJs are about 60 kB each).
+    expectFull(limited(40, "simulate --iterations 10 --save-initial " + Path("a.obj") + " --save-mesh " + Path("b.obj")));
+    EXPECT_FALSE(fs::exists(Path("a.obj")));
+    EXPECT_FALSE(fs::exists(Path("b.obj")));
+    // A run that writes as it goes stops with 74, keeps whole records, and resumes to the end.
+    expectFull(limited(24, "evolve " + Ga(2) + " --out " + Path("s")));
+    const Result resumed = Run("evolve --resume " + Path("s"));
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    ASSERT_EQ(Run("evolve " + Ga(2) + " --out " + Path("whole")).exitCode, 0);
+    EXPECT_EQ(Slurp(dir_ / "s" / "evaluations.csv"), Slurp(dir_ / "whole" / "evaluations.csv"));
+    EXPECT_EQ(Slurp(dir_ / "s" / "run_1" / "logbook.csv"), Slurp(dir_ / "whole" / "run_1" / "logbook.csv"));
+}
+
+// A resumed run is the run it resumes: reproduce keeps its folder of experiments, its part, --quick
+// and --set; compare its files, seeds and budget. Another one given on resume is refused, not mixed in.
+TEST_F(Hardening, AResumeContinuesTheRunItResumesAndNoOther) {
+    fs::create_directories(dir_ / "mine");
+    Write("mine/s.json", R"({"id": "s", "sim": {"iterations": 200}, "render": {"figures": false},
+        "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})");
+    ASSERT_EQ(Run("reproduce --experiments " + Path("mine") + " --part thesis --out " + Path("r")).exitCode, 0);
+    const std::string report = Slurp(dir_ / "r" / "report.md");
+    fs::remove(dir_ / "r" / "report.md");
+    // From another folder, without --experiments: the run's own experiments, not the thesis's.
+    const Result resumed = testing_support::RunShell(std::string("cd / && ") + ACTUATOR_BIN + " reproduce --resume " + Path("r"), dir_);
+    ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+    EXPECT_TRUE(fs::exists(dir_ / "r" / "report.md"));
+    EXPECT_FALSE(fs::exists(dir_ / "r" / "4.1_amplitude_sweep")) << "the default experiments were started into the run";
+    ExpectRefused("reproduce --resume " + Path("r") + " --experiments " + Path("elsewhere"), "--experiments");
+    ExpectRefused("reproduce --resume " + Path("r") + " --quick", "--quick 'true' is not what");
+    ExpectRefused("reproduce --resume " + Path("r") + " --part both", "--part");
+    ExpectRefused("reproduce --resume " + Path("r") + " --set sim.iterations=300", "--set");
+    EXPECT_FALSE(fs::exists(dir_ / "elsewhere"));
+    // compare: the budget and seeds it was started with.
+    Write("c1.json", R"({"id": "c1", "sim": {"iterations": 200}, "render": {"figures": false}, "optimizer": {"algorithm": "de", "population": 5,
+        "generations": 2, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
+    Write("c2.json", R"({"id": "c2", "sim": {"iterations": 200}, "render": {"figures": false}, "optimizer": {"algorithm": "pso", "population": 5,
+        "generations": 2, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
+    ASSERT_EQ(Run("compare " + Path("c1.json") + " " + Path("c2.json") + " --seeds 1 --evaluations 10 --out " + Path("c")).exitCode, 0);
+    ExpectRefused("compare --resume " + Path("c") + " --evaluations 20", "--evaluations '20' is not what");
+    ExpectRefused("compare --resume " + Path("c") + " --seeds 2", "--seeds '2' is not what");
+    ExpectRefused("compare --resume " + Path("c") + " " + Path("c2.json") + " " + Path("c1.json"), "the experiment files");
+    const Result again = Run("compare --resume " + Path("c") + " --seeds 1");
+    EXPECT_EQ(again.exitCode, 0) << again.err;
 }
