@@ -48,6 +48,14 @@ CLI::Option* Cli::Flag(const std::string& name, bool& target, const std::string&
 bool Cli::Parse(int argc, char** argv, int first) {
     std::vector<std::string> args;
     for (int i = argc - 1; i >= first; --i) args.emplace_back(argv[i]);  // CLI11 takes them reversed
+    // A flag takes no value: CLI11 would read --help=1 or --quick=true as the flag given.
+    for (const std::string& arg : args) {
+        const size_t equals = arg.find('=');
+        if (arg.rfind("--", 0) != 0 || equals == std::string::npos) continue;
+        const CLI::Option* option = app_.get_option_no_throw(arg.substr(0, equals));
+        if (option && option->get_expected_max() == 0)  // a flag; options with an optional value take one
+            throw UsageError(arg.substr(0, equals) + " takes no value (given " + Quote(arg) + "); give " + arg.substr(0, equals) + " alone");
+    }
     try {
         app_.parse(args);
     } catch (const CLI::CallForHelp&) {
