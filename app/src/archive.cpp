@@ -20,9 +20,13 @@ namespace {
 constexpr char kMagic[8] = {'A', 'C', 'T', 'A', 'R', 'C', 'H', '\2'};
 constexpr std::uint32_t kMaxFrameBytes = 1u << 30;
 
-capnp::ReaderOptions ArchiveLimits() {
+// A record's unpacked size is bounded by its frame's: Cap'n Proto's packing shrinks runs of zero
+// words about 100-fold, so a 1 MiB frame could declare a 1 GiB message. Our records unpack to 1.01-1.03
+// times their frame (their meshes are dense numbers); eight times the frame and 64 KiB leaves room for
+// any real one, and the reader refuses a larger message before allocating it.
+capnp::ReaderOptions ArchiveLimits(std::uint64_t frameBytes = 16ull << 20) {
     capnp::ReaderOptions options;
-    options.traversalLimitInWords = 128ull << 20;  // 1 GiB: far above any real evaluation
+    options.traversalLimitInWords = (8 * frameBytes + (64 << 10)) / sizeof(capnp::word);
     options.nestingLimit = 16;
     return options;
 }
@@ -182,7 +186,7 @@ ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::fun
             }
             try {
                 kj::ArrayInputStream stream(kj::ArrayPtr<const kj::byte>(payload.data(), payload.size()));
-                capnp::PackedMessageReader message(stream, ArchiveLimits());
+                capnp::PackedMessageReader message(stream, ArchiveLimits(size));
                 ArchiveRecord record = Decode(message, withMeshes);
                 ++scan.records;
                 scan.goodBytes += sizeof header + size;
@@ -211,7 +215,7 @@ ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::fun
     kj::BufferedInputStreamWrapper stream(raw);
     while (stream.tryGetReadBuffer().size() > 0) {
         try {
-            capnp::PackedMessageReader message(stream, ArchiveLimits());
+            capnp::PackedMessageReader message(stream, ArchiveLimits(static_cast<std::uint64_t>(info.st_size)));
             ArchiveRecord record = Decode(message, withMeshes);
             ++scan.records;
             if (!visit(std::move(record))) break;

@@ -2,6 +2,8 @@
 // mistake, each asserting the exit code, the message, and that nothing was written or lost. Label
 // `hardening`; the sanitizer build (-DACTUATOR_SANITIZE=ON) runs these under ASan and UBSan.
 #include <nlohmann/json.hpp>
+#include <sys/resource.h>
+#include <zlib.h>
 
 #include "cli_fixture.h"
 #include "csv.h"
@@ -386,4 +388,39 @@ TEST_F(Hardening, AResumeContinuesTheRunItResumesAndNoOther) {
     ExpectRefused("compare --resume " + Path("c") + " " + Path("c2.json") + " " + Path("c1.json"), "the experiment files");
     const Result again = Run("compare --resume " + Path("c") + " --seeds 1");
     EXPECT_EQ(again.exitCode, 0) << again.err;
+}
+
+// A record whose checksum is right but whose packed message declares a gigabyte (runs of zero words
+// pack 128-fold): refused as damaged before the reader allocates it.
+TEST_F(Hardening, AnArchiveRecordCannotUnpackToMoreThanAFewTimesItsFrame) {
+    std::string packed;
+    packed += '\x80';  // the segment table's word: one segment (count - 1 = 0) of 0x08000000 words (1 GiB)
+    packed += '\x08';
+    for (int k = 0; k < (1 << 19); ++k) packed += std::string("\x00\xff", 2);  // 2^19 x 256 zero words
+    std::string archive = std::string("ACTARCH\x02", 8);
+    auto u32 = [](std::uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; };
+    const auto crc = static_cast<std::uint32_t>(crc32(crc32(0, nullptr, 0), reinterpret_cast<const Bytef*>(packed.data()), static_cast<uInt>(packed.size())));
+    archive += u32(static_cast<std::uint32_t>(packed.size())) + u32(crc) + packed;
+    Write("bomb.capnp", archive);
+    const Result r = Run("inspect " + Path("bomb.capnp"));
+    EXPECT_THAT(r.err, HasSubstr("record 0 does not decode"));
+    rusage usage{};
+    getrusage(RUSAGE_CHILDREN, &usage);
+    EXPECT_LT(usage.ru_maxrss, 256 << 10) << "KB: the record was unpacked";
+}
+
+// A flag takes no value (CLI11 would read --help=1 or --quick=true as the flag), and an evaluation
+// option that has nothing to act on is refused: threads on this machine with only servers to run on.
+TEST_F(Hardening, FlagsTakeNoValueAndOptionsWithoutEffectAreRefused) {
+    for (const std::string command : {"simulate", "render", "sweep", "evolve", "reproduce", "export", "compare", "inspect", "serve", "imgdiff"})
+        ExpectRefused(command + " --help=1", "--help takes no value");
+    ExpectRefused("reproduce --quick=true --out " + Path("r"), "--quick takes no value");
+    ExpectRefused("render --shape sine --video=1 --out " + Path("r"), "--video takes no value");
+    EXPECT_FALSE(fs::exists(Path("r")));
+    ExpectRefused("evolve " + Ga(1) + " --out " + Path("r") + " --threads 2 --workers 127.0.0.1:1", "--threads counts this machine's threads");
+    ExpectRefused("simulate --model shell --shape cylinder --force-n 3", "--force-n applies to --load force, not --load inflate");
+    ExpectRefused("simulate --model shell --load force --pressure-kpa 20", "--pressure-kpa applies to --load inflate, gas or blocked, not --load force");
+    ExpectRefused("simulate --model shell --volume-ratio 2", "--volume-ratio applies to --load volume");
+    ExpectRefused("export --model shell --shape cylinder --pressure-kpa 20 --out " + Path("r"), "nothing is simulated");
+    EXPECT_FALSE(fs::exists(Path("r")));
 }
