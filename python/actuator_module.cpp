@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <numbers>
 #include <optional>
@@ -77,6 +79,7 @@ sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std:
         if (load) job.shell.load = *load;
         if (solver) job.shell.solver = *solver;
         if (fibres) job.shell.fibres = *fibres;
+        if (const std::string error = app::ShellFieldsWithoutEffect(job.shell); !error.empty()) throw py::value_error(error);
     }
     if (const std::string error = sim::JobError(job); !error.empty()) throw py::value_error(error);
     return job;
@@ -168,6 +171,21 @@ bool FramesWanted(const py::object& asFrame) {
     return PandasInstalled();
 }
 
+// A path argument as Python's own functions take one (os.fspath): str, bytes (decoded as the file
+// system does) or any os.PathLike; anything else is a TypeError naming the argument.
+std::string FsPath(const py::object& value, const char* what) {
+    const py::module_ os = py::module_::import("os");
+    if (!py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value) && !py::hasattr(value, "__fspath__"))
+        throw py::type_error(fmt::format("{}: expected a path (str, bytes or os.PathLike), got {}", what, std::string(py::str(value.get_type().attr("__name__")))));
+    return os.attr("fsdecode")(os.attr("fspath")(value)).cast<std::string>();
+}
+
+// A number argument that must be finite, as the command line's are.
+double Finite(double value, const char* what) {
+    if (!std::isfinite(value)) throw py::value_error(fmt::format("{}: {} is not a finite number", what, value));
+    return value;
+}
+
 struct RunArgs {
     int threads = 0;
     py::object map, workers, asFrame;
@@ -178,14 +196,24 @@ struct RunArgs {
 // Runs an experiment (a dict, or the path of a JSON file) into `out` (new or empty; or, with resume,
 // a folder an interrupted run left) and returns its summary and its tables: results.csv for a sweep
 // or a list, each run's logbook.csv (and pareto_front.csv) for the GA and the optimizers.
-py::dict RunExperimentFromPython(const py::object& experiment, const std::string& out, const RunArgs& args, std::optional<app::ExperimentKind> kind) {
+py::dict RunExperimentFromPython(const py::object& experiment, const py::object& outPath, const RunArgs& args, std::optional<app::ExperimentKind> kind) {
     namespace fs = std::filesystem;
+    const std::string out = FsPath(outPath, "out");
     app::Experiment e;
     if (py::isinstance<py::dict>(experiment)) {
-        const std::string text = py::str(py::module_::import("json").attr("dumps")(experiment));
+        // allow_nan=False: NaN is not JSON, and the experiment file format has none.
+        std::string text;
+        try {
+            text = py::str(py::module_::import("json").attr("dumps")(experiment, py::arg("allow_nan") = false));
+        } catch (py::error_already_set& error) {
+            if (!error.matches(PyExc_ValueError) && !error.matches(PyExc_TypeError) && !error.matches(PyExc_RecursionError)) throw;
+            throw py::value_error(std::string("experiment: not an experiment in JSON's terms (") + error.what() + ")");
+        }
         e = app::ParseExperiment(text, "<dict>");
     } else {
-        e = app::LoadExperiment(experiment.cast<std::string>());
+        if (!py::isinstance<py::str>(experiment) && !py::isinstance<py::bytes>(experiment) && !py::hasattr(experiment, "__fspath__"))
+            throw py::type_error(fmt::format("experiment: expected a dict or a path, got {}", std::string(py::str(experiment.get_type().attr("__name__")))));
+        e = app::LoadExperiment(FsPath(experiment, "experiment"));
     }
     if (kind && e.kind != *kind) {
         throw py::value_error(fmt::format("this experiment is a '{}' one; use actuator.run (or the function of that name)", sim::Name(e.kind)));
@@ -297,11 +325,17 @@ PYBIND11_MODULE(actuator, m) {
                         [](const py::bytes& b) { return Design{app::JobFromBytes(b.cast<std::string>()).shape}; }));
     m.def("cylinder", []() { return Design{sim::CylinderShape{}}; }, "The plain tube of radius 1.");
     const sim::SineShape sine;
-    m.def("sine", [](double amplitude, std::pair<double, double> phase) { return Design{sim::SineShape{amplitude, phase.first, phase.second}}; },
+    m.def("sine",
+          [](double amplitude, std::pair<double, double> phase) {
+              return Design{sim::SineShape{Finite(amplitude, "amplitude"), Finite(phase.first, "phase"), Finite(phase.second, "phase")}};
+          },
           py::arg("amplitude") = sine.amplitude, py::arg("phase") = std::pair{sine.phaseStart, sine.phaseEnd},
           "Radius A sin(phase) along the tube (thesis chapter 4).");
     const sim::AbsSineShape absSine;
-    m.def("abs_sine", [](double amplitude, std::pair<double, double> phase) { return Design{sim::AbsSineShape{amplitude, phase.first, phase.second}}; },
+    m.def("abs_sine",
+          [](double amplitude, std::pair<double, double> phase) {
+              return Design{sim::AbsSineShape{Finite(amplitude, "amplitude"), Finite(phase.first, "phase"), Finite(phase.second, "phase")}};
+          },
           py::arg("amplitude") = absSine.amplitude, py::arg("phase") = std::pair{absSine.phaseStart, absSine.phaseEnd},
           "Radius A |sin(phase)| along the tube (thesis 4.3).");
     m.def(
@@ -309,12 +343,20 @@ PYBIND11_MODULE(actuator, m) {
         [](std::vector<std::vector<double>> controlPoints, const std::string& region) {
             const auto r = sim::FromName<sim::SplineRegion>(region);
             if (!r) throw py::value_error("region: unknown value '" + region + "' (choose " + sim::Choices<sim::SplineRegion>() + ")");
+            for (const auto& spline : controlPoints)
+                for (double c : spline) Finite(c, "control_points");
             return Design{sim::BSplineShape{*r, std::move(controlPoints)}};
         },
         py::arg("control_points"), py::arg("region") = std::string(sim::Name(sim::BSplineShape{}.region)),
         "Radius from 1, 2 or 4 cubic B-splines (one per angular sector), over the middle or the entire tube (thesis chapter 5).");
     m.def(
-        "free_xy", [](std::vector<double> dx, std::vector<double> dy) { return Design{sim::FreeXYShape{std::move(dx), std::move(dy)}}; }, py::arg("dx"),
+        "free_xy",
+        [](std::vector<double> dx, std::vector<double> dy) {
+            for (double v : dx) Finite(v, "dx");
+            for (double v : dy) Finite(v, "dy");
+            return Design{sim::FreeXYShape{std::move(dx), std::move(dy)}};
+        },
+        py::arg("dx"),
         py::arg("dy"), "The plain tube with an (dx, dy) offset per vertex of the model's mesh (thesis 5.5).");
 
     BindDef<sim::SimParams>(m, "ThesisParams", "The thesis model's constants (shared/MODEL.md).", sim::DefaultSimParams());
@@ -411,7 +453,7 @@ PYBIND11_MODULE(actuator, m) {
     auto bindRun = [&](const char* name, std::optional<app::ExperimentKind> kind, const std::string& doc) {
         m.def(
             name,
-            [kind](const py::object& e, const std::string& out, int threads, const py::object& map, const py::object& workers, bool resume,
+            [kind](const py::object& e, const py::object& out, int threads, const py::object& map, const py::object& workers, bool resume,
                    const py::object& asFrame, bool progress) {
                 return RunExperimentFromPython(e, out, RunArgs{threads, map, workers, asFrame, resume, progress}, kind);
             },
@@ -429,8 +471,9 @@ PYBIND11_MODULE(actuator, m) {
         [](const Evaluated& e, const py::object& path, const std::string& view, double angleDeg, int width, int height, const std::string& colouring,
            int supersample, bool overwrite) -> py::object {
             std::string target;
+            Finite(angleDeg, "angle_deg");
             if (!path.is_none()) {
-                target = py::str(path);
+                target = FsPath(path, "path");
                 if (std::filesystem::exists(target) && !overwrite)
                     throw py::value_error("path: " + target + " exists; pass overwrite=True to replace it, or another path");
             }
@@ -461,7 +504,8 @@ PYBIND11_MODULE(actuator, m) {
         .def("__next__", &ArchiveIterator::Next);
     m.def(
         "open_archive",
-        [](const std::string& path, bool meshes) {
+        [](const py::object& where, bool meshes) {
+            const std::string path = FsPath(where, "path");
             app::ScanArchive(path, false, [](app::ArchiveRecord&&) { return false; });  // refuses a missing file or a non-archive now
             return ArchiveIterator(path, meshes);
         },

@@ -38,14 +38,20 @@ struct FieldReader {
 struct FieldWriter {
     const std::string& key;
     const py::object& value;
+    // A wrong type is a TypeError naming the field (pybind's own cast error names none).
+    void Expect(bool ok, const char* k, const char* wanted) const {
+        if (!ok) throw py::type_error(fmt::format("{}: expected {}, got {}", k, wanted, std::string(py::str(value.get_type().attr("__name__")))));
+    }
     void Integer(const char* k, int& v, const char*, long long min, long long max) {
         if (key != k) return;
+        Expect(py::hasattr(value, "__index__") && !py::isinstance<py::bool_>(value), k, "an int");  // NumPy's integers too
         const long long x = value.cast<long long>();
         if (x < min || x > max) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", k, x, min, max));
         v = static_cast<int>(x);
     }
     void Number(const char* k, double& v, const char*, double min, double max) {
         if (key != k) return;
+        Expect(py::hasattr(value, "__float__") && !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value), k, "a number");
         const double x = value.cast<double>();
         if (!(x >= min && x <= max)) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", k, x, min, max));
         v = x;
@@ -53,6 +59,7 @@ struct FieldWriter {
     template <class E>
     void Enum(const char* k, E& v, const char*) {
         if (key != k) return;
+        Expect(py::isinstance<py::str>(value), k, "a name (str)");
         const std::string text = value.cast<std::string>();
         const auto parsed = sim::FromName<E>(text);
         if (!parsed) throw py::value_error(fmt::format("{}: unknown value '{}' (choose {})", k, text, sim::Choices<E>()));

@@ -361,3 +361,53 @@ def test_ctrl_c_stops_a_long_local_run_and_it_resumes(tmp_path):
     actuator.sweep(sweep, str(tmp_path / "cut"), threads=2, resume=True)
     actuator.sweep(sweep, str(tmp_path / "whole"), threads=2)
     assert (tmp_path / "cut" / "results.csv").read_bytes() == (tmp_path / "whole" / "results.csv").read_bytes()
+
+
+def test_paths_are_taken_as_python_takes_them_and_wrong_types_are_type_errors(tmp_path):
+    import pathlib
+    r = actuator.evaluate(actuator.sine(4.1), params=actuator.ThesisParams(iterations=200))
+    # bytes and os.PathLike name the file they name (not "b'x.png'").
+    actuator.render(r, os.fsencode(str(tmp_path / "bytes.png")), width=64, height=48)
+    actuator.render(r, tmp_path / "pathlike.png", width=64, height=48)
+    assert (tmp_path / "bytes.png").exists() and (tmp_path / "pathlike.png").exists()
+    assert not any("b'" in p.name for p in tmp_path.iterdir())
+    with pytest.raises(TypeError, match="path: expected a path"):
+        actuator.render(r, 42)
+    experiment = tmp_path / "s.json"
+    experiment.write_text(json.dumps({"id": "s", "sim": {"iterations": 100}, "render": {"figures": False, "thumbnails": False},
+                                      "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}}))
+    out = actuator.sweep(pathlib.Path(experiment), pathlib.Path(tmp_path / "run"))
+    assert len(out["tables"]["results"]) == 2
+    with pytest.raises(TypeError, match="experiment: expected a dict or a path"):
+        actuator.sweep(3.5, tmp_path / "other")
+    assert len(list(actuator.open_archive(pathlib.Path(tmp_path / "run" / "evaluations.capnp"), meshes=False))) == 2
+    # Numbers are finite and fields are typed, naming the field.
+    for call in (lambda: actuator.sine(float("nan")), lambda: actuator.sine(1, (0, float("inf"))),
+                 lambda: actuator.bspline([[1, 2, float("nan"), 4, 5]]), lambda: actuator.render(r, view="turntable", angle_deg=float("nan"))):
+        with pytest.raises(ValueError, match="not a finite number"):
+            call()
+    with pytest.raises(ValueError, match="fibre_angle_deg"):
+        actuator.Fibres(fibre_angle_deg=float("nan"))
+    with pytest.raises(TypeError, match="pressure_kpa: expected a number, got str"):
+        actuator.Load(pressure_kpa="3")
+    with pytest.raises(TypeError, match="steps: expected an int, got float"):
+        actuator.Load(steps=2.5)
+    assert actuator.Load(steps=np.int64(3)).steps == 3
+    with pytest.raises(ValueError, match="not an experiment in JSON"):
+        actuator.sweep({"id": "n", "note": float("nan")}, tmp_path / "nan")
+    # A deeply nested experiment file is refused, not a crash.
+    deep = tmp_path / "deep.json"
+    deep.write_text('{"id": "d", "note": ' + "[" * 100000 + "]" * 100000 + "}")
+    with pytest.raises(ValueError, match="levels deep"):
+        actuator.sweep(deep, tmp_path / "deep")
+
+
+def test_a_field_without_effect_is_refused_as_on_the_command_line():
+    with pytest.raises(ValueError, match="force_n: has no effect: it applies when kind is force, not inflate"):
+        actuator.evaluate(actuator.cylinder(), model="shell", load=actuator.Load(force_n=3))
+    with pytest.raises(ValueError, match="fibre_angle_deg: has no effect"):
+        actuator.evaluate(actuator.cylinder(), model="shell", fibres=actuator.Fibres(fibre_angle_deg=40))
+    small = actuator.Geometry(ring_vertices=12, rings=16)
+    r = actuator.evaluate(actuator.cylinder(), model="shell", geometry=small, load=actuator.Load(pressure_kpa=1, steps=1),
+                          fibres=actuator.Fibres(fibres="braid", fibre_angle_deg=40))
+    assert r.status == "ok" and r.contraction_percent > 0
