@@ -69,13 +69,15 @@ int RunExport(int argc, char** argv, int first) {
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         job = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
         if (job.model != sim::ModelKind::Thesis) cli.CopyGivenFields(model.shell.geometry, job.shell.geometry);
+        cli.RefuseIfGiven("--material", "does not go with --from: the material comes from the archive");
+        cli.RefuseFields(model.materialFields, "does not go with --from: the material comes from the archive");
+        RefuseOptionsWithoutEffect(cli, model, job, ModelUse::RestShape);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
-        job = BuildJob(cli, shape, model);
+        job = BuildJob(cli, shape, model, ModelUse::RestShape);
     }
     const sim::PartDef part = PartDefOf(cli, partOptions, job);
     const sim::MoldDef& mold = partOptions.mold;
-    if (cli.Given("--port-mm") && !partOptions.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
     const sim::PartSolids solids = BuildSolids(job, part, mold, partOptions.fittings);
 
     // The folder: new or empty, so that a part's files never mix with another's.

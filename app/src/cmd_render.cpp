@@ -233,7 +233,7 @@ int RunRender(int argc, char** argv, int first) {
             throw UsageError("evaluation " + std::to_string(index) + " of " + Quote(from) + " has no usable meshes");
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
-        job = BuildJob(cli, shape, model);
+        job = BuildJob(cli, shape, model, cli.Given("--solid") ? ModelUse::RestShape : ModelUse::BothLoads);
         if (job.model == sim::ModelKind::Thesis)
             cli.RefuseIfGiven("--load", "does not apply to --model thesis here: render shows both of its loads (inflation and stretch)");
     }
@@ -253,8 +253,12 @@ int RunRender(int argc, char** argv, int first) {
         if (solid != "cutaway" && solid != "mold") throw UsageError("--solid: unknown value " + Quote(solid) + " (choose cutaway or mold)");
         for (const char* option : {"--turntable", "--timelapse", "--video"})
             cli.RefuseIfGiven(option, "does not go with --solid (a picture of the exported solids, nothing is simulated)");
+        cli.RefuseIfGiven("--wireframe", "draws the simulation mesh's edges; the solids are drawn without them");
+        if (solid == "cutaway")
+            for (const auto& names : {MoldOptionNames(), std::vector<std::string>{"--fittings", "--port-mm"}})
+                for (const auto& name : names) cli.RefuseIfGiven(name, "applies to --solid mold (the cut-away shows the wall alone)");
         const sim::PartDef part = PartDefOf(cli, partOptions, job);
-        const sim::PartSolids solids = BuildSolids(job, part, partOptions.mold);
+        const sim::PartSolids solids = BuildSolids(job, part, partOptions.mold, partOptions.fittings);
         const fs::path out = p.out;
         CreatedFolders folders;
         folders.Create(out, "--out");
@@ -266,6 +270,8 @@ int RunRender(int argc, char** argv, int first) {
         std::cout << Json{{"image", file}, {"silicone_volume_mm3", sim::MeshVolume(solids.actuator)}}.dump() << "\n";
         return 0;
     }
+    for (const auto& names : {PartOptionNames(), MoldOptionNames()})
+        for (const auto& name : names) cli.RefuseIfGiven(name, "applies to --solid (the pictures of the solids export makes)");
     const double snapshotBytes = double(p.timelapse) * SharedSurface(job)->vertexCount * 3 * sizeof(double);
     if (snapshotBytes > kMaxSnapshotBytes)
         throw UsageError(fmt::format("--timelapse: {} frames of {} vertices would hold {:.1f} GB of snapshots, more than {:.0f} GB; use fewer frames or a "

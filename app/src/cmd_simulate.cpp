@@ -75,10 +75,11 @@ int RunSimulate(int argc, char** argv, int first) {
             cli.CopyGivenFields(model.shell.fibres, job.shell.fibres);
             if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(model.load, "--load");
         }
+        RefuseOptionsWithoutEffect(cli, model, job, ModelUse::Simulate);
         if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
-        job = BuildJob(cli, shape, model);
+        job = BuildJob(cli, shape, model, ModelUse::Simulate);
     }
     CheckObjPath(cli, "--save-mesh", saveMesh);
     CheckObjPath(cli, "--save-initial", saveInitial);

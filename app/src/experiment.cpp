@@ -353,6 +353,17 @@ LabelledShape ParseListedShape(ObjectReader shape, size_t k, const sim::MeshDef&
     return labelled;
 }
 
+// A given key of a shell model block that has no effect under the definition is refused, naming
+// what decides: '"kind": "force"' for the load's keys, '"law"' for the material's, and so on.
+void RefuseKeysWithoutEffect(ObjectReader& block, const sim::ShellDef& shell, std::initializer_list<const char*> keys) {
+    for (const char* key : keys) {
+        if (!block.Has(key)) continue;
+        const FieldUse use = ShellFieldUse(shell, key);
+        if (!use.Applies())
+            block.Fail(fmt::format("has no effect here: it applies when \"{}\" is {}, not {}", use.decider, use.values, use.now), key);
+    }
+}
+
 // "model": {"name": "shell", "geometry": {...}, "material": {"preset": ..., "mu_kpa": ...},
 // "load": {"kind": ..., "pressure_kpa": ...}, "solver": {...}}. The thesis model takes only its name
 // (its settings are the "sim" and "mesh" blocks).
@@ -370,6 +381,7 @@ void ParseModel(ObjectReader model, Experiment& e) {
     if (model.Has("geometry")) {
         ObjectReader geometry = model.Object("geometry");
         geometry.Fields(shell.geometry);
+        RefuseKeysWithoutEffect(geometry, shell, {"clamp_rings"});
         geometry.Finish();
     }
     if (model.Has("material")) {
@@ -379,17 +391,22 @@ void ParseModel(ObjectReader model, Experiment& e) {
         sim::MaterialDef given = shell.material;
         material.Fields(given);
         shell.material = MaterialWithOverrides(preset, given, [&](const char* key) { return material.Has(key); });
+        RefuseKeysWithoutEffect(material, shell, {"mu_kpa", "c10_kpa", "c01_kpa", "c20_kpa", "c30_kpa"});
+        // Experiments evaluate; nothing in them weighs the silicone (export does, from its own options).
+        if (material.Has("density_kg_per_m3")) material.Fail("has no effect in an experiment: nothing here weighs the silicone", "density_kg_per_m3");
         material.Finish();
     }
     if (model.Has("load")) {
         ObjectReader load = model.Object("load");
         load.Enum("kind", shell.load.kind);
         load.Fields(shell.load);
+        RefuseKeysWithoutEffect(load, shell, {"pressure_kpa", "force_n", "volume_ratio"});
         load.Finish();
     }
     if (model.Has("solver")) {
         ObjectReader solver = model.Object("solver");
         solver.Fields(shell.solver);
+        RefuseKeysWithoutEffect(solver, shell, {"max_bisections"});
         solver.Finish();
     }
     // Fibres: the command line's keys, plus angles by band along the length or by sector.
@@ -409,8 +426,51 @@ void ParseModel(ObjectReader model, Experiment& e) {
     if (model.Has("fibre_sectors_deg"))
         for (const auto& angle : model.Array("fibre_sectors_deg", 1, 4, "a list of 1, 2 or 4 angles (degrees)"))
             shell.fibres.sectorAnglesDeg.push_back(model.NumberValue(angle, "fibre_sectors_deg", -90, 90));
+    RefuseKeysWithoutEffect(model, shell, {"fibre_angle_deg", "fibre_stiffness_n_per_mm"});
+    if ((model.Has("fibre_bands") || model.Has("fibre_sectors_deg")) &&
+        (shell.fibres.layout != sim::FibreLayout::Braid && shell.fibres.layout != sim::FibreLayout::Single))
+        model.Fail(fmt::format("has no effect here: it applies when \"fibres\" is braid or single, not {}", sim::Name(shell.fibres.layout)),
+                   model.Has("fibre_bands") ? "fibre_bands" : "fibre_sectors_deg");
     model.Finish();
     if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
+}
+
+// Keys whose value the experiment itself replaces have no effect, and are refused as the command
+// line refuses an option that does not apply: a model setting a sweep axis varies, the shape's
+// amplitude under an amplitude axis, fibre angles under the genome's fibre angle genes.
+void RefuseReplacedKeys(const Experiment& e) {
+    const Json& d = e.document;
+    auto given = [&](std::initializer_list<const char*> path) {
+        const Json* node = &d;
+        for (const char* key : path) {
+            if (!node->is_object() || !node->contains(key)) return false;
+            node = &(*node)[key];
+        }
+        return true;
+    };
+    auto refuse = [&](const std::string& key, const std::string& why) {
+        throw UsageError(e.path + ": '" + key + "': has no effect here: " + why + "; leave it out");
+    };
+    if (e.kind == ExperimentKind::Sweep)
+        for (size_t k = 0; k < e.sweep.axes.size(); ++k) {
+            const std::string axis = fmt::format("sweep.axes[{}] varies it", k);
+            switch (e.sweep.axes[k].parameter) {
+                case sim::SweepParameter::PressureKpa:
+                    if (given({"model", "load", "pressure_kpa"})) refuse("model.load.pressure_kpa", axis);
+                    break;
+                case sim::SweepParameter::FibreAngleDeg:
+                    if (given({"model", "fibre_angle_deg"})) refuse("model.fibre_angle_deg", axis);
+                    break;
+                case sim::SweepParameter::Amplitude:
+                    if (given({"sweep", "shape", "amplitude"})) refuse("sweep.shape.amplitude", axis);
+                    break;
+                default: break;
+            }
+        }
+    const sim::GenomeDef* genes = e.kind == ExperimentKind::Evolve ? &e.ga.genome : e.kind == ExperimentKind::Optimize ? &e.optimizer.genome.genes : nullptr;
+    if (genes && genes->fibreAngles > 0)
+        for (const char* key : {"fibre_angle_deg", "fibre_bands", "fibre_sectors_deg"})
+            if (given({"model", key})) refuse(std::string("model.") + key, "the genome's fibre angle genes give the angles");
 }
 
 // A B-spline genome's "control": [min, max], whole numbers (the GA's and the optimizers').
@@ -743,6 +803,7 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
         case ExperimentKind::Evolve: ParseGa(top.Object("evolve"), e); break;
         case ExperimentKind::Optimize: ParseOptimizer(top.Object("optimizer"), e); break;
     }
+    RefuseReplacedKeys(e);
     if (top.Has("render")) {
         ObjectReader render = top.Object("render");
         render.Bool("figures", e.render.figures);

@@ -16,6 +16,8 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "sim/batch.h"
 #include "sim/mesh.h"
@@ -149,6 +151,101 @@ void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("sprue_deg", m.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120);
     v.Number("vent_deg", m.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60);
     v.Number("pin_clearance_mm", m.pinClearanceMm, "the registration pins' taper: their tops this much inside their holes, mm", 0, 10);
+}
+
+// Where a field has an effect, for refusing one that is given where it has none. `decider` is empty
+// when the field applies under the definition; otherwise it is the key of the field that decides
+// ("kind" of the load, "law", "ends", "fibres"), with the values under which the field applies and
+// the value the decider has.
+struct FieldUse {
+    std::string decider, values, now;
+    bool Applies() const { return decider.empty(); }
+};
+
+inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
+    auto unless = [](bool applies, const char* decider, std::string values, const char* now) {
+        return applies ? FieldUse{} : FieldUse{decider, std::move(values), now};
+    };
+    const sim::ShellLoad load = def.load.kind;
+    const sim::MaterialLaw law = def.material.law;
+    const sim::FibreLayout fibres = def.fibres.layout;
+    using L = sim::ShellLoad;
+    using M = sim::MaterialLaw;
+    if (key == "pressure_kpa") return unless(load == L::Inflate || load == L::Gas || load == L::Blocked, "kind", "inflate, gas or blocked", sim::Name(load));
+    if (key == "force_n") return unless(load == L::Force, "kind", "force", sim::Name(load));
+    if (key == "volume_ratio") return unless(load == L::Volume, "kind", "volume", sim::Name(load));
+    // Volume control follows its steps as they are; the others halve a step that fails.
+    if (key == "max_bisections") return unless(load != L::Volume, "kind", "inflate, gas, force or blocked", sim::Name(load));
+    if (key == "mu_kpa") return unless(law == M::NeoHookean, "law", "neo-hookean", sim::Name(law));
+    if (key == "c10_kpa") return unless(law != M::NeoHookean, "law", "mooney-rivlin or yeoh", sim::Name(law));
+    if (key == "c01_kpa") return unless(law == M::MooneyRivlin, "law", "mooney-rivlin", sim::Name(law));
+    if (key == "c20_kpa" || key == "c30_kpa") return unless(law == M::Yeoh, "law", "yeoh", sim::Name(law));
+    // Sliding ends hold the end rings alone; the clamp's rings are a clamp's.
+    if (key == "clamp_rings") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
+    if (key == "fibre_stiffness_n_per_mm") return unless(fibres != sim::FibreLayout::None, "fibres", "meridian, hoop, braid or single", sim::Name(fibres));
+    if (key == "fibre_angle_deg") {
+        // Meridian and hoop fibres have their angle (0 and 90 degrees); bands and sectors give their own.
+        if (!def.fibres.bands.empty() || !def.fibres.sectorAnglesDeg.empty())
+            return FieldUse{def.fibres.bands.empty() ? "fibre_sectors_deg" : "fibre_bands", "none given", "given"};
+        return unless(fibres == sim::FibreLayout::Braid || fibres == sim::FibreLayout::Single, "fibres", "braid or single", sim::Name(fibres));
+    }
+    return {};
+}
+
+inline FieldUse ThesisFieldUse(const sim::SimParams& p, std::string_view key) {
+    // With no load the rest shape is at rest: nothing moves, whatever its springs or step.
+    if ((key == "spring_constant" || key == "step_scale") && p.load == sim::Load::None) return FieldUse{"load", "inflate or stretch", "none"};
+    if (key == "pressure_scale" && p.load != sim::Load::Inflate) return FieldUse{"load", "inflate", sim::Name(p.load)};
+    if (key == "pull_force" && p.load != sim::Load::Stretch) return FieldUse{"load", "stretch", sim::Name(p.load)};
+    return {};
+}
+
+namespace detail {
+// The keys of the fields whose value in `def` differs from that in `reference`.
+template <class Def>
+struct ChangeFinder {
+    const Def& def;
+    const Def& reference;
+    std::vector<std::string>& keys;
+    template <class T>
+    const T& Same(const T& field) const {
+        const auto offset = reinterpret_cast<const char*>(&field) - reinterpret_cast<const char*>(&def);
+        return *reinterpret_cast<const T*>(reinterpret_cast<const char*>(&reference) + offset);
+    }
+    void Integer(const char* key, const int& v, const char*, long long, long long) {
+        if (v != Same(v)) keys.push_back(key);
+    }
+    void Number(const char* key, const double& v, const char*, double, double) {
+        if (!(v == Same(v))) keys.push_back(key);
+    }
+    template <class E>
+    void Enum(const char* key, const E& v, const char*) {
+        if (v != Same(v)) keys.push_back(key);
+    }
+};
+}  // namespace detail
+
+template <class Def>
+std::vector<std::string> ChangedKeys(const Def& def, const Def& reference) {
+    std::vector<std::string> keys;
+    VisitFields(def, detail::ChangeFinder<Def>{def, reference, keys});
+    return keys;
+}
+
+// For definitions made without a command line (Python): the first field set away from its default
+// (the material's: its preset's) that has no effect, as "force_n: has no effect: it applies when kind
+// is force, not inflate"; empty when there is none.
+inline std::string ShellFieldsWithoutEffect(const sim::ShellDef& def) {
+    const sim::ShellDef defaults = sim::DefaultShellDef();
+    const sim::MaterialDef preset = def.material.preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(def.material.preset);
+    std::vector<std::string> keys;
+    for (const auto& part : {ChangedKeys(def.geometry, defaults.geometry), ChangedKeys(def.material, preset), ChangedKeys(def.load, defaults.load),
+                             ChangedKeys(def.solver, defaults.solver), ChangedKeys(def.fibres, defaults.fibres)})
+        keys.insert(keys.end(), part.begin(), part.end());
+    for (const auto& key : keys)
+        if (const FieldUse use = ShellFieldUse(def, key); !use.Applies())
+            return key + ": has no effect: it applies when " + use.decider + " is " + use.values + ", not " + use.now;
+    return "";
 }
 
 namespace detail {

@@ -57,31 +57,96 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Fields(o.shell.fibres);
 }
 
-void ApplyModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job) {
-    job.model = o.model;
-    const bool thesis = o.model == sim::ModelKind::Thesis;
-    const std::string model = std::string("--model ") + sim::Name(o.model);
-    std::vector<std::string> shellOptions = OptionNames(o.shell.geometry);
-    for (auto* list : {&o.materialFields}) {
-        auto names = OptionNames(*list);
-        shellOptions.insert(shellOptions.end(), names.begin(), names.end());
-    }
-    for (const auto& names : {OptionNames(o.shell.load), OptionNames(o.shell.solver), OptionNames(o.shell.fibres)})
-        shellOptions.insert(shellOptions.end(), names.begin(), names.end());
-    shellOptions.push_back("--material");
-    std::vector<std::string> thesisOptions = OptionNames(o.thesis);
-    std::erase(thesisOptions, "--load");
-    if (thesis) {
+namespace {
+
+// The option that decides where a field applies: the load's kind is --load; the others their key's.
+std::string DeciderOption(const std::string& decider) { return decider == "kind" ? "--load" : OptionName(decider.c_str()); }
+
+// The options of a def's fields that were given, with their keys.
+template <class Def>
+std::vector<std::string> GivenKeys(const Cli& cli, const Def& def) {
+    std::vector<std::string> names = OptionNames(def), keys;
+    for (const auto& name : names)
+        if (cli.Given(name)) {
+            std::string key = name.substr(2);
+            for (char& c : key)
+                if (c == '-') c = '_';
+            keys.push_back(key);
+        }
+    return keys;
+}
+
+}  // namespace
+
+void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::EvalJob& job, ModelUse use) {
+    // The other model's options.
+    const std::string model = std::string("--model ") + sim::Name(job.model);
+    if (job.model == sim::ModelKind::Thesis) {
+        std::vector<std::string> shellOptions{"--material"};
+        for (const auto& names : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.solver),
+                                  OptionNames(o.shell.fibres)})
+            shellOptions.insert(shellOptions.end(), names.begin(), names.end());
         for (const auto& name : shellOptions) cli.RefuseIfGiven(name, "does not apply to --model thesis (it is an option of the membrane and shell models)");
-        job.params = o.thesis;
-        if (cli.Given("--load")) job.params.load = ThesisLoad(o.load, "--load");
+    } else {
+        for (const auto& name : OptionNames(o.thesis))
+            if (name != "--load") cli.RefuseIfGiven(name, "does not apply to " + model + " (it is an option of the thesis model)");
+    }
+    if (job.model == sim::ModelKind::Thesis) {
+        if (use == ModelUse::RestShape) {
+            for (const auto& key : GivenKeys(cli, o.thesis))
+                cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (the part is the rest shape)");
+            cli.RefuseIfGiven("--load", "does not apply here: nothing is simulated (the part is the rest shape)");
+            return;
+        }
+        if (use == ModelUse::BothLoads) return;  // both loads are drawn: every constant has an effect
+        for (const auto& key : GivenKeys(cli, o.thesis))
+            if (const FieldUse u = ThesisFieldUse(job.params, key); !u.Applies())
+                throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) +
+                                 " " + u.now);
         return;
     }
-    for (const auto& name : thesisOptions) cli.RefuseIfGiven(name, "does not apply to " + model + " (it is an option of the thesis model)");
+    const std::string nothing = "does not apply here: nothing is simulated (the part is the rest shape, its geometry and silicone)";
+    if (use == ModelUse::RestShape) {
+        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres)})
+            for (const auto& key : keys) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
+        cli.RefuseIfGiven("--load", nothing);
+        cli.RefuseIfGiven("--ends", nothing);
+        for (const auto& key : GivenKeys(cli, o.materialFields))
+            if (key != "density_kg_per_m3") cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (of the material, the part uses its density)");
+    } else {
+        cli.RefuseIfGiven("--density-kg-per-m3", "applies to export (the silicone's mass); nothing here uses it");
+    }
+    std::vector<std::string> keys;
+    for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.solver),
+                             GivenKeys(cli, o.shell.fibres)})
+        keys.insert(keys.end(), part.begin(), part.end());
+    for (const auto& key : keys)
+        if (const FieldUse u = ShellFieldUse(job.shell, key); !u.Applies())
+            throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) + " " +
+                             u.now);
+}
+
+void ApplyModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job, ModelUse use) {
+    job.model = o.model;
+    if (o.model == sim::ModelKind::Thesis) {
+        job.params = o.thesis;
+        if (cli.Given("--load")) job.params.load = ThesisLoad(o.load, "--load");
+        RefuseOptionsWithoutEffect(cli, o, job, use);
+        return;
+    }
     job.shell = o.shell;
     job.shell.material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
     if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(o.load, "--load");
-    if (const std::string error = sim::ShellDefError(job.shell); !error.empty()) throw UsageError(model + ": " + error);
+    if (cli.Given("--law") && !(sim::ShearModulusKpa(job.shell.material) > 0)) {
+        const sim::MaterialLaw law = job.shell.material.law;
+        throw UsageError("--law " + std::string(sim::Name(law)) + " needs its constants: " +
+                         (law == sim::MaterialLaw::NeoHookean     ? "--mu-kpa"
+                          : law == sim::MaterialLaw::MooneyRivlin ? "--c10-kpa and --c01-kpa"
+                                                                  : "--c10-kpa (and --c20-kpa, --c30-kpa)") +
+                         " (the preset " + sim::Name(job.shell.material.preset) + " has none for it)");
+    }
+    RefuseOptionsWithoutEffect(cli, o, job, use);
+    if (const std::string error = sim::ShellDefError(job.shell); !error.empty()) throw UsageError("--model " + std::string(sim::Name(o.model)) + ": " + error);
 }
 
 }  // namespace app

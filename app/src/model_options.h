@@ -20,11 +20,25 @@ struct ModelOptions {
     sim::MaterialDef materialFields = sim::DefaultShellDef().material;  // bound to the overriding options
 };
 
+// What a command does with the model, which decides the options that have an effect.
+enum class ModelUse {
+    Simulate,   // one evaluation under the given load (simulate)
+    BothLoads,  // the thesis model under inflation and the stretch test, a shell model under its load (render)
+    RestShape,  // nothing simulated: the rest shape, its geometry and its silicone (export, render --solid)
+};
+
 // Adds the model options (thesis constants unless `withThesis` is false).
 void AddModelOptions(Cli& cli, ModelOptions& options, bool withThesis = true);
 
-// The job's model from the options. Refuses options given for the other model. Throws UsageError.
-void ApplyModelOptions(const Cli& cli, const ModelOptions& options, sim::EvalJob& job);
+// The job's model from the options. Refuses options given for the other model, and options that
+// have no effect for `use` and the job's model, load, law, ends or fibres (RefuseOptionsWithoutEffect).
+// Throws UsageError.
+void ApplyModelOptions(const Cli& cli, const ModelOptions& options, sim::EvalJob& job, ModelUse use);
+
+// Refuses every model option given on `cli` that has no effect on `job` (as resolved: from the
+// options, or an archive's record with the given ones over it): "--force-n applies to --load force,
+// not --load inflate". Throws UsageError.
+void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& options, const sim::EvalJob& job, ModelUse use);
 
 // The load of a thesis or shell model by name; the message lists the model's choices.
 sim::Load ThesisLoad(const std::string& name, const std::string& what);

@@ -21,7 +21,21 @@ void AddPartOptions(Cli& cli, PartOptions& o) {
     cli.Fields(o.mold);
 }
 
+std::vector<std::string> PartOptionNames() { return {"--wall", "--unit-mm", "--wall-mm", "--sampling", "--fittings", "--port-mm"}; }
+
+std::vector<std::string> MoldOptionNames() {
+    std::vector<std::string> names;
+    struct Names {
+        std::vector<std::string>& names;
+        void Number(const char* key, const double&, const char*, double, double) { names.push_back(OptionName(key)); }
+    };
+    const sim::MoldDef mold;
+    VisitFields(mold, Names{names});
+    return names;
+}
+
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
+    if (cli.Given("--port-mm") && !o.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
     sim::PartDef part = o.part;
     if (job.model == sim::ModelKind::Thesis) {
         part.radiusMm = o.unitMm;

@@ -3,6 +3,9 @@
 // --wall-mm wall; the membrane and shell models use their geometry options.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "cli.h"
 #include "sim/batch.h"
 #include "sim/solid.h"
@@ -20,6 +23,11 @@ struct PartOptions {
 
 // Adds --wall, --unit-mm, --wall-mm, --sampling under "Part" and the mold's options under "Mold".
 void AddPartOptions(Cli& cli, PartOptions& options);
+
+// The options of the part (--wall, --unit-mm, --wall-mm, --sampling, --fittings, --port-mm) and of
+// the mold (--margin-mm, ...), to refuse them where no solid is made or no mold drawn.
+std::vector<std::string> PartOptionNames();
+std::vector<std::string> MoldOptionNames();
 
 // The part for a job's design: its size from the model, sampled --sampling times finer than the
 // model's mesh. Refuses the thesis-only options under the other models. Throws UsageError.

@@ -2,6 +2,8 @@
 
 #include "remote.h"
 
+#include <algorithm>
+
 namespace app {
 
 void AddRunOptions(Cli& cli, RunCommandOptions& o) {
@@ -52,6 +54,8 @@ std::unique_ptr<Evaluator> MakeEvaluator(const Cli& cli, const RunCommandOptions
     }
     WorkerPoolOptions pool;
     pool.workers = ParseWorkerList(o.workers);
+    if (std::find(pool.workers.begin(), pool.workers.end(), "local") == pool.workers.end())
+        cli.RefuseIfGiven("--threads", "counts this machine's threads: with --workers it applies when 'local' is one of them");
     pool.localThreads = o.threads;
     pool.timeoutSeconds = o.workerTimeoutSeconds;
     return MakeWorkerPool(pool);

@@ -183,9 +183,9 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o, const sim::Surface&
     return shape;
 }
 
-sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shapeOptions, const ModelOptions& model) {
+sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shapeOptions, const ModelOptions& model, ModelUse use) {
     sim::EvalJob job;
-    ApplyModelOptions(cli, model, job);
+    ApplyModelOptions(cli, model, job, use);
     job.mesh = shapeOptions.mesh;
     int vertices = sim::VertexCount(job.mesh);
     if (job.model == sim::ModelKind::Thesis) {

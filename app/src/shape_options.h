@@ -35,7 +35,8 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& options, const sim::Su
 // The job's shape and model from the options, checked as a whole: refuses the helix's --resolution
 // and --turns under the shell models, and a design the model cannot evaluate. Throws UsageError.
 struct ModelOptions;
-sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shape, const ModelOptions& model);
+enum class ModelUse;
+sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shape, const ModelOptions& model, ModelUse use);
 
 // The shape options' names, to refuse them where a design comes from elsewhere (--from ARCHIVE).
 const std::vector<std::string>& ShapeOptionNames();

@@ -98,3 +98,36 @@ TEST(Experiment, TheQuickVersionReReadsAsWhatRan) {
     const app::Experiment again = app::ParseExperiment(quick.document.dump(), "x.json");
     EXPECT_EQ(app::ExperimentHash(again), app::ExperimentHash(quick));
 }
+
+// A key that has no effect is refused, as the command line refuses an option that does not apply:
+// one that the load, the law, the ends or the fibres make moot, or that the experiment replaces.
+TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
+    auto shell = [](const std::string& model, const std::string& rest = R"("sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]})") {
+        return R"({"id": "k", "model": {"name": "shell", )" + model + "}, " + rest + "}";
+    };
+    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "inflate", "force_n": 2})")),
+                HasSubstr("'model.load.force_n': has no effect here: it applies when \"kind\" is force, not inflate"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "force", "pressure_kpa": 20})")), HasSubstr("\"kind\" is inflate, gas or blocked, not force"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"volume_ratio": 2})")), HasSubstr("'model.load.volume_ratio'"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "volume"}, "solver": {"max_bisections": 3})")), HasSubstr("'model.solver.max_bisections'"));
+    EXPECT_THAT(Refusal(shell(R"("material": {"law": "yeoh", "c10_kpa": 100, "mu_kpa": 30})")), HasSubstr("\"law\" is neo-hookean, not yeoh"));
+    EXPECT_THAT(Refusal(shell(R"("material": {"density_kg_per_m3": 1100})")), HasSubstr("nothing here weighs the silicone"));
+    EXPECT_THAT(Refusal(shell(R"("geometry": {"ends": "sliding", "clamp_rings": 3})")), HasSubstr("'model.geometry.clamp_rings'"));
+    EXPECT_THAT(Refusal(shell(R"("fibre_angle_deg": 40)")), HasSubstr("\"fibres\" is braid or single, not none"));
+    EXPECT_THAT(Refusal(shell(R"("fibre_stiffness_n_per_mm": 5)")), HasSubstr("'model.fibre_stiffness_n_per_mm'"));
+    EXPECT_THAT(Refusal(shell(R"("fibres": "hoop", "fibre_bands": [{"from": 0, "to": 1, "angle_deg": 30}])")), HasSubstr("'model.fibre_bands'"));
+    EXPECT_THAT(Refusal(shell(R"("fibres": "braid", "fibre_angle_deg": 40, "fibre_bands": [{"from": 0, "to": 1, "angle_deg": 30}])")),
+                HasSubstr("'model.fibre_angle_deg'"));
+    // Replaced by the experiment: a swept setting, the shape's amplitude under an amplitude axis, the
+    // angles under fibre angle genes.
+    EXPECT_THAT(Refusal(shell(R"("load": {"pressure_kpa": 2})",
+                              R"("sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2]}]})")),
+                HasSubstr("'model.load.pressure_kpa': has no effect here: sweep.axes[0] varies it"));
+    EXPECT_THAT(Refusal(R"({"sweep": {"shape": {"family": "sine", "amplitude": 2}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})"),
+                HasSubstr("'sweep.shape.amplitude'"));
+    EXPECT_THAT(Refusal(shell(R"("fibres": "braid", "fibre_angle_deg": 40)", R"("evolve": {"genome": {"kind": "bspline", "fibre_angles": 1}})")),
+                HasSubstr("the genome's fibre angle genes give the angles"));
+    // What applies is accepted.
+    EXPECT_EQ(Refusal(shell(R"("load": {"kind": "force", "force_n": 0.5}, "material": {"law": "yeoh", "c10_kpa": 100, "c20_kpa": 10}, "fibres": "braid", "fibre_angle_deg": 40)")),
+              "accepted");
+}

@@ -213,7 +213,7 @@ TEST_F(ShellCli, AFibreAngleSweepCrossesZeroAtTheMagicAngle) {
 // The GA searches fibre genes beside the shape's, and they are archived with the design.
 TEST_F(ShellCli, TheGaSearchesFibreGenes) {
     Write("genes.json", R"({"id": "g", "seed": 7, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16},
-        "load": {"pressure_kpa": 3, "steps": 1}, "fibres": "braid", "fibre_angle_deg": 40},
+        "load": {"pressure_kpa": 3, "steps": 1}, "fibres": "braid"},
         "evolve": {"runs": 1, "population": 6, "generations": 2, "elite": 1,
                    "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [1, 3], "fibre_angles": 2, "fibre_switches": true}},
         "render": {"figures": false, "thumbnails": false}})");
