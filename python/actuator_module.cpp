@@ -17,18 +17,18 @@
 #include <optional>
 #include <utility>
 
-#include "archive.h"
-#include "cli.h"
+#include "formats/archive.h"
+#include "options/cli.h"
 #include "def_binding.h"
-#include "errors.h"
-#include "evaluator.h"
-#include "experiment.h"
-#include "experiment_runner.h"
-#include "files.h"
-#include "figures.h"
+#include "support/errors.h"
+#include "evaluation/evaluator.h"
+#include "experiments/experiment.h"
+#include "experiments/experiment_runner.h"
+#include "formats/files.h"
+#include "pictures/figures.h"
 #include "map_evaluator.h"
-#include "results_folder.h"
-#include "schema_convert.h"
+#include "formats/results_folder.h"
+#include "formats/schema_convert.h"
 #include "sim/batch.h"
 #include "sim/names.h"
 #include "sim/shape.h"
@@ -79,7 +79,7 @@ sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std:
         if (load) job.shell.load = *load;
         if (solver) job.shell.solver = *solver;
         if (fibres) job.shell.fibres = *fibres;
-        if (const std::string error = app::ShellFieldsWithoutEffect(job.shell); !error.empty()) throw py::value_error(error);
+        if (const std::string error = sim::ShellFieldsWithoutEffect(job.shell); !error.empty()) throw py::value_error(error);
     }
     if (const std::string error = sim::JobError(job); !error.empty()) throw py::value_error(error);
     return job;

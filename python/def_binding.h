@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "fields.h"
+#include "sim/fields.h"
 #include "sim/names.h"
 #include "sim/shell.h"
 
@@ -70,13 +70,13 @@ struct FieldWriter {
 template <class Def>
 py::object GetField(const Def& def, const std::string& key) {
     py::object out;
-    app::VisitFields(def, FieldReader{key, out});
+    sim::VisitFields(def, FieldReader{key, out});
     return out;
 }
 
 template <class Def>
 void SetField(Def& def, const std::string& key, const py::object& value) {
-    app::VisitFields(def, FieldWriter{key, value});
+    sim::VisitFields(def, FieldWriter{key, value});
 }
 
 template <class Def>
@@ -104,7 +104,7 @@ py::class_<Def> BindDef(py::module_& m, const char* name, const char* doc, Def d
     py::class_<Def> cls(m, name, doc);
     std::vector<std::string> keys;
     Def probe = defaults;
-    app::VisitFields(probe, FieldLister<Def>{keys, cls});
+    sim::VisitFields(probe, FieldLister<Def>{keys, cls});
     cls.def(py::init([defaults, keys](const py::kwargs& kwargs) {
         Def def = defaults;
         for (const auto& [key, value] : kwargs) {

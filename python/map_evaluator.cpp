@@ -6,8 +6,8 @@
 
 #include <chrono>
 
-#include "remote.h"
-#include "schema_convert.h"
+#include "evaluation/remote.h"
+#include "formats/schema_convert.h"
 #include "sim/batch.h"
 
 namespace pybinding {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "evaluator.h"
+#include "evaluation/evaluator.h"
 
 namespace pybinding {
 

@@ -7,10 +7,10 @@
 #include <iostream>
 #include <new>
 
-#include "cli.h"
-#include "commands.h"
-#include "errors.h"
-#include "files.h"
+#include "options/cli.h"
+#include "commands/commands.h"
+#include "support/errors.h"
+#include "formats/files.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <set>
 
 #include "sim/batch.h"
-#include "sim/shell_problem.h"
+#include "shell/shell_problem.h"
 
 namespace sim {
 

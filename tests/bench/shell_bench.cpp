@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "sim/batch.h"
-#include "sim/shell_problem.h"
+#include "shell/shell_problem.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
-#include "schema_convert.h"
+#include "formats/schema_convert.h"
 #include "sim/batch.h"
 
 namespace {

@@ -1,0 +1,144 @@
+// `actuator export`: a design as the files that go to the printer. The wall as a closed solid of the
+// given thickness, the mold's core and its two shells, and manifest.json with every file's volume,
+// bounds and triangle count and the silicone's volume and mass. Everything is built and checked
+// before the first file is written: a design that cannot be made writes nothing.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "formats/archive.h"
+#include "options/cli.h"
+#include "commands/commands.h"
+#include "pictures/figures.h"
+#include "formats/files.h"
+#include "formats/json_out.h"
+#include "options/model_options.h"
+#include "options/part_options.h"
+#include "options/shape_options.h"
+#include "formats/solid_io.h"
+#include "sim/shell.h"
+#include "sim/solid.h"
+
+namespace app {
+
+int RunExport(int argc, char** argv, int first) {
+    namespace fs = std::filesystem;
+    Cli cli("export", "Writes a design as solids to print and cast, into --out DIR (new or empty): actuator.stl (the wall as a closed solid of "
+                      "the given thickness around the rest surface, ends closed by flat annuli), mold_core.stl (the inner cavity with a "
+                      "handle through each end of the block), mold_shell_a.stl and mold_shell_b.stl (the block around the actuator split "
+                      "through its axis at y = 0, with registration pins on A and holes in B, a pour sprue in A's top wall and vents in B's), "
+                      "with --fittings fitting_bottom.stl and fitting_top.stl (end plugs, the bottom one bored for the air line), "
+                      "mold_assembly.png (the parts side by side) and manifest.json (each file's volume in mm^3, bounds, triangles; the "
+                      "silicone's volume and mass). The design is given as for simulate. Under --model thesis one design unit is --unit-mm "
+                      "millimetres (the 30-turn mesh is 30 units long); under membrane and shell the geometry options give radius, length "
+                      "and wall. A design that cannot be made is refused naming where and why, and nothing is written.");
+    ShapeOptions shape;
+    ModelOptions model;
+    std::string from, out;
+    int index = 0;
+    AddShapeOptions(cli, shape);
+    AddModelOptions(cli, model);
+    cli.Group("Design from an archive");
+    cli.Text("--from", from, "export a stored design: an archive (DIR/evaluations.capnp) with --index")->type_name("ARCHIVE");
+    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
+    PartOptions partOptions;
+    bool ascii = false;
+    SolidFormat format = SolidFormat::Stl;
+    AddPartOptions(cli, partOptions);
+    cli.Group("Files");
+    cli.Text("--out", out, "folder for the files; must be new or empty")->type_name("DIR");
+    cli.Enum("--format", format, "file format: binary STL (default), OBJ or binary PLY");
+    cli.Flag("--ascii", ascii, "ASCII STL instead of binary");
+    cli.Examples(
+        "  actuator export --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
+        "  actuator export --model shell --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
+        "  actuator export --from runs/5.2/evaluations.capnp --index 17 --out part/ --wall outward\n"
+        "  actuator export --shape cylinder --out part/ --format obj\n");
+    if (!cli.Parse(argc, argv, first)) return 0;
+    const auto started = std::chrono::steady_clock::now();
+    if (!cli.Given("--out")) throw UsageError("--out DIR is required (a new or empty folder)");
+    if (ascii && format != SolidFormat::Stl) throw UsageError("--ascii is for STL; OBJ is text already and PLY is written binary");
+
+    sim::EvalJob job;
+    if (cli.Given("--from")) {
+        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
+        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
+        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
+        job = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
+        if (job.model != sim::ModelKind::Thesis) cli.CopyGivenFields(model.shell.geometry, job.shell.geometry);
+        cli.RefuseIfGiven("--material", "does not go with --from: the material comes from the archive");
+        cli.RefuseFields(model.materialFields, "does not go with --from: the material comes from the archive");
+        RefuseOptionsWithoutEffect(cli, model, job, ModelUse::RestShape);
+    } else {
+        cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
+        job = BuildJob(cli, shape, model, ModelUse::RestShape);
+    }
+    const sim::PartDef part = PartDefOf(cli, partOptions, job);
+    const sim::MoldDef& mold = partOptions.mold;
+    const sim::PartSolids solids = BuildSolids(job, part, mold, partOptions.fittings);
+
+    // The folder: new or empty, so that a part's files never mix with another's.
+    std::error_code ec;
+    if (fs::exists(out, ec) && !(fs::is_directory(out, ec) && fs::is_empty(out, ec)))
+        throw UsageError("--out " + Quote(out) + " exists and is not an empty folder; export writes into a new or empty one");
+    // Every file or none: a full disk leaves no part of the set, and no folder that was not there.
+    CreatedFolders folders;
+    folders.Create(out, "--out");
+    OutputBatch batch;
+
+    const std::string extension = Extension(format);
+    std::vector<std::pair<std::string, const sim::TriangleMesh*>> files{
+        {"actuator", &solids.actuator}, {"mold_core", &solids.core}, {"mold_shell_a", &solids.shellA}, {"mold_shell_b", &solids.shellB}};
+    if (partOptions.fittings.enabled) files.insert(files.end(), {{"fitting_bottom", &solids.fittingBottom}, {"fitting_top", &solids.fittingTop}});
+    Json manifest;
+    manifest["units"] = "mm";
+    Json list = Json::array();
+    for (const auto& [name, mesh] : files) {
+        const std::string file = name + extension;
+        WriteFileAtomically((fs::path(out) / file).string(), FormatSolid(*mesh, format, ascii, name + " (actuator workbench)"));
+        const auto b = sim::MeshBounds(*mesh);
+        list.push_back(Json{{"file", file},
+                            {"volume_mm3", sim::MeshVolume(*mesh)},
+                            {"bounds_mm", Json{{"min", {b[0], b[1], b[2]}}, {"max", {b[3], b[4], b[5]}}}},
+                            {"triangles", mesh->triangles.size()},
+                            {"vertices", mesh->vertices.size()}});
+    }
+    {  // The exploded assembly, to look at before printing.
+        auto renderer = MakeRenderer(1400, 1000);
+        WritePng((fs::path(out) / "mold_assembly.png").string(),
+                 renderer->Render(ExplodedMoldScene(solids, fmt::format("mold for {}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm))), 6);
+    }
+    manifest["files"] = list;
+    const double silicone = sim::MeshVolume(solids.actuator);
+    const sim::MaterialDef material = job.model == sim::ModelKind::Thesis ? sim::DefaultShellDef().material : job.shell.material;
+    manifest["silicone"] = Json{{"volume_mm3", silicone},
+                                {"material", sim::Name(material.preset)},
+                                {"density_kg_per_m3", material.densityKgPerM3},
+                                {"mass_g", silicone * 1e-9 * material.densityKgPerM3 * 1e3}};
+    manifest["core_outside_block_mm3"] = solids.coreOutsideBlockMm3;
+    // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).
+    manifest["sprue_and_vents_mm3"] = solids.openingsMm3;
+    manifest["pins_less_holes_mm3"] = solids.pinsLessHolesMm3;
+    manifest["part"] = Json{{"radius_mm", part.radiusMm},
+                            {"length_mm", part.lengthMm},
+                            {"wall_mm", part.thicknessMm},
+                            {"wall", sim::Name(part.wall)},
+                            {"samples_around", part.angularSamples},
+                            {"samples_along", part.axialSamples}};
+    if (partOptions.fittings.enabled) manifest["fittings"] = Json{{"port_mm", partOptions.fittings.portMm}, {"collar_mm", partOptions.fittings.collarMm}};
+    manifest["mold"] = Json{{"margin_mm", mold.marginMm}, {"end_wall_mm", mold.endWallMm}, {"handle_mm", mold.handleMm},
+                            {"sprue_deg", mold.sprueDegrees}, {"vent_deg", mold.ventDegrees}, {"pin_clearance_mm", mold.pinClearanceMm},
+                            {"sector_blend_deg", sim::SectorBlendRadians(part) * 180 / 3.141592653589793}};
+    manifest["design"] = Json{{"shape", ShapeJson(job.shape)}, {"model", ModelJson(job)}};
+    if (cli.Given("--from")) manifest["design"]["from"] = Json{{"archive", from}, {"index", index}};
+    WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");
+    batch.Commit();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::cout << Json{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}}.dump() << "\n";
+    return 0;
+}
+
+}  // namespace app

@@ -1,0 +1,112 @@
+// `actuator simulate`: one evaluation, one JSON object on stdout, optionally the meshes as OBJ. The
+// design comes from the shape options, an OBJ mesh, or an archive (--from ARCHIVE --index K).
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+
+#include "formats/archive.h"
+#include "options/cli.h"
+#include "commands/commands.h"
+#include "evaluation/evaluator.h"
+#include "formats/files.h"
+#include "formats/json_out.h"
+#include "options/model_options.h"
+#include "formats/obj_io.h"
+#include "options/shape_options.h"
+
+namespace app {
+namespace {
+
+void CheckObjPath(const Cli& cli, const std::string& option, const std::string& path) {
+    if (!cli.Given(option)) return;
+    CheckOutputPath(path, option);
+    if (std::filesystem::path(path).extension() != ".obj")
+        throw UsageError(option + ": " + Quote(path) + " must end in .obj (the only mesh format simulate writes)");
+}
+
+}  // namespace
+
+int RunSimulate(int argc, char** argv, int first) {
+    Cli cli("simulate", "Evaluates one actuator design and prints one JSON object: status, fitness, contraction_percent (positive = shorter), "
+                        "the model's outputs, the design and the model's settings. --model thesis is the 2019 mass-spring model (fitness in mesh "
+                        "units); membrane and shell are silicone at equilibrium in mm, kPa and N (fitness = contraction in percent at the "
+                        "target pressure). Exit code 0 when it ran (whatever the status), 2 on bad input.");
+    ShapeOptions shape;
+    ModelOptions model;
+    std::string from, saveMesh, saveInitial;
+    int index = 0;
+    AddShapeOptions(cli, shape);
+    AddModelOptions(cli, model);
+    cli.Group("Design from an archive");
+    cli.Text("--from", from, "re-simulate a stored design: an archive (DIR/evaluations.capnp) with --index; model options given here override the stored ones")
+        ->type_name("ARCHIVE");
+    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
+    cli.Group("Output");
+    cli.Text("--save-mesh", saveMesh, "write the final positions as OBJ (full precision; reads back with --mesh)")->type_name("FILE.obj");
+    cli.Text("--save-initial", saveInitial, "write the initial (shaped) mesh as OBJ")->type_name("FILE.obj");
+    cli.Examples(
+        "  actuator simulate --shape sine --amplitude 4.1 --phase 0.5,pi-0.5\n"
+        "  actuator simulate --shape abs-sine --amplitude 4 --phase 0,4pi\n"
+        "  actuator simulate --shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"\n"
+        "  actuator simulate --shape sine --load stretch --save-mesh stretched.obj\n"
+        "  actuator simulate --mesh stretched.obj --iterations 5000\n"
+        "  actuator simulate --from runs/5.2/evaluations.capnp --index 17 --iterations 20000\n"
+        "  actuator simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 \\\n"
+        "                    --ring-vertices 30 --rings 30 --pressure-kpa 1.8\n"
+        "  actuator simulate --model shell --shape sine --amplitude 1.3 --material dragon-skin-10 --pressure-kpa 10\n");
+    if (!cli.Parse(argc, argv, first)) return 0;
+
+    sim::EvalJob job;
+    if (cli.Given("--from")) {
+        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
+        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
+        const ArchiveRecord record = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
+        job = record.job;
+        // Thesis settings given on this command line override the stored ones.
+        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
+        if (job.model == sim::ModelKind::Thesis) {
+            cli.CopyGivenFields(model.thesis, job.params);
+            if (cli.Given("--load")) job.params.load = ThesisLoad(model.load, "--load");
+        } else {
+            cli.CopyGivenFields(model.shell.geometry, job.shell.geometry);
+            cli.CopyGivenFields(model.shell.load, job.shell.load);
+            cli.CopyGivenFields(model.shell.solver, job.shell.solver);
+            cli.CopyGivenFields(model.materialFields, job.shell.material);
+            cli.CopyGivenFields(model.shell.fibres, job.shell.fibres);
+            if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(model.load, "--load");
+        }
+        RefuseOptionsWithoutEffect(cli, model, job, ModelUse::Simulate);
+        if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
+    } else {
+        cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
+        job = BuildJob(cli, shape, model, ModelUse::Simulate);
+    }
+    CheckObjPath(cli, "--save-mesh", saveMesh);
+    CheckObjPath(cli, "--save-initial", saveInitial);
+    const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
+    if (cli.Given("--save-mesh")) RefuseOutputThatIsInput(saveMesh, "--save-mesh", inputs);
+    if (cli.Given("--save-initial")) RefuseOutputThatIsInput(saveInitial, "--save-initial", inputs);
+    if (cli.Given("--save-mesh") && cli.Given("--save-initial") && saveMesh == saveInitial)
+        throw UsageError("--save-mesh and --save-initial name the same file");
+
+    const sim::SimResult result = MakeLocalEvaluator(1)->EvaluateAll({job}).front();
+
+    const auto surface = sim::SurfaceOf(job);
+    const std::string size = job.model == sim::ModelKind::Thesis
+                                 ? fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.mesh.resolution, job.mesh.turns)
+                                 : fmt::format("{} vertices per ring x {} rings and two cap centres, millimetres", job.shell.geometry.ringVertices,
+                                               sim::RingCount(job.shell.geometry));
+    OutputBatch batch;  // both meshes or neither
+    if (cli.Given("--save-initial")) WriteFileAtomically(saveInitial, FormatObj(result.initial, surface, "actuator workbench initial mesh: " + size));
+    if (cli.Given("--save-mesh")) WriteFileAtomically(saveMesh, FormatObj(result.final, surface, "actuator workbench final mesh: " + size));
+    batch.Commit();
+    Json out = ResultNumbersJson(result, job);
+    out["final_positions_hash"] = fmt::format("{:016x}", sim::PositionsHash(result.final));
+    out["shape"] = ShapeJson(job.shape);
+    out["model"] = ModelJson(job);
+    if (cli.Given("--from")) out["from"] = Json{{"archive", from}, {"index", index}};
+    std::cout << out.dump() << "\n";
+    return 0;
+}
+
+}  // namespace app

@@ -1,0 +1,104 @@
+#include "formats/json_out.h"
+#include "experiments/experiment_runner.h"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "support/errors.h"
+#include "formats/files.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+// DIR/run.json: what the folder was started with, so that a resume under an edited experiment is
+// refused, naming what changed.
+void CheckOrRecordExperiment(const Experiment& e, const fs::path& dir, bool resume) {
+    const fs::path path = dir / "run.json";
+    if (!resume) {
+        WriteFileAtomically((dir / "experiment.json").string(), ExperimentText(e));
+        WriteFileAtomically(path.string(), Json{{"experiment_hash", ExperimentHash(e)}, {"experiment", e.document}}.dump(2) + "\n");
+        return;
+    }
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw UsageError("--resume: " + Quote(dir.string()) + " holds no run.json; it was not made by this version");
+    Json run;
+    try {
+        run = ParseJson(ReadInputFile(path.string()), path.string());
+        if (run.at("experiment_hash").get<std::string>() == ExperimentHash(e)) return;
+    } catch (const Json::exception&) {
+        throw UsageError(Quote(path.string()) + " is damaged; start afresh with --overwrite");
+    }
+    const std::string changed = ExperimentDifference(run.at("experiment"), e.document);
+    throw UsageError("--resume: " + Quote((dir / "experiment.json").string()) + " changed since the run started (" +
+                     (changed.empty() ? std::string("its text differs") : changed) + "); put it back, or start afresh with --overwrite");
+}
+
+std::string SummaryJson(const Experiment& e, const ExperimentOutcome& o) {
+    Json rows = Json::array();
+    for (const auto& row : o.rows)
+        rows.push_back(Json{{"quantity", row.quantity},
+                            {"ours", std::isfinite(row.ours) ? Json(row.ours) : Json(nullptr)},
+                            {"thesis", std::isfinite(row.thesis) ? Json(row.thesis) : Json(nullptr)}});
+    return Json{{"experiment", ExperimentTitle(e)},
+                {"results", rows},
+                {"details", o.details},
+                {"figures", o.figures},
+                {"simulations", o.simulations},
+                {"seconds", o.seconds},
+                {"evaluations_per_second", o.seconds > 0 ? o.simulations / o.seconds : 0.0}}
+        .dump();
+}
+
+}  // namespace
+
+fs::path RunFolder(const RunContext& c, int run) { return c.dir / ("run_" + std::to_string(run)); }
+
+ExperimentOutcome RunExperiment(const Experiment& e, const fs::path& out, const RunOptions& options) {
+    CheckOrRecordExperiment(e, out, options.resume);
+    ExperimentOutcome outcome;
+    outcome.dir = out;
+    const auto started = std::chrono::steady_clock::now();
+    Recorder recorder(out, e.id, *options.evaluator, e.render.thumbnails, options.resume, options.folder);
+    RunContext context{e, out, options, recorder, outcome};
+    switch (e.kind) {
+        case ExperimentKind::Sweep: RunSweep(context); break;
+        case ExperimentKind::Evaluate: RunList(context); break;
+        case ExperimentKind::Evolve: RunEvolution(context); break;
+        case ExperimentKind::Optimize: RunOptimization(context); break;
+    }
+    outcome.simulations = recorder.Simulated();
+    outcome.evaluations = static_cast<long long>(recorder.Count());
+    outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    outcome.summaryJson = SummaryJson(e, outcome);
+    WriteFileAtomically((out / "summary.json").string(), outcome.summaryJson + "\n");
+    return outcome;
+}
+
+void WriteBestFigures(RunContext& c, const fs::path& folder, const sim::EvalJob& job, const sim::SimResult& inflated, const std::string& title,
+                      int turntableFrames, bool listInOutcome) {
+    // The thesis's stretch test (chapter 6) belongs to its model; the membrane and shell models show
+    // their contraction-pressure curve instead (in the inflated result).
+    std::optional<sim::SimResult> stretched;
+    if (job.model == sim::ModelKind::Thesis) {
+        sim::EvalJob stretch = job;
+        stretch.params.load = sim::Load::Stretch;
+        stretched = c.recorder.EvaluateOne(stretch, {Role::Figure, 0, -1, "stretch test of: " + title});
+    }
+    auto renderer = MakeRenderer(1024, 768);
+    DesignFigures figures;
+    figures.title = title;
+    figures.inflated = &inflated;
+    figures.stretched = stretched ? &*stretched : nullptr;
+    figures.job = job;
+    figures.turntableFrames = turntableFrames;
+    figures.prefix = "best_";
+    const auto written = WriteDesignFigures(*renderer, folder, figures);
+    if (listInOutcome)
+        for (const auto& name : written)
+            if (name.find("turntable") == std::string::npos) c.outcome.figures.push_back(name);
+}
+
+}  // namespace app

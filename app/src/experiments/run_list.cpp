@@ -1,0 +1,78 @@
+// A list of given shapes (thesis chapter 6's stretch tests): each evaluated once under the
+// experiment's load, tabulated beside the thesis's number, and pictured before and after.
+// Resumable: shapes are archived in order, so a resume continues after the last archived one.
+#include <fmt/format.h>
+
+#include "formats/csv.h"
+#include "experiments/experiment_runner.h"
+#include "formats/files.h"
+#include "support/progress.h"
+#include "experiments/thesis_check.h"
+
+namespace app {
+
+void RunList(RunContext& c) {
+    const Experiment& e = c.e;
+    const size_t n = e.shapes.size();
+    size_t done = 0;
+    for (const ArchiveRecord& r : c.recorder.Existing()) {
+        if (done >= n || r.role != Role::Shape || r.id != done) break;
+        ++done;
+    }
+    if (c.options.resume) c.recorder.RollBack(done);
+
+    Progress progress("evaluate " + ExperimentTitle(e), c.options.progress);
+    std::vector<sim::EvalJob> jobs;
+    std::vector<EvaluationTag> tags;
+    for (size_t j = done; j < n; ++j) {
+        jobs.push_back(JobOf(e, e.shapes[j].shape));
+        tags.push_back({Role::Shape, 0, -1, e.shapes[j].label});
+    }
+    c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&&) {
+        progress.Update(static_cast<long long>(done + k + 1), static_cast<long long>(n), static_cast<long long>(k + 1), "shapes");
+    });
+
+    // Table and figures from the archive: the same whether the run was resumed or not.
+    std::string csv = CsvRow({"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
+    std::unique_ptr<render::MeshRenderer> renderer;
+    const std::string load = e.model == sim::ModelKind::Thesis ? sim::Name(e.params.load) : sim::Name(e.shell.load.kind);
+    c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) {
+        const LabelledShape& shape = e.shapes[r.id];
+        const bool ok = r.result.status == sim::Status::Ok;
+        csv += CsvRow({std::to_string(r.id), CsvField(shape.label), ok ? CsvNumber(r.result.fitness) : "", ok ? CsvNumber(r.result.contractionPercent) : "",
+                       sim::Name(r.result.status), std::to_string(r.result.iterationsRun), CsvNumber(shape.thesisFitness)});
+        c.outcome.rows.push_back({shape.label, ok ? r.result.fitness : NAN, shape.thesisFitness});
+        if (!e.render.figures) return;
+        if (!renderer) renderer = MakeRenderer(1024, 768);
+        const std::string name = fmt::format("shape_{:02}.png", r.id);
+        WritePng((c.dir / name).string(), renderer->Render(BeforeAfterScene(shape.label + "  -  " + load, r.result, r.job)), 6);
+        c.outcome.figures.push_back(name);
+    });
+    WriteFileAtomically((c.dir / "results.csv").string(), csv);
+
+    // The thesis draws conclusions from the order of its numbers (6.1: "the actuator with the smallest
+    // radius outperforms the two larger ones"): how many pairs keep that order here.
+    std::vector<std::pair<double, double>> ranked;  // (ours, thesis) of the shapes the thesis gives a number for
+    for (const ComparisonRow& row : c.outcome.rows)
+        if (std::isfinite(row.thesis)) ranked.push_back({row.ours, row.thesis});
+    if (ranked.size() >= 2) {
+        int kept = 0, pairs = 0;
+        std::string flipped;
+        for (size_t a = 0; a < ranked.size(); ++a)
+            for (size_t b = a + 1; b < ranked.size(); ++b) {
+                if (ranked[a].second == ranked[b].second) continue;  // a tie in the thesis orders nothing
+                ++pairs;
+                if ((ranked[a].first > ranked[b].first) == (ranked[a].second > ranked[b].second)) {
+                    ++kept;
+                } else if (flipped.empty()) {
+                    flipped = fmt::format("shapes {} and {} swap: thesis {}, ours {}", a + 1, b + 1, OrderSentence(ranked[a].second, ranked[b].second),
+                                          OrderSentence(ranked[a].first, ranked[b].first));
+                }
+            }
+        ComparisonRow row{"pairs in the thesis's order", static_cast<double>(kept), static_cast<double>(pairs)};
+        row.why = flipped;
+        c.outcome.rows.push_back(row);
+    }
+}
+
+}  // namespace app

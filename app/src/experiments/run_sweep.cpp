@@ -1,0 +1,257 @@
+// A sweep: every point of a 1-D or 2-D grid of sine parameters (thesis chapter 4), then the designs
+// the thesis names in its tables, then the figures. Resumable: grid points are archived in order, so
+// a resume continues after the last archived one and redoes only what follows the grid.
+#include <fmt/format.h>
+
+#include "formats/csv.h"
+#include "support/errors.h"
+#include "experiments/experiment_runner.h"
+#include "formats/files.h"
+#include "pictures/plots.h"
+#include "support/progress.h"
+#include "experiments/thesis_check.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A grid point's parameters, e.g. "amplitude=3.48 cycles=6" (names) or "3.48 6" (values only).
+std::string PointLabel(const sim::EvalJob& job, const std::vector<sim::SweepAxis>& axes, bool withNames) {
+    std::string label;
+    for (const auto& axis : axes)
+        label += (label.empty() ? "" : " ") + (withNames ? std::string(sim::Name(axis.parameter)) + "=" : std::string()) +
+                 fmt::format("{:.4g}", sim::SweepValue(job, axis.parameter));
+    return label;
+}
+
+// The design's title, with the pressure when the sweep varies it.
+std::string PointTitle(const sim::EvalJob& job, const std::vector<sim::SweepAxis>& axes) {
+    std::string title = ShapeTitle(job.shape);
+    for (const auto& axis : axes)
+        if (axis.parameter == sim::SweepParameter::PressureKpa) title += fmt::format(",  {:.4g} kPa", job.shell.load.pressureKpa);
+        else if (axis.parameter == sim::SweepParameter::FibreAngleDeg) title += fmt::format(",  fibres at {:.4g} deg", job.shell.fibres.angleDeg);
+    return title;
+}
+
+// At most this many cells on a contact sheet: a 100,000-point sweep shows an even subsample.
+constexpr size_t kMaxSheetCells = 400;
+
+// The best rows' reasons, from the thesis's own best point evaluated here (`atPoint`, in the order of
+// the thesis's points): does the model give the thesis's number there, and how far below our best
+// does that point lie?
+void ExplainBest(RunContext& c, const std::vector<EvaluationTag>& pointTags, const std::vector<double>& atPoint, double ours) {
+    const ThesisResult& t = c.e.thesisResult;
+    size_t k = 0;
+    while (k < t.points.size() && t.points[k].fitness != t.bestFitness) ++k;
+    if (k == t.points.size()) return;
+    const std::string where = pointTags[k].label.substr(14);
+    const double there = atPoint[k], tolerance = DefaultTolerance(t.bestFitness);
+    const bool modelAgrees = WithinTolerance(there, t.bestFitness, tolerance);
+    const double flatTolerance = DefaultTolerance(ours);
+    const bool flat = WithinTolerance(there, ours, flatTolerance);
+    for (ComparisonRow& row : c.outcome.rows) {
+        if (row.quantity == "best fitness") {
+            row.explained = modelAgrees;
+            row.why = modelAgrees ? fmt::format("at the thesis's best point ({}) this model's value: {}; the model agrees there, and our grid's best ({}) lies elsewhere",
+                                                where, CompareSentence(there, t.bestFitness, tolerance), OrderSentence(ours, t.bestFitness))
+                                  : fmt::format("at the thesis's best point ({}) this model's value: {}; the model does not give the thesis's number there",
+                                                where, CompareSentence(there, t.bestFitness, tolerance));
+        } else if (row.quantity.rfind("best ", 0) == 0) {
+            row.explained = flat;
+            row.why = flat ? fmt::format("the landscape is flat near its top: at the thesis's best point ({}) ours, {}, our best", where,
+                                         CompareSentence(there, ours, flatTolerance))
+                           : fmt::format("at the thesis's best point ({}) ours, {}, our best: the top is not flat enough to move", where,
+                                         CompareSentence(there, ours, flatTolerance));
+        }
+    }
+}
+
+}  // namespace
+
+void RunSweep(RunContext& c) {
+    const Experiment& e = c.e;
+    const std::vector<sim::EvalJob> grid = sim::SweepJobs(e.sweep, JobOf(e, e.sweep.base));
+    const size_t n = grid.size();
+    const auto& axes = e.sweep.axes;
+
+    // Resume after the grid points already archived; what follows the grid is redone.
+    std::vector<double> fitness(n, NAN), contraction(n, NAN);
+    std::vector<sim::Status> status(n, sim::Status::Ok);
+    std::vector<int> iterations(n, 0);
+    std::vector<std::string> warning(n);  // EscapeWarning: a mesh that left its own size
+    size_t done = 0;
+    for (const ArchiveRecord& r : c.recorder.Existing()) {
+        if (done >= n || r.role != Role::Grid || r.id != done) break;
+        fitness[done] = r.result.fitness;
+        contraction[done] = r.result.contractionPercent;
+        status[done] = r.result.status;
+        iterations[done] = r.result.iterationsRun;
+        ++done;
+    }
+    if (c.options.resume) c.recorder.RollBack(done);
+    // The resumed points' warnings need their meshes, which the archive's index leaves out.
+    c.recorder.ForEachRecord(0, done, [&](ArchiveRecord&& r) { warning[r.id] = EscapeWarning(r.result); });
+
+    Progress progress("sweep " + ExperimentTitle(e), c.options.progress);
+    double bestSoFar = NAN;
+    for (size_t j = 0; j < done; ++j)
+        if (status[j] == sim::Status::Ok && !(fitness[j] <= bestSoFar)) bestSoFar = fitness[j];
+    std::vector<sim::EvalJob> jobs;
+    std::vector<EvaluationTag> tags;
+    for (size_t j = done; j < n; ++j) {
+        jobs.push_back(grid[j]);
+        tags.push_back({Role::Grid, 0, -1, PointLabel(grid[j], axes, true)});
+    }
+    c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&& r) {
+        const size_t j = done + k;
+        fitness[j] = r.status == sim::Status::Ok ? r.fitness : NAN;
+        contraction[j] = r.contractionPercent;
+        status[j] = r.status;
+        iterations[j] = r.iterationsRun;
+        warning[j] = EscapeWarning(r);
+        if (r.status == sim::Status::Ok && !(r.fitness <= bestSoFar)) bestSoFar = r.fitness;
+        progress.Update(static_cast<long long>(j + 1), static_cast<long long>(n), static_cast<long long>(k + 1),
+                        fmt::format("best so far {:.4f}, grid points", bestSoFar));
+    });
+
+    std::vector<std::string> header{"evaluation"};
+    for (const auto& axis : axes) header.push_back(sim::Name(axis.parameter));
+    for (const char* h : {"fitness", "contraction_percent", "status", "iterations", "warning"}) header.push_back(h);
+    std::string csv = CsvRow(header);
+    int best = -1;
+    for (size_t j = 0; j < n; ++j) {
+        std::vector<std::string> row{std::to_string(j)};
+        for (const auto& axis : axes) row.push_back(CsvNumber(sim::SweepValue(grid[j], axis.parameter)));
+        const bool ok = status[j] == sim::Status::Ok;
+        row.insert(row.end(), {ok ? CsvNumber(fitness[j]) : "", ok ? CsvNumber(contraction[j]) : "", sim::Name(status[j]), std::to_string(iterations[j]),
+                               CsvField(warning[j])});
+        csv += CsvRow(row);
+        if (ok && (best < 0 || fitness[j] > fitness[static_cast<size_t>(best)])) best = static_cast<int>(j);
+    }
+    WriteFileAtomically((c.dir / "results.csv").string(), csv);
+
+    std::string bestText = "no grid point evaluated successfully";
+    if (best >= 0) {
+        bestText = "best: ";
+        for (size_t a = 0; a < axes.size(); ++a)
+            bestText += fmt::format("{}{} {:.4g}", a ? ", " : "", sim::Name(axes[a].parameter), sim::SweepValue(grid[best], axes[a].parameter));
+        bestText += fmt::format(",  fitness {:.4f}", fitness[static_cast<size_t>(best)]);
+        c.outcome.rows.push_back({"best fitness", fitness[static_cast<size_t>(best)], e.thesisResult.bestFitness});
+        c.outcome.bestJob = grid[static_cast<size_t>(best)];
+        c.outcome.bestFitness = fitness[static_cast<size_t>(best)];
+        for (const auto& axis : axes) {
+            double thesis = NAN;
+            for (const auto& [parameter, value] : e.thesisResult.best)
+                if (parameter == axis.parameter) thesis = value;
+            c.outcome.rows.push_back({std::string("best ") + sim::Name(axis.parameter), sim::SweepValue(grid[best], axis.parameter), thesis});
+        }
+    }
+
+    // Designs the thesis names in a table (e.g. Table 4.4), evaluated as it states them.
+    std::vector<sim::SimResult> pointResults;
+    std::vector<sim::EvalJob> pointJobs;
+    std::vector<std::string> pointNames;
+    if (!e.thesisResult.points.empty()) {
+        std::vector<EvaluationTag> pointTags;
+        for (const auto& point : e.thesisResult.points) {
+            sim::EvalJob job = JobOf(e, e.sweep.base);
+            std::string name;
+            for (const auto& [parameter, value] : point.at) {
+                job = sim::WithSweepValue(job, parameter, value);
+                name += fmt::format("{}{} {:g}", name.empty() ? "" : ", ", sim::Name(parameter), value);
+            }
+            pointJobs.push_back(job);
+            pointTags.push_back({Role::ThesisPoint, 0, -1, "thesis table: " + name});
+            pointNames.push_back(fmt::format("{} (thesis {:g})", name, point.fitness));  // listed above the picture; cells say "design k"
+        }
+        std::vector<double> atPoint(pointJobs.size(), NAN);
+        pointResults.resize(pointJobs.size());
+        c.recorder.Evaluate(pointJobs, pointTags, [&](std::uint64_t, size_t k, sim::SimResult&& r) {
+            atPoint[k] = r.status == sim::Status::Ok ? r.fitness : NAN;
+            pointResults[k] = r;
+            c.outcome.rows.push_back({"fitness at " + pointTags[k].label.substr(14), atPoint[k], e.thesisResult.points[k].fitness});
+        });
+        if (best >= 0) ExplainBest(c, pointTags, atPoint, fitness[static_cast<size_t>(best)]);
+    }
+    if (best >= 0 && axes.size() == 1 && axes[0].parameter == sim::SweepParameter::Amplitude) {
+        // Where the landscape turns negative past its peak (Figure 4.1's "after the amplitude reaches 7").
+        double firstNegative = NAN;
+        for (size_t j = static_cast<size_t>(best) + 1; j < n && std::isnan(firstNegative); ++j)
+            if (status[j] == sim::Status::Ok && fitness[j] < 0) firstNegative = sim::SweepValue(grid[j], axes[0].parameter);
+        c.outcome.rows.push_back({"first negative amplitude", firstNegative, NAN});
+    }
+
+    if (!e.render.figures) return;
+    WritePng((c.dir / "landscape.png").string(), LandscapeImage(e, fitness, best, bestText), 6);
+    c.outcome.figures.push_back("landscape.png");
+
+    // The designs the thesis names, before and after (Figure 4.6 for Table 4.4's three).
+    if (!pointResults.empty()) {
+        std::vector<DesignPair> pairs;
+        std::vector<std::string> lines{"each design the thesis names, evaluated here:"};
+        for (size_t k = 0; k < pointResults.size(); ++k) {
+            pairs.push_back({&pointResults[k], &pointJobs[k], fmt::format("design {}", k + 1)});
+            lines.push_back(fmt::format("design {}: {}", k + 1, pointNames[k]));
+        }
+        WritePng((c.dir / "thesis_points.png").string(),
+                 PairsImage(PairsScene(ExperimentTitle(e) + "  -  the thesis's designs", lines, pairs, std::min<int>(3, static_cast<int>(pairs.size())))),
+                 6);
+        c.outcome.figures.push_back("thesis_points.png");
+    }
+
+    // Every grid point's inflated mesh (an even subsample of large grids), read back from the archive.
+    const size_t step = (n + kMaxSheetCells - 1) / kMaxSheetCells;
+    std::vector<std::uint64_t> ids;
+    for (size_t j = 0; j < n; j += step) ids.push_back(j);
+    const std::vector<ArchiveRecord> records = c.recorder.ReadBack(ids);
+    std::vector<SheetEntry> entries;
+    SheetAxes sheetAxes;
+    if (axes.size() == 2 && step == 1) {
+        // On the sweep's axes: the shorter axis down the rows, the longer across; cells say the fitness.
+        const size_t n1 = axes[1].values.size();
+        const size_t across = axes[0].values.size() >= n1 ? 0 : 1, down = 1 - across;
+        for (size_t r = 0; r < axes[down].values.size(); ++r)
+            for (size_t k = 0; k < axes[across].values.size(); ++k) {
+                const ArchiveRecord& record = records[across == 0 ? k * n1 + r : r * n1 + k];
+                entries.push_back({&record.result, FitnessCaption(record.result)});
+            }
+        sheetAxes.columns = static_cast<int>(axes[across].values.size());
+        for (double v : axes[across].values) sheetAxes.columnLabels.push_back(fmt::format("{:.3g}", v));
+        for (double v : axes[down].values) sheetAxes.rowLabels.push_back(fmt::format("{:.3g}", v));
+        sheetAxes.columnTitle = AxisLabel(axes[across].parameter);
+        sheetAxes.rowTitle = sim::Name(axes[down].parameter);
+    } else {
+        for (const ArchiveRecord& r : records) entries.push_back({&r.result, PointLabel(grid[r.id], axes, false) + ": " + FitnessCaption(r.result)});
+    }
+    std::string key;  // what a caption says, when the cells are not on labelled axes
+    if (sheetAxes.columns == 0) {
+        for (const auto& axis : axes) key += (key.empty() ? "" : " ") + std::string(sim::Name(axis.parameter));
+        key = "  (each cell: " + key + ": fitness)";
+    }
+    std::unique_ptr<render::MeshRenderer> sheetRenderer;
+    WriteContactSheet(c.dir / "contact_sheet.png",
+                      ExperimentTitle(e) + (step > 1 ? fmt::format("  -  every {}th grid point, inflated", step) : std::string("  -  every grid point, inflated")) + key,
+                      entries, grid.front(), sheetRenderer, sheetAxes);
+    c.outcome.figures.push_back("contact_sheet.png");
+
+    if (best >= 0) {
+        const int frames = e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames;
+        const ArchiveRecord bestRecord = c.recorder.ReadBack({static_cast<std::uint64_t>(best)}).at(0);
+        WriteBestFigures(c, c.dir, grid[best], bestRecord.result, PointTitle(grid[best], axes), frames, true);
+    }
+    if (e.render.turntable == TurntablePlan::All) {
+        // Every grid point turning: heavy, so only on request. Read back first: the figures append
+        // stretch tests to the archive being read.
+        std::vector<ArchiveRecord> records;
+        c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) { records.push_back(std::move(r)); });
+        for (const ArchiveRecord& r : records) {
+            const fs::path folder = c.dir / fmt::format("point_{:06}", r.id);
+            std::error_code ec;
+            fs::create_directories(folder, ec);
+            WriteBestFigures(c, folder, grid[r.id], r.result, PointTitle(grid[r.id], axes), e.render.turntableFrames, false);
+        }
+    }
+}
+
+}  // namespace app

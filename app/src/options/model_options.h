@@ -1,0 +1,47 @@
+// The model a command evaluates with, from the command line: --model thesis|membrane|shell, the
+// thesis model's constants, or the shell models' geometry, material (a preset, then overrides),
+// load and solver. Options that do not apply to the chosen model are refused.
+#pragma once
+
+#include <string>
+
+#include "options/cli.h"
+#include "sim/fields.h"
+#include "sim/batch.h"
+
+namespace app {
+
+struct ModelOptions {
+    sim::ModelKind model = sim::ModelKind::Thesis;
+    std::string load;                       // thesis: inflate|stretch|none; shell: inflate|gas|volume|force|blocked
+    sim::SimParams thesis = sim::DefaultSimParams();
+    sim::ShellDef shell = sim::DefaultShellDef();
+    sim::MaterialPreset material = sim::DefaultShellDef().material.preset;
+    sim::MaterialDef materialFields = sim::DefaultShellDef().material;  // bound to the overriding options
+};
+
+// What a command does with the model, which decides the options that have an effect.
+enum class ModelUse {
+    Simulate,   // one evaluation under the given load (simulate)
+    BothLoads,  // the thesis model under inflation and the stretch test, a shell model under its load (render)
+    RestShape,  // nothing simulated: the rest shape, its geometry and its silicone (export, render --solid)
+};
+
+// Adds the model options (thesis constants unless `withThesis` is false).
+void AddModelOptions(Cli& cli, ModelOptions& options, bool withThesis = true);
+
+// The job's model from the options. Refuses options given for the other model, and options that
+// have no effect for `use` and the job's model, load, law, ends or fibres (RefuseOptionsWithoutEffect).
+// Throws UsageError.
+void ApplyModelOptions(const Cli& cli, const ModelOptions& options, sim::EvalJob& job, ModelUse use);
+
+// Refuses every model option given on `cli` that has no effect on `job` (as resolved: from the
+// options, or an archive's record with the given ones over it): "--force-n applies to --load force,
+// not --load inflate". Throws UsageError.
+void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& options, const sim::EvalJob& job, ModelUse use);
+
+// The load of a thesis or shell model by name; the message lists the model's choices.
+sim::Load ThesisLoad(const std::string& name, const std::string& what);
+sim::ShellLoad ShellLoadOf(const std::string& name, const std::string& what);
+
+}  // namespace app

@@ -1,0 +1,77 @@
+#include "options/part_options.h"
+
+#include "support/errors.h"
+#include "sim/shell.h"
+
+namespace app {
+
+void AddPartOptions(Cli& cli, PartOptions& o) {
+    cli.Group("Part");
+    cli.Enum("--wall", o.part.wall, "centred: half the wall each side of the rest surface; outward: the rest surface is the wall's inside");
+    cli.Number("--unit-mm", o.unitMm, "thesis-model designs: millimetres per design unit (radius 1, length 30 turns)", 1e-3, 1e4)->default_str("5");
+    cli.Number("--wall-mm", o.wallMm, "thesis-model designs: wall thickness, mm (membrane and shell: --thickness-mm)", 1e-3, 1e3)->default_str("1");
+    cli.Integer("--sampling", o.sampling,
+                "surface samples per simulation-mesh edge, around and along (smooth designs look faceted at 30 x 30); the helix's "
+                "--resolution stays the simulation mesh's",
+                1, 64)
+        ->default_str("4");
+    cli.Flag("--fittings", o.fittings.enabled, "also rigid end fittings: a plug for each end (insert and collar), the bottom one bored for the air line");
+    cli.Number("--port-mm", o.fittings.portMm, "with --fittings: the bottom plug's through hole, diameter", 0.1, 1e3)->default_str("4");
+    cli.Group("Mold");
+    cli.Fields(o.mold);
+}
+
+std::vector<std::string> PartOptionNames() { return {"--wall", "--unit-mm", "--wall-mm", "--sampling", "--fittings", "--port-mm"}; }
+
+std::vector<std::string> MoldOptionNames() {
+    std::vector<std::string> names;
+    struct Names {
+        std::vector<std::string>& names;
+        void Number(const char* key, const double&, const char*, double, double) { names.push_back(OptionName(key)); }
+    };
+    const sim::MoldDef mold;
+    VisitFields(mold, Names{names});
+    return names;
+}
+
+sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
+    if (cli.Given("--port-mm") && !o.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
+    sim::PartDef part = o.part;
+    if (job.model == sim::ModelKind::Thesis) {
+        part.radiusMm = o.unitMm;
+        part.lengthMm = o.unitMm * job.mesh.turns;
+        part.thicknessMm = o.wallMm;
+        part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.mesh.turns;
+        part.angularSamples = 8 * ((job.mesh.resolution * o.sampling + 7) / 8);
+        part.axialSamples = job.mesh.turns * o.sampling + 1;
+        part.helixAngles = true;
+        return part;
+    }
+    cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
+    cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
+    const sim::GeometryDef& g = job.shell.geometry;
+    const int rings = sim::RingCount(g);
+    part.radiusMm = g.radiusMm;
+    part.lengthMm = g.lengthMm;
+    part.thicknessMm = g.thicknessMm;
+    part.clampFraction = rings > 1 ? static_cast<double>(g.clampRings - 1) / (rings - 1) : 0;
+    part.angularSamples = 8 * ((g.ringVertices * o.sampling + 7) / 8);
+    part.axialSamples = (rings - 1) * o.sampling + 1;
+    return part;
+}
+
+sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold, const sim::FittingDef& fittings) {
+    sim::PartSolids solids;
+    // Designs defined per vertex are measured on their rest mesh; the others have a profile.
+    sim::RadiusField measured;
+    if (std::holds_alternative<sim::FreeXYShape>(job.shape) || std::holds_alternative<sim::MeshShape>(job.shape)) {
+        std::string error;
+        measured = sim::MeasuredRadiusField(job, &error);
+        if (!measured) throw UsageError("cannot make this design: " + error);
+    }
+    if (const std::string error = sim::BuildPartSolids(job.shape, part, mold, &solids, fittings, measured); !error.empty())
+        throw UsageError("cannot make this design: " + error);
+    return solids;
+}
+
+}  // namespace app

@@ -1,0 +1,456 @@
+#include "pictures/figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <mutex>
+#include <numbers>
+
+#include "support/errors.h"
+#include "formats/files.h"
+#include "support/number_expression.h"
+#include "pictures/plots.h"
+#include "render/backend.h"
+#include "sim/surface.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+}  // namespace
+
+std::string ShapeTitle(const sim::Shape& shape) {
+    std::string title = sim::ShapeName(shape);
+    auto sine = [&](double amplitude, double a, double b) {
+        title += fmt::format("  A = {:.3g}, phase {} to {}", amplitude, FormatRadians(a), FormatRadians(b));
+    };
+    if (const auto* s = std::get_if<sim::SineShape>(&shape)) sine(s->amplitude, s->phaseStart, s->phaseEnd);
+    else if (const auto* a = std::get_if<sim::AbsSineShape>(&shape)) sine(a->amplitude, a->phaseStart, a->phaseEnd);
+    else if (const auto* b = std::get_if<sim::BSplineShape>(&shape)) {
+        title += std::string(" (") + sim::Name(b->region) + ")  ";
+        for (size_t k = 0; k < b->splines.size(); ++k) {
+            if (k) title += " | ";
+            for (size_t j = 0; j < b->splines[k].size(); ++j) title += (j ? "," : "") + fmt::format("{:g}", b->splines[k][j]);
+        }
+    }
+    return title;
+}
+
+std::string FibreTitle(const sim::FibreDef& f) {
+    if (f.layout == sim::FibreLayout::None) return "";
+    if (f.layout == sim::FibreLayout::Meridian || f.layout == sim::FibreLayout::Hoop) return std::string(sim::Name(f.layout)) + " fibres";
+    const bool braid = f.layout == sim::FibreLayout::Braid && f.plus && f.minus;
+    std::string title = braid ? "braid" : "one fibre family";
+    if (!f.plus && !f.minus) return "fibres switched off";
+    const char* sign = braid ? "+/-" : (f.layout == sim::FibreLayout::Braid && !f.plus) ? "-" : "+";
+    std::vector<double> angles;
+    for (const auto& band : f.bands) angles.push_back(band.angleDeg);
+    for (double a : f.sectorAnglesDeg) angles.push_back(a);
+    if (angles.empty()) angles.push_back(f.angleDeg);
+    title += angles.size() > 1 ? (f.bands.empty() ? " by sector " : " by band ") : std::string(" ");
+    for (size_t k = 0; k < angles.size(); ++k) title += fmt::format("{}{}{:.0f}", k ? ", " : "", sign, angles[k]);
+    return title + " deg";
+}
+
+std::string JobTitle(const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis) return ShapeTitle(job.shape);
+    const std::string fibres = FibreTitle(job.shell.fibres);
+    return fmt::format("{}  -  {} model{}", ShapeTitle(job.shape), sim::Name(job.model), fibres.empty() ? "" : ",  " + fibres);
+}
+
+std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
+    std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
+    if (job.model == sim::ModelKind::Thesis) {
+        if (r.status == sim::Status::Ok) line += fmt::format("fitness {:.4f},  contraction {:.2f} %,  ", r.fitness, r.contractionPercent);
+        return line + fmt::format("{} iterations,  {} x {} mesh", r.iterationsRun, job.mesh.resolution, job.mesh.turns);
+    }
+    const sim::ShellOutputs& o = r.shell;
+    if (std::isfinite(r.contractionPercent)) line += fmt::format("contraction {:.2f} % at {:.3g} kPa,  ", r.contractionPercent, o.targetPressureKpa);
+    if (std::isfinite(o.limitPressureKpa)) line += fmt::format("limit point {:.3g} kPa,  ", o.limitPressureKpa);
+    if (std::isfinite(o.maxStretch)) line += fmt::format("stretch {:.2f} (limit {:.2f}),  ", o.maxStretch, o.stretchLimit);
+    return line + fmt::format("{} Newton iterations,  {} x {} mesh,  {}", o.newtonIterations, job.shell.geometry.ringVertices,
+                              sim::RingCount(job.shell.geometry), sim::Name(job.shell.material.preset));
+}
+
+std::string FitnessCaption(const sim::SimResult& r) { return r.status == sim::Status::Ok ? fmt::format("{:.3f}", r.fitness) : sim::Name(r.status); }
+
+std::string ColouringError(Colouring colouring, const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis && (colouring == Colouring::Stretch || colouring == Colouring::Stress))
+        return std::string("colouring by ") + sim::Name(colouring) + " needs --model membrane or shell (the thesis model has no material)";
+    return "";
+}
+
+std::shared_ptr<const sim::Surface> SharedSurface(const sim::EvalJob& job) {
+    // Surfaces are shared: a sweep draws thousands of meshes of one size.
+    static std::mutex mutex;
+    static std::map<std::tuple<bool, int, int>, std::shared_ptr<const sim::Surface>> cache;
+    const bool thesis = job.model == sim::ModelKind::Thesis;
+    const std::tuple<bool, int, int> key = thesis ? std::tuple{true, job.mesh.resolution, job.mesh.turns}
+                                                  : std::tuple{false, job.shell.geometry.ringVertices, sim::RingCount(job.shell.geometry)};
+    std::lock_guard lock(mutex);
+    auto& surface = cache[key];
+    if (!surface) surface = std::make_shared<const sim::Surface>(sim::SurfaceOf(job));
+    return surface;
+}
+
+namespace {
+
+// The fibres as dashes over the wall: valued by their stretch (on a stretch scale), or at the bottom
+// of the scale (dark lines) when the surface shows something else.
+void AddFibres(render::Panel& panel, const sim::ShellFields& fields, bool byStretch) {
+    for (const sim::FibreDash& dash : fields.fibres) {
+        render::Segment segment;
+        for (int c = 0; c < 3; ++c) {
+            segment.a[c] = static_cast<float>(dash.centre[c] - dash.halfLengthMm * dash.along[c]);
+            segment.b[c] = static_cast<float>(dash.centre[c] + dash.halfLengthMm * dash.along[c]);
+        }
+        segment.value = byStretch ? static_cast<float>(dash.stretch) : -INFINITY;
+        panel.segments.push_back(segment);
+    }
+}
+
+// A panel of a deformed mesh coloured as asked; sets the scene's mode, label and marks.
+render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed, const sim::SimResult& r, const sim::EvalJob& job,
+                            Colouring colouring, std::string caption, double rotationDegrees = 0) {
+    render::Panel panel{deformed, r.initial, std::move(caption), rotationDegrees, {}, {}};
+    const bool thesis = job.model == sim::ModelKind::Thesis;
+    if (colouring == Colouring::Auto) colouring = thesis ? Colouring::Displacement : Colouring::Stretch;
+    switch (colouring) {
+        case Colouring::Auto:
+        case Colouring::Displacement:
+            scene.colorBy = render::ColorBy::Displacement;
+            if (!thesis) scene.colorLabel = "displacement\n(mm)";
+            break;
+        case Colouring::Strain: scene.colorBy = render::ColorBy::Strain; break;
+        case Colouring::None: scene.colorBy = render::ColorBy::Shading; break;
+        case Colouring::Stretch:
+        case Colouring::Stress: {
+            if (thesis) break;  // refused earlier (ColouringError)
+            const sim::ShellFields fields = sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed);
+            AddFibres(panel, fields, colouring == Colouring::Stretch);
+            const std::string fibreLine = "lines: the fibres, coloured by their stretch on the same scale";
+            if (!fields.fibres.empty() && std::find(scene.lines.begin(), scene.lines.end(), fibreLine) == scene.lines.end())
+                scene.lines.push_back(fibreLine);  // once for a scene of many panels
+            const bool stretch = colouring == Colouring::Stretch;
+            panel.values = stretch ? fields.stretch : fields.stressKpa;
+            scene.colorBy = render::ColorBy::Values;
+            scene.colorLabel = stretch ? "principal\nstretch" : "principal true\nstress (kPa)";
+            const double limit = stretch ? sim::StretchLimit(job.shell.material) : job.shell.material.tensileStrengthKpa;
+            if (limit > 0) scene.scaleMarks = {{limit, stretch ? "stretch limit" : "tensile strength"}};
+            if (stretch) scene.colorMin = 1.0;
+            break;
+        }
+    }
+    const bool fibres = !thesis && job.shell.fibres.layout != sim::FibreLayout::None;
+    if (fibres && colouring != Colouring::Stretch && colouring != Colouring::Stress)
+        AddFibres(panel, sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed), false);
+    return panel;
+}
+
+std::string AfterCaption(const sim::SimResult& r, const sim::EvalJob& job) {
+    if (job.model == sim::ModelKind::Thesis) return "after " + std::to_string(r.iterationsRun) + " iterations";
+    return fmt::format("at {:.3g} kPa", r.shell.targetPressureKpa);
+}
+
+}  // namespace
+
+render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, Colouring colouring) {
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    scene.lines = {ResultLine(r, job)};
+    scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
+    if (job.model != sim::ModelKind::Thesis && job.shell.fibres.layout != sim::FibreLayout::None)
+        AddFibres(scene.panels.front(), sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
+    scene.panels.push_back(ColouredPanel(scene, r.final, r, job, colouring, AfterCaption(r, job)));
+    return scene;
+}
+
+render::Scene PairsScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<DesignPair>& pairs, int pairsPerRow) {
+    render::Scene scene;
+    scene.surface = SharedSurface(*pairs.front().job);
+    scene.title = title;
+    scene.lines = lines;
+    scene.columns = 2 * std::max(1, pairsPerRow);
+    std::vector<const sim::Positions*> framed;
+    for (const DesignPair& pair : pairs) {
+        const sim::SimResult& r = *pair.result;
+        scene.panels.push_back({r.initial, {}, pair.label + ": before", 0, {}, {}});
+        scene.panels.push_back(ColouredPanel(scene, r.final, r, *pair.job, Colouring::Auto, "after: " + FitnessCaption(r)));
+        framed.push_back(&r.initial);
+        if (r.status == sim::Status::Ok) framed.push_back(&r.final);
+    }
+    scene.framing = render::FrameMeshes(framed);
+    return scene;
+}
+
+render::Scene StagesScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<const sim::SimResult*>& stages,
+                          const sim::EvalJob& job) {
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    scene.lines = lines;
+    if (stages.empty()) return scene;
+    scene.panels.push_back({stages.front()->initial, {}, "before", 0, {}, {}});
+    std::vector<const sim::Positions*> framed{&stages.front()->initial};
+    for (const sim::SimResult* r : stages) {
+        scene.panels.push_back(ColouredPanel(scene, r->final, *r, job, Colouring::Auto, AfterCaption(*r, job) + ": " + FitnessCaption(*r)));
+        if (r->status == sim::Status::Ok) framed.push_back(&r->final);
+    }
+    scene.framing = render::FrameMeshes(framed);
+    return scene;
+}
+
+render::Image PairsImage(const render::Scene& scene) {
+    const int columns = scene.columns > 0 ? scene.columns : std::max<int>(1, scene.panels.size());  // no grid: one row
+    const int rows = static_cast<int>((scene.panels.size() + columns - 1) / columns);
+    const int width = std::clamp(columns * 240 + 140, 900, 3000), height = std::clamp(rows * 420 + 120 + 24 * static_cast<int>(scene.lines.size()), 500, 3000);
+    return MakeRenderer(width, height, 2, 0.9)->Render(scene);
+}
+
+namespace {
+
+// Solids placed side by side as one panel over one surface, each vertex valued by its part's number.
+struct PlacedSolid {
+    const sim::TriangleMesh* mesh;
+    double shiftX;
+    bool turned;  // half a turn about the axis
+};
+render::Panel SolidsPanel(const std::vector<PlacedSolid>& solids, std::shared_ptr<sim::Surface>& surface) {
+    surface = std::make_shared<sim::Surface>();
+    render::Panel panel;
+    for (size_t k = 0; k < solids.size(); ++k) {
+        const auto& [mesh, shiftX, turned] = solids[k];
+        const int base = surface->vertexCount;
+        for (const auto& v : mesh->vertices) {
+            panel.positions.x.push_back((turned ? -v[0] : v[0]) + shiftX);
+            panel.positions.y.push_back(turned ? -v[1] : v[1]);
+            panel.positions.z.push_back(v[2]);
+            panel.values.push_back(static_cast<double>(k));
+        }
+        for (const auto& t : mesh->triangles) surface->triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        surface->vertexCount += static_cast<int>(mesh->vertices.size());
+    }
+    return panel;
+}
+
+}  // namespace
+
+render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title) {
+    const double w = sim::MeshBounds(solids.shellA)[3], step = 2.7 * w;
+    std::shared_ptr<sim::Surface> surface;
+    render::Scene scene;
+    std::vector<PlacedSolid> placed{{&solids.actuator, 0, false}, {&solids.core, -step, false}, {&solids.shellA, step, false}, {&solids.shellB, 2 * step, true}};
+    const bool fittings = !solids.fittingBottom.triangles.empty();
+    if (fittings) placed.insert(placed.end(), {{&solids.fittingBottom, -2 * step, false}, {&solids.fittingTop, -2 * step, false}});
+    scene.panels = {SolidsPanel(placed, surface)};
+    scene.surface = surface;
+    scene.title = title;
+    scene.lines = {fittings ? "fittings, core, actuator, shell A, shell B (split faces to you)" : "core, actuator, shell A, shell B (split faces to you)"};
+    scene.colorBy = render::ColorBy::Values;
+    scene.colorMin = 0;
+    scene.colorMax = fittings ? 5 : 3;
+    scene.colorLabel = fittings ? "part: 0 actuator\n1 core, 2 shell A\n3 shell B\n4, 5 fittings" : "part: 0 actuator\n1 core, 2 shell A\n3 shell B";
+    return scene;
+}
+
+render::Scene CutawayScene(const sim::PartSolids& solids, const std::string& title) {
+    std::shared_ptr<sim::Surface> surface;
+    render::Scene scene;
+    // The half at y >= 0: its cut faces the camera, which looks from the y < 0 side.
+    scene.panels = {SolidsPanel({{&solids.actuatorCut, 0, false}}, surface)};
+    scene.surface = surface;
+    scene.title = title;
+    const auto bounds = sim::MeshBounds(solids.actuator);
+    scene.lines = {fmt::format("cut along the axis: {:.3g} mm long, {:.3g} mm across, {:.4g} mm^3", bounds[5] - bounds[2],
+                               bounds[3] - bounds[0], sim::MeshVolume(solids.actuator))};
+    scene.colorBy = render::ColorBy::Shading;
+    return scene;
+}
+
+render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, double angleDegrees, Colouring colouring) {
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    scene.lines = {ResultLine(r, job)};
+    scene.panels = {ColouredPanel(scene, r.final, r, job, colouring, fmt::format("turned {:.0f} degrees", angleDegrees), angleDegrees)};
+    return scene;
+}
+
+render::Scene LoadStepScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, int step, Colouring colouring) {
+    const sim::ShellOutputs& o = r.shell;
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    const double pressure = step < static_cast<int>(o.curvePressureKpa.size()) ? o.curvePressureKpa[step] : NAN;
+    const double contraction = step < static_cast<int>(o.curveContractionPercent.size()) ? o.curveContractionPercent[step] : NAN;
+    scene.lines = {fmt::format("load step {} of {}:  {:.3g} kPa,  contraction {:.2f} %", step + 1, o.steps.size(), pressure, contraction)};
+    scene.panels = {ColouredPanel(scene, o.steps.at(step), r, job, colouring, fmt::format("{:.3g} kPa", pressure))};
+    return scene;
+}
+
+std::unique_ptr<render::MeshRenderer> MakeRenderer(const render::RenderDef& def) {
+    std::string error;
+    auto renderer = render::MeshRenderer::Create(def, &error);
+    if (!renderer) throw UsageError("cannot render: " + error);
+    return renderer;
+}
+
+std::unique_ptr<render::MeshRenderer> MakeRenderer(int width, int height, int supersample, double textScale) {
+    render::RenderDef def = render::DefaultRenderDef();
+    def.width = width;
+    def.height = height;
+    def.supersample = supersample;
+    def.textScale = textScale;
+    return MakeRenderer(def);
+}
+
+void WritePng(const std::string& path, const render::Image& image, int compressionLevel) {
+    const auto bytes = render::EncodePng(image, compressionLevel);
+    WriteFileAtomically(path, std::string(bytes.begin(), bytes.end()));
+}
+
+FrameWriter::~FrameWriter() {
+    if (pending_.valid()) pending_.wait();
+}
+
+void FrameWriter::Write(std::string path, render::Image image) {
+    Wait();
+    pending_ = std::async(std::launch::async, [path = std::move(path), image = std::move(image), level = pngLevel_] { WritePng(path, image, level); });
+}
+
+void FrameWriter::Wait() {
+    if (pending_.valid()) pending_.get();
+}
+
+std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, const fs::path& folder, const DesignFigures& f, int figureLevel,
+                                            int frameLevel) {
+    std::vector<std::string> written;
+    const std::pair<const char*, const sim::SimResult*> loads[] = {{"inflation", f.inflated}, {"stretch", f.stretched}};
+    // One design's figures share a camera: its "before" mesh is the same size in each.
+    std::vector<const sim::Positions*> framed;
+    for (const auto& [load, result] : loads)
+        if (result) {
+            framed.push_back(&result->initial);
+            framed.push_back(&result->final);
+        }
+    for (const auto& [load, result] : loads) {
+        if (!result) continue;
+        const std::string name = f.prefix + load + ".png";
+        render::Scene scene = BeforeAfterScene(f.title + "  -  " + load, *result, f.job, f.colouring);
+        if (f.inflated && f.stretched) scene.framing = render::FrameMeshes(framed);
+        WritePng((folder / name).string(), renderer.Render(scene), figureLevel);
+        written.push_back(name);
+    }
+    if (f.job.model != sim::ModelKind::Thesis && f.inflated && !f.inflated->shell.curvePressureKpa.empty()) {
+        const std::string name = f.prefix + "pressure_curve.png";
+        WritePng((folder / name).string(), PressureCurveImage(f.title, *f.inflated), figureLevel);
+        written.push_back(name);
+    }
+    if (f.turntableFrames > 0 && f.inflated) {
+        const std::string sub = f.prefix + "turntable";
+        std::error_code ec;
+        fs::create_directories(folder / sub, ec);
+        if (!fs::is_directory(folder / sub, ec)) throw UsageError("cannot create folder " + Quote((folder / sub).string()));
+        FrameWriter writer(frameLevel);
+        for (int k = 0; k < f.turntableFrames; ++k)
+            writer.Write((folder / sub / fmt::format("frame_{:04}.png", k)).string(),
+                         renderer.Render(TurntableScene(f.title + "  -  inflated", *f.inflated, f.job, 360.0 * k / f.turntableFrames, f.colouring)));
+        writer.Wait();
+        written.push_back(sub + "/frame_%04d.png x " + std::to_string(f.turntableFrames));
+    }
+    return written;
+}
+
+std::string EscapeWarning(const sim::SimResult& r) {
+    const sim::Positions& a = r.initial;
+    const sim::Positions& b = r.final;
+    if (a.Size() == 0 || b.Size() != a.Size()) return "";
+    double zMin = INFINITY, zMax = -INFINITY, radius = 0, moved = 0;
+    for (int i = 0; i < a.Size(); ++i) {
+        zMin = std::min(zMin, a.z[i]);
+        zMax = std::max(zMax, a.z[i]);
+        radius = std::max(radius, std::hypot(a.x[i], a.y[i]));
+        const double d = std::sqrt((b.x[i] - a.x[i]) * (b.x[i] - a.x[i]) + (b.y[i] - a.y[i]) * (b.y[i] - a.y[i]) + (b.z[i] - a.z[i]) * (b.z[i] - a.z[i]));
+        if (std::isfinite(d)) moved = std::max(moved, d);
+    }
+    const double size = std::max(zMax - zMin, 2 * radius);
+    if (!(moved > size)) return "";
+    return fmt::format("moved {:.3g} on a {:.3g}-unit mesh", moved, size);
+}
+
+void WriteContactSheet(const fs::path& path, const std::string& title, const std::vector<SheetEntry>& entries, const sim::EvalJob& job,
+                       std::unique_ptr<render::MeshRenderer>& renderer, const SheetAxes& axes) {
+    if (entries.empty()) return;
+    // Actuators are about ten times taller than wide: many narrow columns, cells about 1:2.
+    const int columns = axes.columns > 0 ? axes.columns : std::max(1, static_cast<int>(std::ceil(std::sqrt(entries.size() * 3.0))));
+    const int rows = static_cast<int>((entries.size() + columns - 1) / columns);
+    const bool labelled = !axes.columnLabels.empty() || !axes.rowLabels.empty();
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = title;
+    scene.columns = columns;
+    scene.columnLabels = axes.columnLabels;
+    scene.rowLabels = axes.rowLabels;
+    scene.columnTitle = axes.columnTitle;
+    scene.rowTitle = axes.rowTitle;
+    scene.colorBy = render::ColorBy::Displacement;
+    if (job.model != sim::ModelKind::Thesis) scene.colorLabel = "displacement\n(mm)";
+    std::vector<const sim::Positions*> kept;
+    std::vector<std::vector<double>> keptValues;
+    int escaped = 0;
+    for (const auto& entry : entries) {
+        const bool escapes = !EscapeWarning(*entry.result).empty();
+        escaped += escapes;
+        scene.panels.push_back({entry.result->final, entry.result->initial, (escapes ? "! " : "") + entry.caption, 0, {}, {}});
+        if (entry.result->status != sim::Status::Ok || escapes) continue;
+        kept.push_back(&entry.result->final);
+        kept.push_back(&entry.result->initial);
+        keptValues.push_back(render::VertexValues(render::ColorBy::Displacement, *scene.surface, scene.panels.back()));
+    }
+    // Cells shaped like what they hold (the framing cylinder seen from the side), so that meshes fill
+    // them and sit just above their captions.
+    double cellAspect = 0.5;  // height : width of the drawing area, before the caption
+    if (!kept.empty()) {
+        scene.framing = render::FrameMeshes(kept);
+        scene.colorMax = render::RobustColorMax(keptValues);
+        cellAspect = std::clamp((scene.framing->zMax - scene.framing->zMin) / (2.2 * scene.framing->radius), 0.6, 2.4);
+    }
+    const int cellWidth = 130, cellHeight = static_cast<int>(cellWidth * cellAspect) + 40;
+    const int width = std::clamp(columns * cellWidth + 150 + (labelled ? 110 : 0), 800, 2800);
+    const int height = std::clamp(rows * cellHeight + 130 + (labelled ? 50 : 0) + (escaped ? 20 : 0), 450, 2600);
+    // Body text 0.8 x 19 px = 15 px: captions readable at 100 %; rendered at twice the size and
+    // filtered down like the main figures.
+    if (!renderer || renderer->Def().width != width || renderer->Def().height != height) renderer = MakeRenderer(width, height, 2, 0.8);
+    if (escaped)
+        scene.lines.push_back(fmt::format("! {} of {} meshes moved farther than their own size: not a physical state; camera and colour scale "
+                                          "(98th percentile) are the other meshes'",
+                                          escaped, entries.size()));
+    WritePng(path.string(), renderer->Render(scene), 1);
+}
+
+ThumbnailWriter::ThumbnailWriter(fs::path folder) : folder_(std::move(folder)) {
+    std::error_code ec;
+    fs::create_directories(folder_, ec);
+    if (!fs::is_directory(folder_, ec)) throw UsageError("cannot create folder " + Quote(folder_.string()));
+    render::RenderDef def = render::DefaultRenderDef();
+    def.width = 300;
+    def.height = 200;
+    def.supersample = 1;
+    def.textScale = 0.6;  // 11 px: a label, not a caption
+    renderer_ = MakeRenderer(def);
+}
+
+std::string ThumbnailWriter::Name(std::uint64_t id) { return fmt::format("evaluation_{:06}.png", id); }
+
+void ThumbnailWriter::Write(std::uint64_t id, const sim::SimResult& result, const sim::EvalJob& job) {
+    render::Scene scene;
+    scene.surface = SharedSurface(job);
+    scene.title = fmt::format("#{}  {}", id, FitnessCaption(result));  // which evaluation, and how it did
+    scene.panels = {{result.initial, {}, "", 0, {}, {}}, {result.final, result.initial, "", 0, {}, {}}};
+    WritePng((folder_ / Name(id)).string(), renderer_->Render(scene), 1);
+}
+
+}  // namespace app

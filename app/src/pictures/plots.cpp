@@ -1,0 +1,269 @@
+#include "pictures/plots.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "support/errors.h"
+#include "render/plot.h"
+
+namespace app {
+
+std::string AxisLabel(sim::SweepParameter parameter) {
+    switch (parameter) {
+        case sim::SweepParameter::Amplitude: return "amplitude A";
+        case sim::SweepParameter::Cycles: return "cycles n (phase 0 to n pi)";
+        case sim::SweepParameter::PhaseEnd: return "phase end (radians)";
+        case sim::SweepParameter::PressureKpa: return "gauge pressure (kPa)";
+        case sim::SweepParameter::FibreAngleDeg: return "fibre angle to the axis (degrees)";
+    }
+    return "";
+}
+
+namespace {
+
+// The fitness's meaning and unit under the experiment's model.
+std::string FitnessLabel(const Experiment& e) {
+    if (e.kind == ExperimentKind::Optimize) {
+        const sim::Objective& o = e.optimizer.objectives[0];
+        return fmt::format("{} ({})", sim::ObjectiveUnit(o.kind), o.maximise ? "maximised" : "minimised");
+    }
+    return e.model == sim::ModelKind::Thesis ? "fitness (contraction, mesh units)" : "fitness: contraction (percent, positive = shorter)";
+}
+
+std::unique_ptr<render::PlotRenderer> MakePlots(int width, int height) {
+    std::string error;
+    auto plots = render::PlotRenderer::Create(width, height, &error);
+    if (!plots) throw UsageError("cannot render: " + error);
+    return plots;
+}
+
+}  // namespace
+
+render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fitness, int best, const std::string& bestText) {
+    auto plots = MakePlots(1024, 640);
+    const std::string title = ExperimentTitle(e) + "  -  fitness landscape";
+    const auto& axes = e.sweep.axes;
+    if (axes.size() == 1) {
+        render::LinePlot plot;
+        plot.xLabel = AxisLabel(axes[0].parameter);
+        plot.yLabel = FitnessLabel(e);
+        plot.zeroLine = true;
+        const std::string what = e.model == sim::ModelKind::Thesis ? "fitness after " + std::to_string(e.params.iterations) + " iterations"
+                                                                   : std::string("contraction at equilibrium, ") + sim::Name(e.model) + " model";
+        render::LineSeries series{what, axes[0].values, fitness, {0.13f, 0.35f, 0.75f}, true};
+        plot.series.push_back(series);
+        if (best >= 0) {
+            plot.highlight = std::pair{axes[0].values[static_cast<size_t>(best)], fitness[static_cast<size_t>(best)]};
+            plot.highlightLabel = bestText;
+        }
+        // The thesis's own numbers where it gives them (Figure 4.1's peak).
+        render::LineSeries thesis{"", {}, {}, {0.85f, 0.45f, 0.10f}, true};
+        thesis.lines = false;
+        for (const auto& point : e.thesisResult.points)
+            for (const auto& [parameter, value] : point.at)
+                if (parameter == axes[0].parameter) {
+                    thesis.x.push_back(value);
+                    thesis.y.push_back(point.fitness);
+                    thesis.label += (thesis.label.empty() ? "thesis: " : ", ") + fmt::format("{:g} at {} = {:g}", point.fitness, sim::Name(parameter), value);
+                }
+        if (!thesis.x.empty()) plot.series.push_back(thesis);
+        return plots->RenderLines(title, {plot});
+    }
+    // A short axis (a few pressures, say) reads better as one curve per value than as a heat map.
+    const size_t shortAxis = axes[0].values.size() <= axes[1].values.size() ? 0 : 1, longAxis = 1 - shortAxis;
+    if (axes[shortAxis].values.size() <= 6 && axes[longAxis].values.size() > axes[shortAxis].values.size()) {
+        render::LinePlot plot;
+        plot.xLabel = AxisLabel(axes[longAxis].parameter);
+        plot.yLabel = FitnessLabel(e);
+        plot.zeroLine = true;
+        const render::Rgb colours[] = {{0.13f, 0.35f, 0.75f}, {0.85f, 0.45f, 0.10f}, {0.15f, 0.60f, 0.25f},
+                                       {0.60f, 0.20f, 0.65f}, {0.55f, 0.35f, 0.20f}, {0.30f, 0.30f, 0.30f}};
+        const size_t n1 = axes[1].values.size();
+        for (size_t s = 0; s < axes[shortAxis].values.size(); ++s) {
+            render::LineSeries series{fmt::format("{} = {:.4g}", sim::Name(axes[shortAxis].parameter), axes[shortAxis].values[s]), axes[longAxis].values, {},
+                                      colours[s % 6], true};
+            for (size_t k = 0; k < axes[longAxis].values.size(); ++k)
+                series.y.push_back(fitness[shortAxis == 0 ? s * n1 + k : k * n1 + s]);
+            plot.series.push_back(series);
+        }
+        if (axes[longAxis].parameter == sim::SweepParameter::FibreAngleDeg) {
+            // The ideal McKibben muscle's free contraction, 1 - cos(54.74 deg) / cos(alpha): what an
+            // inextensible braid on a wall of no stiffness reaches at any pressure.
+            // Drawn down to a little below the data: past about 70 degrees it falls away steeply.
+            double low = INFINITY, high = -INFINITY;
+            for (double f : fitness)
+                if (std::isfinite(f)) {
+                    low = std::min(low, f);
+                    high = std::max(high, f);
+                }
+            const double floor = std::isfinite(low) ? low - 0.25 * std::max(high - low, 1.0) : -50;
+            render::LineSeries ideal{"ideal McKibben muscle (inextensible braid, no wall)", {}, {}, {0.2f, 0.2f, 0.2f}, false};
+            for (double a = 0; a <= 89.01; a += 0.5) {
+                const double y = 100 * (1 - std::cos(54.7356 * std::numbers::pi / 180) / std::cos(a * std::numbers::pi / 180));
+                if (y < floor) break;
+                ideal.x.push_back(a);
+                ideal.y.push_back(y);
+            }
+            plot.series.push_back(ideal);
+        }
+        if (best >= 0) {
+            const size_t b = static_cast<size_t>(best);
+            plot.highlight = std::pair{axes[longAxis].values[shortAxis == 0 ? b % n1 : b / n1], fitness[b]};
+            plot.highlightLabel = bestText;
+        }
+        return plots->RenderLines(title, {plot});
+    }
+    render::Heatmap heatmap;
+    heatmap.xLabel = AxisLabel(axes[1].parameter);
+    heatmap.yLabel = AxisLabel(axes[0].parameter);
+    heatmap.valueLabel = e.model == sim::ModelKind::Thesis ? "fitness" : "contraction (%)";
+    heatmap.xValues = axes[1].values;
+    heatmap.yValues = axes[0].values;
+    heatmap.values = fitness;
+    if (best >= 0) {
+        heatmap.highlight = static_cast<size_t>(best);
+        const bool anyFailed = std::any_of(fitness.begin(), fitness.end(), [](double f) { return !std::isfinite(f); });
+        heatmap.highlightLabel = bestText + (anyFailed ? "  (grey cells: failed evaluations)" : "");
+    }
+    // The designs the thesis names (Table 4.4), at their parameters.
+    for (size_t k = 0; k < e.thesisResult.points.size(); ++k) {
+        const auto& point = e.thesisResult.points[k];
+        render::Heatmap::Mark mark{NAN, NAN, fmt::format("T{}: {:g}", k + 1, point.fitness)};
+        for (const auto& [parameter, value] : point.at) {
+            if (parameter == axes[1].parameter) mark.x = value;
+            if (parameter == axes[0].parameter) mark.y = value;
+        }
+        if (std::isfinite(mark.x) && std::isfinite(mark.y)) heatmap.marks.push_back(mark);
+    }
+    if (!heatmap.marks.empty()) heatmap.marksLegend = "black dots: the thesis's own designs and fitness (T1, T2, ... in the order of its table)";
+    return plots->RenderHeatmap(title, heatmap);
+}
+
+render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs) {
+    auto plots = MakePlots(std::min(2400, 560 * static_cast<int>(runs.size()) + 200), 640);
+    std::vector<render::LinePlot> panels;
+    for (const RunCurve& run : runs) {
+        render::LinePlot plot;
+        plot.title = run.title;
+        plot.xLabel = "generation";
+        plot.yLabel = FitnessLabel(e);
+        // The whole population's spread (worst to best) and its middle half (interquartile range),
+        // with the best and the median: bands that cannot rise above the best line.
+        const render::Rgb blue{0.13f, 0.35f, 0.75f};
+        render::LineSeries bestLine{"best", {}, {}, {0.10f, 0.55f, 0.20f}}, medianLine{"median", {}, {}, blue};
+        render::Band range{"worst to best", {}, {}, {}, {0.55f, 0.60f, 0.70f}}, middle{"interquartile range", {}, {}, {}, blue};
+        for (const auto& row : run.logbook) {
+            const double g = row.generation;
+            bestLine.x.push_back(g);
+            bestLine.y.push_back(row.best);
+            medianLine.x.push_back(g);
+            medianLine.y.push_back(row.median);
+            range.x.push_back(g);
+            range.low.push_back(std::min(row.worst, row.best));
+            range.high.push_back(std::max(row.worst, row.best));
+            middle.x.push_back(g);
+            middle.low.push_back(row.q1);
+            middle.high.push_back(row.q3);
+        }
+        plot.bands = {range, middle};
+        plot.series = {bestLine, medianLine};
+        if (!run.bestSoFar.empty()) {
+            bestLine.label = "generation's best";
+            render::LineSeries soFar{"best so far", {}, run.bestSoFar, {0.05f, 0.05f, 0.05f}};
+            for (const auto& row : run.logbook) soFar.x.push_back(row.generation);
+            plot.series = {soFar, bestLine, medianLine};
+        }
+        if (std::isfinite(run.reference) && !run.logbook.empty()) {
+            // The thesis's number for this run, as a reference line across the generations.
+            render::LineSeries reference{run.referenceLabel, {double(run.logbook.front().generation), double(run.logbook.back().generation)},
+                                         {run.reference, run.reference}, {0.85f, 0.45f, 0.10f}};
+            plot.series.push_back(reference);
+        }
+        if (!run.logbook.empty()) {
+            const auto& last = run.logbook.back();
+            const double best = run.bestSoFar.empty() ? last.best : run.bestSoFar.back();
+            plot.highlight = std::pair{double(last.generation), best};
+            plot.highlightLabel = fmt::format("best {:.4f}", best);
+        }
+        panels.push_back(plot);
+    }
+    return plots->RenderLines(ExperimentTitle(e) + "  -  evolution", panels);
+}
+
+render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front) {
+    auto plots = MakePlots(1200, 800);
+    const sim::Objective& a = e.optimizer.objectives[0];
+    const sim::Objective& b = e.optimizer.objectives[1];
+    render::LinePlot plot;
+    plot.xLabel = fmt::format("{} ({})", sim::ObjectiveUnit(a.kind), a.maximise ? "better to the right" : "better to the left");
+    plot.yLabel = fmt::format("{} ({})", sim::ObjectiveUnit(b.kind), b.maximise ? "better up" : "better down");
+    render::LineSeries cloud{fmt::format("every valid design ({})", all.size()), {}, {}, {0.45f, 0.45f, 0.50f}, true};
+    cloud.lines = false;
+    cloud.alpha = 0.3f;
+    for (const auto& p : all) {
+        cloud.x.push_back(p.x);
+        cloud.y.push_back(p.y);
+    }
+    // The front drawn as a staircase-free polyline through its designs sorted by the first objective.
+    render::LineSeries line{fmt::format("non-dominated front ({} designs, numbered as in pareto_front.csv)", front.size()), {}, {}, {0.80f, 0.20f, 0.15f}, true};
+    for (size_t k = 0; k < front.size(); ++k) {
+        line.x.push_back(front[k].x);
+        line.y.push_back(front[k].y);
+        line.pointLabels.push_back(std::to_string(k + 1));
+    }
+    plot.series = {cloud, line};
+    std::string extra = e.optimizer.objectives.size() > 2 ? fmt::format(" (first two of {} objectives)", e.optimizer.objectives.size()) : "";
+    return plots->RenderLines(ExperimentTitle(e) + "  -  Pareto front, run 1" + extra, {plot});
+}
+
+render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs) {
+    auto plots = MakePlots(1024, 640);
+    render::LinePlot plot;
+    plot.xLabel = "generation";
+    std::string units;
+    for (const sim::Objective& o : e.optimizer.objectives) units += (units.empty() ? "" : " x ") + std::string(sim::ObjectiveUnit(o.kind));
+    plot.yLabel = "hypervolume of every valid design so far (" + units + ")";
+    const render::Rgb colours[] = {{0.13f, 0.35f, 0.75f}, {0.80f, 0.20f, 0.15f}, {0.10f, 0.55f, 0.20f}, {0.55f, 0.25f, 0.65f}, {0.85f, 0.55f, 0.10f}};
+    for (size_t r = 0; r < runs.size(); ++r) {
+        render::LineSeries series{runs[r].first, {}, {}, colours[r % 5], true};
+        for (const auto& [g, hv] : runs[r].second) {
+            series.x.push_back(g);
+            series.y.push_back(hv);
+        }
+        plot.series.push_back(series);
+    }
+    return plots->RenderLines(ExperimentTitle(e) + "  -  hypervolume (reference point fixed at generation 0)", {plot});
+}
+
+render::Image PressureCurveImage(const std::string& title, const sim::SimResult& r) {
+    const sim::ShellOutputs& o = r.shell;
+    auto plots = MakePlots(1024, 640);
+    render::LinePlot plot;
+    plot.xLabel = "gauge pressure (kPa)";
+    plot.yLabel = "contraction (percent, positive = shorter)";
+    plot.zeroLine = true;
+    // The curve starts at rest: zero pressure, zero contraction.
+    render::LineSeries curve{"equilibrium at each load step", {0.0}, {0.0}, {0.13f, 0.35f, 0.75f}, true};
+    for (size_t k = 0; k < o.curvePressureKpa.size() && k < o.curveContractionPercent.size(); ++k) {
+        curve.x.push_back(o.curvePressureKpa[k]);
+        curve.y.push_back(o.curveContractionPercent[k]);
+    }
+    plot.series.push_back(curve);
+    if (std::isfinite(o.limitPressureKpa)) {
+        // The limit point: the step at the pressure maximum.
+        size_t top = 0;
+        for (size_t k = 1; k < curve.x.size(); ++k)
+            if (curve.x[k] > curve.x[top]) top = k;
+        plot.highlight = std::pair{curve.x[top], curve.y[top]};
+        plot.highlightLabel = fmt::format("limit point: pressure maximum {:.3g} kPa", o.limitPressureKpa);
+    } else if (curve.x.size() > 1) {
+        plot.highlight = std::pair{curve.x.back(), curve.y.back()};
+        plot.highlightLabel = std::isfinite(r.contractionPercent)
+                                  ? fmt::format("{:.2f} % at {:.3g} kPa ({})", r.contractionPercent, o.targetPressureKpa, sim::Name(r.status))
+                                  : std::string("last converged step (") + sim::Name(r.status) + ")";
+    }
+    return plots->RenderLines(title + "  -  contraction against pressure", {plot});
+}
+
+}  // namespace app

@@ -1,0 +1,41 @@
+// The figures of numbers an experiment writes: a sweep's fitness landscape (a line plot for one
+// axis, a heat map for two) and a GA's evolution (best, mean and worst per generation, per run).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "experiments/experiment.h"
+#include "render/image.h"
+
+namespace app {
+
+// `fitness` in grid order (NaN for failed points); `best` the best point's index or -1.
+render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fitness, int best, const std::string& bestText);
+
+struct RunCurve {
+    std::string title;  // e.g. "run 2"
+    std::vector<sim::LogbookRow> logbook;
+    std::vector<double> bestSoFar{};  // optimizers that may lose their best (CMA-ES): per generation; empty for the GA
+    double reference = NAN;           // the thesis's best for this run, drawn as a line; NaN: none
+    std::string referenceLabel{};     // e.g. "thesis, Table 5.4: 1.13"
+};
+render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
+
+// An optimizer's two-objective Pareto front (natural units and directions): every valid design
+// faint, the front's designs numbered 1, 2, ... in the order of pareto_front.csv.
+struct ParetoPoint {
+    double x, y;
+};
+render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front);
+// The hypervolume of each run against its generation.
+render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs);
+
+// A membrane or shell result's contraction-pressure curve at its load steps, the target pressure
+// and the limit point (the pressure maximum) marked when met.
+render::Image PressureCurveImage(const std::string& title, const sim::SimResult& result);
+
+// How a sweep axis is named on plots, e.g. "amplitude A".
+std::string AxisLabel(sim::SweepParameter parameter);
+
+}  // namespace app

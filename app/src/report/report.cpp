@@ -1,0 +1,207 @@
+#include "report/report.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "experiments/thesis_check.h"
+
+namespace app {
+
+bool MarkedlyDifferent(double ours, double thesis) {
+    if (!std::isfinite(thesis)) return false;
+    if (!std::isfinite(ours)) return true;
+    return std::fabs(ours - thesis) > 0.05 && std::fabs(ours - thesis) > 0.1 * std::fabs(thesis);
+}
+
+namespace {
+
+std::string Cell(double value) { return std::isfinite(value) ? fmt::format("{:.4g}", value) : "-"; }
+
+const char* kThesisModel =
+    "the `thesis` model of `shared/MODEL.md` (helical 30 x 30 mass-spring mesh, cross-product inflation, clamped ends; fitness in mesh units)";
+
+}  // namespace
+
+std::string ModelDescription(const Experiment& e) {
+    if (e.model == sim::ModelKind::Thesis) return kThesisModel;
+    const sim::ShellDef& s = e.shell;
+    const sim::GeometryDef& g = s.geometry;
+    return fmt::format("the `{}` model of `shared/SHELL.md` ({} at equilibrium): a tube of R = {:g} mm, L = {:g} mm, wall {:g} mm, {} ({}, "
+                       "shear modulus {:.3g} kPa), {} x {} ring mesh, {} to {:g} kPa in {} steps; fitness = contraction in percent at that pressure",
+                       sim::Name(e.model), e.model == sim::ModelKind::Shell ? "membrane and bending" : "membrane only", g.radiusMm, g.lengthMm,
+                       g.thicknessMm, sim::Name(s.material.preset), sim::Name(s.material.law), sim::ShearModulusKpa(s.material), g.ringVertices,
+                       sim::RingCount(g), sim::Name(s.load.kind), s.load.pressureKpa, s.load.steps);
+}
+
+namespace {
+
+std::string Signed(double v) { return std::isfinite(v) ? fmt::format("{:+.3g}", v) : std::string("-"); }
+
+// The comparison table at the top: every thesis table and figure the experiments reproduce, with our
+// number, the difference, and a verdict decided by rule (thesis_check.h).
+std::vector<ItemLine> AllItemLines(const std::vector<ReportEntry>& entries) {
+    std::vector<ItemLine> lines;
+    for (const auto& entry : entries) {
+        auto more = ItemLines(entry.experiment, entry.outcome.rows, entry.folder);
+        lines.insert(lines.end(), more.begin(), more.end());
+    }
+    return lines;
+}
+
+std::string ItemsMarkdown(const std::vector<ItemLine>& lines, bool quick) {
+    if (lines.empty()) return "";
+    int counts[3] = {0, 0, 0};
+    for (const auto& line : lines) ++counts[static_cast<int>(line.verdict)];
+    std::string md = "<a id=\"thesis-items\"></a>\n\n## The thesis item by item\n\n";
+    if (quick) md += "(Quick run: the verdicts below judge reduced experiments, not the thesis's.)\n\n";
+    md += fmt::format("{} claims of the thesis's tables and figures: **{} reproduced, {} explained differences, {} unexplained**. "
+                      "Reproduced means within the tolerance shown (by default 5 % of the thesis's value, at least 0.02); a difference is "
+                      "explained only when this run's own numbers account for it (the reason column says how), otherwise it is unexplained. "
+                      "Settings tables are followed as printed; where the thesis is silent the section's Settings line says what was chosen.\n\n",
+                      lines.size(), counts[0], counts[1], counts[2]);
+    md += "| thesis | claim | thesis value | ours | difference | tolerance | verdict | reason (computed from this run) |\n|---|---|---:|---:|---:|---:|---|---|\n";
+    for (const auto& line : lines) {
+        const ThesisItem& item = line.item;
+        std::string ours = item.settings.empty() ? Cell(line.ours) : "as printed";
+        if (!item.figure.empty()) ours += fmt::format(" ([figure]({}/{}))", line.anchor, item.figure);
+        const std::string claim = item.settings.empty() ? item.claim : item.settings;
+        md += fmt::format("| [{}](#{}) | {} | {} | {} | {} | {} | {} | {} |\n", item.item, line.anchor, claim,
+                          item.settings.empty() ? (item.atLeast ? "> " : "") + Cell(line.thesis) : "-", ours,
+                          item.settings.empty() ? Signed(line.ours - line.thesis) : "-", item.settings.empty() && !item.atLeast ? Cell(line.tolerance) : "-",
+                          VerdictName(line.verdict), line.why.empty() ? "" : line.why);
+    }
+    return md + "\n";
+}
+
+// The thesis's summary numbers beside ours: mean best per GA experiment and their ranking, and its
+// timings.
+std::string BesideMarkdown(const std::vector<ReportEntry>& entries) {
+    std::string md;
+    std::vector<std::pair<double, std::string>> thesisRank, ourRank;
+    for (const auto& entry : entries) {
+        const Experiment& e = entry.experiment;
+        if (e.model != sim::ModelKind::Thesis) continue;
+        const ThesisResult& t = e.thesisResult;
+        const ExperimentOutcome& o = entry.outcome;
+        if (!t.runBest.empty()) {
+            double thesisMean = 0, ourMean = 0;
+            int ours = 0;
+            for (double v : t.runBest) thesisMean += v / t.runBest.size();
+            for (const auto& row : o.rows)
+                if (row.quantity.size() > 16 && row.quantity.compare(row.quantity.size() - 12, 12, "best fitness") == 0 && row.quantity.rfind("run ", 0) == 0 &&
+                    std::isfinite(row.ours)) {
+                    ourMean += row.ours;
+                    ++ours;
+                }
+            if (ours) ourMean /= ours;
+            thesisRank.push_back({thesisMean, e.id});
+            if (ours) ourRank.push_back({ourMean, e.id});
+            md += fmt::format("| [{}](#{}) | mean best fitness over {} run{} | {}{} | {} |\n", e.id, entry.folder, t.runBest.size(), t.runBest.size() > 1 ? "s" : "",
+                              Cell(thesisMean), std::isfinite(t.meanBest) ? fmt::format(" (its text: {:g}, {})", t.meanBest, t.meanBestSource) : std::string(),
+                              ours ? Cell(ourMean) : std::string("-"));
+        }
+        if (std::isfinite(t.minutes))
+            md += fmt::format("| [{}](#{}) | time for the whole sweep | {:g} min{} | {:.1f} s ({:.1f} ms per simulation, this session) |\n", e.id, entry.folder,
+                              t.minutes, std::isfinite(t.secondsPerSimulation) ? fmt::format(", {:g} s per simulation on one thread of a 2016 MacBook", t.secondsPerSimulation) : std::string(),
+                              o.seconds, o.simulations > 0 ? 1000 * o.seconds / o.simulations : NAN);
+    }
+    if (md.empty()) return "";
+    auto ranking = [](std::vector<std::pair<double, std::string>> r) {
+        std::stable_sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        std::string text;
+        for (const auto& [value, id] : r) text += (text.empty() ? "" : " > ") + fmt::format("{} ({:.3g})", id, value);
+        return text;
+    };
+    md = "## Beside the thesis's own summary\n\n| experiment | quantity | thesis | ours |\n|---|---|---:|---:|\n" + md + "\n";
+    if (thesisRank.size() > 1)
+        md += "Ranking of the GA experiments by mean best fitness: thesis " + ranking(thesisRank) + "; ours " + ranking(ourRank) + ".\n\n";
+    return md;
+}
+
+}  // namespace
+
+std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, double seconds, const std::string& evaluator, const std::string& chapter,
+                           const std::string& closing) {
+    long long simulations = 0, evaluations = 0;
+    for (const auto& entry : entries) {
+        simulations += entry.outcome.simulations;
+        evaluations += entry.outcome.evaluations;
+    }
+    std::string md = entries.size() == 1 ? "# " + ExperimentTitle(entries[0].experiment) + "\n\n" : "# Reproducing the 2019 thesis with Actuator Workbench\n\n";
+    if (quick)
+        md += "**Quick run** (`--quick`): at most 3 values per sweep axis, one GA run of 2 generations of 6 individuals, 2,000 "
+              "iterations. The numbers below check that everything runs; they are not the thesis's experiments.\n\n";
+    bool allThesis = true;
+    for (const auto& entry : entries) allThesis = allThesis && entry.experiment.model == sim::ModelKind::Thesis;
+    md += allThesis ? std::string("Model: ") + kThesisModel + ". " : std::string("Models: as stated in each section. ");
+    md += "Every experiment file is in `assets/experiments/`; its settings are copied beside its results.\n\n";
+    md += "| | |\n|---|---|\n";
+    md += "| experiments | " + std::to_string(entries.size()) + " |\n";
+    md += "| evaluations | " + std::to_string(evaluations) + " (archived) |\n";
+    // Timing lines: this session's, so a resumed run states what it did (tests skip them).
+    md += fmt::format("| wall time | {:.1f} s ({:.1f} min), this session |\n", seconds, seconds / 60);
+    md += fmt::format("| throughput | {} simulations, {:.1f} evaluations/s on {}, figures included, this session |\n", simulations,
+                      seconds > 0 ? simulations / seconds : 0, evaluator);
+    const std::vector<ItemLine> items = AllItemLines(entries);
+    if (!items.empty()) {
+        const auto unexplained = std::count_if(items.begin(), items.end(), [](const ItemLine& l) { return l.verdict == Verdict::Unexplained; });
+        md += fmt::format("| thesis items | {} compared, **{} unexplained** ([table](#thesis-items)) |\n", items.size(), unexplained);
+    }
+    md += "\n";
+    if (!items.empty()) md += ItemsMarkdown(items, quick) + BesideMarkdown(entries);
+    md += "## Contents\n\n";
+    bool chapterListed = false;
+    for (const auto& entry : entries) {
+        if (!chapter.empty() && !entry.experiment.compare.empty() && !chapterListed) {
+            md += "- [Part 2: under a physical model](#physical-chapter)\n";
+            chapterListed = true;
+        }
+        md += "- [" + entry.experiment.id + " " + entry.experiment.title + "](#" + entry.folder + ")\n";
+    }
+    if (!closing.empty()) md += "- [Part 3: optimizers compared](#optimizers)\n";
+    md += "\n";
+
+    bool chapterWritten = false;
+    for (const auto& entry : entries) {
+        const Experiment& e = entry.experiment;
+        if (!chapter.empty() && !e.compare.empty() && !chapterWritten) {
+            md += chapter;
+            chapterWritten = true;
+        }
+        const ExperimentOutcome& o = entry.outcome;
+        md += "<a id=\"" + entry.folder + "\"></a>\n\n## " + e.id + " " + e.title + "\n\n";
+        if (!e.thesis.empty()) md += "Thesis: " + e.thesis + ".\n\n";
+        if (!allThesis) md += "Model: " + ModelDescription(e) + ".\n\n";
+        if (!e.note.empty()) md += "Settings: " + e.note + "\n\n";
+        md += fmt::format("Results in [`{0}/`]({0}/): {1} evaluations.\n", entry.folder, o.evaluations);
+        md += fmt::format("This session: {} simulations in {:.1f} s.\n\n", o.simulations, o.seconds);
+        if (!o.rows.empty()) {
+            md += "| | ours | thesis | difference |\n|---|---:|---:|---:|\n";
+            for (const auto& row : o.rows)
+                md += "| " + row.quantity + " | " + Cell(row.ours) + " | " + Cell(row.thesis) + " | " +
+                      (std::isfinite(row.ours) && std::isfinite(row.thesis) ? fmt::format("{:+.3g}", row.ours - row.thesis) : std::string("-")) +
+                      (MarkedlyDifferent(row.ours, row.thesis) ? " **" : "") + " |\n";
+            md += "\n";
+        }
+        md += o.tables;
+        for (const auto& line : o.details) md += "- " + line + "\n";
+        if (!o.details.empty()) md += "\n";
+        bool differs = false;
+        for (const auto& row : o.rows) differs = differs || MarkedlyDifferent(row.ours, row.thesis);
+        if (differs && quick) md += "Differences here come from the quick run's reduced grids and generations.\n\n";
+        // Reasons are computed by the run from its own numbers; a file's `explanation` adds context.
+        std::string reasons;
+        for (const auto& row : o.rows)
+            if (!row.why.empty() && (MarkedlyDifferent(row.ours, row.thesis) || !std::isfinite(row.thesis)))
+                reasons += "- " + row.quantity + ": " + row.why + (row.explained ? " (explained)" : " (unexplained)") + "\n";
+        if (!reasons.empty()) md += "**Why the numbers differ** (rows marked **), computed from this run:\n\n" + reasons + "\n";
+        if (!e.explanation.empty() && differs && !quick) md += "Context: " + e.explanation + "\n\n";
+        for (const auto& figure : o.figures) md += "![" + e.id + " " + figure + "](" + entry.folder + "/" + figure + ")\n\n";
+    }
+    return md + closing;
+}
+
+}  // namespace app

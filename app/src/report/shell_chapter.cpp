@@ -1,0 +1,282 @@
+#include "report/shell_chapter.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <optional>
+
+#include "formats/archive.h"
+#include "formats/csv.h"
+#include "support/errors.h"
+#include "pictures/figures.h"
+#include "formats/files.h"
+
+namespace app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Cell(double value, const char* format = "{:.3g}") { return std::isfinite(value) ? fmt::format(fmt::runtime(format), value) : "-"; }
+
+// "ok, -1.23 %" or the status.
+std::string Outcome(const sim::SimResult& r) {
+    if (r.status == sim::Status::Ok) return fmt::format("{:+.2f} %", r.contractionPercent);
+    std::string text = sim::Name(r.status);
+    if (r.status == sim::Status::LimitPoint && std::isfinite(r.shell.limitPressureKpa)) text += fmt::format(" at {:.2g} kPa", r.shell.limitPressureKpa);
+    return text;
+}
+
+// How far a contraction moves when the mesh is refined, against SHELL.md's 5 %: relative, except
+// that contractions under 1 % are compared in absolute terms (0.05 percentage points), where a
+// relative figure of two near-zero numbers says nothing.
+struct MeshChange {
+    double points = NAN, relative = NAN;
+    bool within = false;
+};
+MeshChange ChangeOf(double coarse, double fine) {
+    MeshChange c;
+    if (!std::isfinite(coarse) || !std::isfinite(fine)) return c;
+    c.points = std::fabs(fine - coarse);
+    c.relative = 100 * c.points / std::max(std::fabs(fine), 1e-12);
+    c.within = std::fabs(fine) < 1 ? c.points <= 0.05 : c.relative <= 5;
+    return c;
+}
+std::string ChangeText(const MeshChange& c) {
+    if (!std::isfinite(c.points)) return "-";
+    return fmt::format("{:.2f} points ({:.1f} %){}", c.points, c.relative, c.within ? "" : " **");
+}
+
+// The same design meshed twice as finely in both directions.
+sim::EvalJob Finer(sim::EvalJob job) {
+    job.shell.geometry.ringVertices *= 2;
+    if (job.shell.geometry.rings > 0) job.shell.geometry.rings = 2 * job.shell.geometry.rings - 1;  // every edge halved
+    return job;
+}
+
+struct Tally {
+    std::map<std::string, int> statuses;
+    int evaluated = 0, contracting = 0;
+    double bestContraction = NAN;
+    std::optional<ArchiveRecord> best;  // the record of the best contraction (no meshes)
+};
+
+Tally TallyOf(const fs::path& archive) {
+    Tally t;
+    std::error_code ec;
+    if (!fs::exists(archive, ec)) return t;
+    ScanArchive(archive.string(), false, [&](ArchiveRecord&& r) {
+        if (r.role == Role::Figure) return true;
+        ++t.evaluated;
+        ++t.statuses[sim::Name(r.result.status)];
+        if (r.result.status == sim::Status::Ok) {
+            if (r.result.contractionPercent > 0) ++t.contracting;
+            if (!(r.result.contractionPercent <= t.bestContraction)) {
+                t.bestContraction = r.result.contractionPercent;
+                t.best = std::move(r);
+            }
+        }
+        return true;
+    });
+    return t;
+}
+
+std::string StatusText(const std::map<std::string, int>& statuses) {
+    std::string text;
+    for (const auto& [status, count] : statuses) text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + status;
+    return text.empty() ? "none" : text;
+}
+
+}  // namespace
+
+Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path& dir, Evaluator& evaluator) {
+    const auto started = std::chrono::steady_clock::now();
+    Chapter chapter;
+    chapter.folder = "comparison";
+    std::vector<sim::EvalJob> jobs;
+    struct Slot {
+        size_t row;
+        bool fine;
+    };
+    std::vector<Slot> slots;
+    for (const ReportEntry& entry : entries) {
+        if (entry.experiment.compare.empty()) continue;
+        ChapterRow row;
+        row.physical = &entry;
+        for (const ReportEntry& other : entries)
+            if (other.experiment.id == entry.experiment.compare && other.experiment.compare.empty()) row.thesis = &other;
+        row.statuses = TallyOf(dir / entry.folder / "evaluations.capnp").statuses;
+        if (row.thesis && row.thesis->outcome.bestJob) {
+            jobs.push_back(JobOf(entry.experiment, row.thesis->outcome.bestJob->shape));
+            slots.push_back({chapter.rows.size(), false});
+        }
+        if (entry.outcome.bestJob) {
+            jobs.push_back(Finer(*entry.outcome.bestJob));
+            slots.push_back({chapter.rows.size(), true});
+        }
+        chapter.rows.push_back(std::move(row));
+    }
+    if (chapter.rows.empty()) return chapter;
+
+    std::error_code ec;
+    fs::create_directories(dir / chapter.folder, ec);
+    if (!fs::is_directory(dir / chapter.folder, ec)) throw UsageError("cannot create folder " + Quote((dir / chapter.folder).string()));
+    auto renderer = MakeRenderer(1024, 768);
+    evaluator.Evaluate(jobs, [&](size_t k, sim::SimResult&& result) {
+        ChapterRow& row = chapter.rows[slots[k].row];
+        const std::string id = row.physical->experiment.id;
+        const std::string model = sim::Name(row.physical->experiment.model);
+        if (slots[k].fine) {
+            row.fine = std::move(result);
+            row.fineEvaluated = true;
+            return;
+        }
+        row.thesisBestHere = std::move(result);
+        row.thesisBestFigure = chapter.folder + "/" + id + "_thesis_best_under_" + model + ".png";
+        const std::string title = fmt::format("{}: the thesis model's best design under the {} model", row.thesis->experiment.id, model);
+        WritePng((dir / row.thesisBestFigure).string(), renderer->Render(BeforeAfterScene(title, row.thesisBestHere, jobs[k])), 6);
+    });
+
+    std::string csv = CsvRow({"experiment", "compares", "evaluations", "statuses", "thesis_model_best_fitness", "thesis_best_status",
+                              "thesis_best_contraction_percent", "best_contraction_percent", "best_contraction_percent_at_2x_mesh",
+                              "mesh_change_relative_percent"});
+    for (const ChapterRow& row : chapter.rows) {
+        const double best = row.physical->outcome.bestFitness;
+        const double fine = row.fineEvaluated && row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
+        int evaluated = 0;
+        for (const auto& [status, count] : row.statuses) evaluated += count;
+        csv += CsvRow({row.physical->experiment.id, row.physical->experiment.compare, std::to_string(evaluated), CsvField(StatusText(row.statuses)),
+                       row.thesis ? CsvNumber(row.thesis->outcome.bestFitness) : "", row.thesis ? sim::Name(row.thesisBestHere.status) : "",
+                       CsvNumber(row.thesisBestHere.status == sim::Status::Ok ? row.thesisBestHere.contractionPercent : NAN), CsvNumber(best),
+                       CsvNumber(fine), CsvNumber(ChangeOf(best, fine).relative)});
+    }
+    WriteFileAtomically((dir / chapter.folder / "comparison.csv").string(), csv);
+    chapter.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return chapter;
+}
+
+std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
+    if (chapter.rows.empty()) return "";
+    const Experiment& first = chapter.rows.front().physical->experiment;
+    const std::string model = sim::Name(first.model);
+    std::string md = fmt::format("<a id=\"physical-chapter\"></a>\n\n# Part 2: the thesis's experiments under the `{}` model\n\n", model);
+    md += "Model: " + ModelDescription(first) + ". The thesis's shapes map onto the tube with one radius unit = " +
+          fmt::format("{:g} mm", first.shell.geometry.radiusMm) +
+          " (SHELL.md section 1); a design whose radius reaches zero or that intersects itself is `invalid-geometry`, one past its pressure "
+          "maximum `limit-point`, one stretched beyond the material's limit `over-stretched`: none of them has a fitness. The GA runs are "
+          "shorter than the thesis's (see each section's settings).\n\n";
+    if (quick) md += "**Quick run**: grids and GA runs are shrunk; the numbers check that everything runs.\n\n";
+
+    md += "| experiment | designs evaluated | their statuses | thesis model's best (mesh units) | that design here | best here | best at 2x mesh | change |\n";
+    md += "|---|---:|---|---:|---|---:|---:|---:|\n";
+    int evaluated = 0, ok = 0, contracting = 0, thesisBestsValid = 0, thesisBests = 0, thesisRows = 0;
+    int fibreEvaluated = 0, fibreOk = 0, fibreContracting = 0;
+    double bestOverall = NAN;
+    // The best design of the isotropic experiments and of those with fibres, with their records.
+    struct Best {
+        const ChapterRow* row = nullptr;
+        std::optional<ArchiveRecord> record;
+    } bestIsotropic, bestWithFibres;
+    int meshChecked = 0, meshWithin = 0;
+    std::string bestWhere;
+    for (const ChapterRow& row : chapter.rows) {
+        Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");
+        const bool fibres = row.physical->experiment.shell.fibres.layout != sim::FibreLayout::None;
+        const int okHere = tally.statuses.count("ok") ? tally.statuses.at("ok") : 0;
+        (fibres ? fibreEvaluated : evaluated) += tally.evaluated;
+        (fibres ? fibreContracting : contracting) += tally.contracting;
+        (fibres ? fibreOk : ok) += okHere;
+        const double best = row.physical->outcome.bestFitness;
+        if (!fibres && std::isfinite(best) && !(best <= bestOverall)) {
+            bestOverall = best;
+            bestWhere = row.physical->experiment.id;
+        }
+        Best& slot = fibres ? bestWithFibres : bestIsotropic;
+        if (tally.best && (!slot.record || tally.best->result.contractionPercent > slot.record->result.contractionPercent)) {
+            slot.row = &row;
+            slot.record = std::move(tally.best);
+        }
+        const double fine = row.fineEvaluated && row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
+        const MeshChange change = ChangeOf(best, fine);
+        if (std::isfinite(change.points)) {
+            ++meshChecked;
+            meshWithin += change.within;
+        }
+        thesisRows += row.thesis != nullptr;
+        if (row.thesis && row.thesis->outcome.bestJob) {
+            ++thesisBests;
+            thesisBestsValid += row.thesisBestHere.status == sim::Status::Ok;
+        }
+        md += fmt::format("| [{} {}](#{}) | {} | {} | {} | {} | {} | {} | {} |\n", row.physical->experiment.id, row.physical->experiment.title,
+                          row.physical->folder, tally.evaluated, StatusText(tally.statuses),
+                          row.thesis ? Cell(row.thesis->outcome.bestFitness, "{:.3f}") : std::string("-"),
+                          row.thesis && row.thesis->outcome.bestJob ? Outcome(row.thesisBestHere) : std::string("-"),
+                          std::isfinite(best) ? fmt::format("{:+.2f} %", best) : std::string("none valid"),
+                          row.physical->outcome.bestJob ? Outcome(row.fine) : std::string("-"), ChangeText(change));
+    }
+    md += "\n";
+
+    // The finding, from the numbers.
+    md += "**Finding.** ";
+    md += fmt::format("Of {} isotropic designs (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium", evaluated, model,
+                      first.shell.load.pressureKpa, ok);
+    if (contracting == 0)
+        md += " and every one of them lengthened: none of them contracts. The thesis's premise, that shaping an isotropic tube makes a "
+              "contracting actuator, is not borne out in a model with equilibrium and units: shaped tubes of one isotropic silicone balloon "
+              "and lengthen. These runs are samples, not a proof: a search aimed at contraction alone (`actuator evolve "
+              "assets/experiments/optimizers/O5.2_cmaes_shell.json`, CMA-ES) finds thin-necked spindles that shorten by about a tenth of a "
+              "percent, the same at twice and three times the mesh. Useful contraction needs what SHELL.md names: stiff fibres (McKibben and "
+              "pleated muscles) or vacuum.";
+    else
+        md += fmt::format("; {} of them contracted, the best by {:.2f} % (experiment {}).", contracting, bestOverall, bestWhere);
+    if (thesisRows > 0)
+        md += fmt::format(" Of the thesis model's {} best designs, {} reach equilibrium here; the others are refused or fail as the table says "
+                          "(sine and abs-sine profiles that pass through zero radius cannot be built as tubes).",
+                          thesisBests, thesisBestsValid);
+    else  // part 2 alone (--part physical): there is nothing of part 1's to re-evaluate
+        md += " Part 1's results (the thesis model's runs) are not in this folder, so its best designs were not re-evaluated here: "
+              "run `actuator reproduce` with `--part both` (the default) for that comparison.";
+    if (meshChecked > 0)
+        md += fmt::format(" Mesh convergence (SHELL.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
+                          "under 1 % contraction, within 0.05 percentage points): {} of {} best designs pass{}.",
+                          meshWithin, meshChecked, meshWithin == meshChecked ? "" : "; the others (marked **) need a finer mesh than the default to be trusted");
+    if (fibreEvaluated > 0) {
+        md += fmt::format("\n\n**With fibres.** Of {} designs with a braid on the wall, {} reached equilibrium and {} contracted.", fibreEvaluated, fibreOk,
+                          fibreContracting);
+        auto describe = [&](const Best& b, const char* what) {
+            if (!b.record) return;
+            const sim::ShellOutputs& o = b.record->result.shell;
+            md += fmt::format(" The best {} design (experiment {}): contraction {:+.2f} % at {:g} kPa, blocking force {} N, largest stretch {:.2f} (limit {:.2f})",
+                              what, b.row->physical->experiment.id, b.record->result.contractionPercent, o.targetPressureKpa,
+                              Cell(o.blockingForceN), o.maxStretch, o.stretchLimit);
+            if (std::isfinite(o.fibreAngleDeg)) md += fmt::format(", braid at {:.0f} deg to the axis at that pressure, fibre strain {:.2f} %", o.fibreAngleDeg,
+                                                                 100 * o.maxFibreStrain);
+            md += ".";
+        };
+        describe(bestWithFibres, "fibre-reinforced");
+        describe(bestIsotropic, "isotropic");
+        md += "\n\n";
+        for (const Best* b : {&bestWithFibres, &bestIsotropic}) {
+            if (!b->row) continue;
+            for (const auto& figure : b->row->physical->outcome.figures)
+                if (figure == "best_inflation.png" || figure == "best_pressure_curve.png")
+                    md += "![" + b->row->physical->experiment.id + " " + figure + "](" + b->row->physical->folder + "/" + figure + ")\n";
+        }
+    }
+    md += fmt::format("\n\nThe comparison took {:.0f} s; its numbers are in [`{}/comparison.csv`]({}/comparison.csv).\n\n", chapter.seconds,
+                      chapter.folder, chapter.folder);
+
+    for (const ChapterRow& row : chapter.rows) {
+        if (!row.thesis) continue;
+        md += fmt::format("### {} beside {}\n\n", row.physical->experiment.id, row.thesis->experiment.id);
+        if (row.thesis->outcome.bestJob)
+            md += fmt::format("The thesis model's best, {} (fitness {:.3f} mesh units), under the `{}` model: {}.\n\n", ShapeTitle(row.thesis->outcome.bestJob->shape),
+                              row.thesis->outcome.bestFitness, model, Outcome(row.thesisBestHere));
+        for (const auto& figure : row.thesis->outcome.figures)
+            if (figure == "best_inflation.png") md += "![" + row.thesis->experiment.id + " best, thesis model](" + row.thesis->folder + "/" + figure + ")\n";
+        if (!row.thesisBestFigure.empty()) md += "![the same design under the " + model + " model](" + row.thesisBestFigure + ")\n";
+        md += "\n";
+    }
+    return md;
+}
+
+}  // namespace app

@@ -1,0 +1,42 @@
+// The reproduce command's second chapter: the thesis's experiments re-run under a physical model
+// (experiment files with "compare": "<thesis id>"), set beside the thesis model's results. For each
+// pair: how the designs fared (statuses), the thesis model's best design evaluated under the
+// physical model, the physical model's own best, and that best meshed twice as finely in both
+// directions (the mesh-convergence study of SHELL.md section 2). The finding is stated from the
+// numbers, whatever they are.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "evaluation/evaluator.h"
+#include "report/report.h"
+
+namespace app {
+
+struct ChapterRow {
+    const ReportEntry* physical = nullptr;  // the re-run
+    const ReportEntry* thesis = nullptr;    // its thesis-model experiment (null when not run)
+    std::map<std::string, int> statuses;    // of the re-run's evaluations, by status name
+    sim::SimResult thesisBestHere;          // the thesis model's best design under the physical model
+    sim::SimResult fine;                    // the re-run's best at twice the mesh in both directions
+    bool fineEvaluated = false;             // false when there was no best to re-run
+    std::string thesisBestFigure, bestFigure;  // pictures under `folder`, relative to the report
+};
+
+struct Chapter {
+    std::vector<ChapterRow> rows;
+    std::string folder;  // relative to the report: pictures and comparison.csv
+    double seconds = 0;
+};
+
+// Evaluates the comparisons on `evaluator`, draws the side-by-side pictures and writes
+// `dir / folder / comparison.csv`. `entries` holds both chapters' experiments.
+Chapter CompareChapters(const std::vector<ReportEntry>& entries, const std::filesystem::path& dir, Evaluator& evaluator);
+
+// The chapter as markdown: a table, the mesh study, the finding, the pictures.
+std::string ChapterMarkdown(const Chapter& chapter, bool quick);
+
+}  // namespace app

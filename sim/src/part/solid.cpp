@@ -1,0 +1,684 @@
+#include "sim/solid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+
+#include "sim/shell.h"
+#include "shell/shell_problem.h"
+
+namespace sim {
+namespace {
+
+using Vec = std::array<double, 3>;
+
+Vec Sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec Cross(const Vec& a, const Vec& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double Dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+std::string Format(const char* format, double a, double b, double c = 0, double d = 0) {
+    char text[320];
+    std::snprintf(text, sizeof text, format, a, b, c, d);
+    return text;
+}
+
+// Faces joined by exact coordinates: a point computed once (or by the same expression) and used by
+// several faces is one vertex, so the faces meet edge to edge.
+class Builder {
+public:
+    int Vertex(const Vec& p) {
+        const auto [it, inserted] = index_.try_emplace(p, static_cast<int>(mesh_.vertices.size()));
+        if (inserted) mesh_.vertices.push_back(p);
+        return it->second;
+    }
+    // a, b, c counter-clockwise seen from outside.
+    void Triangle(int a, int b, int c) { mesh_.triangles.push_back({a, b, c}); }
+    void Quad(int a, int b, int c, int d) {
+        Triangle(a, b, c);
+        Triangle(a, c, d);
+    }
+    // A triangle of a face whose outward normal is known: turned to face it.
+    void Facing(int a, int b, int c, const Vec& normal) {
+        const Vec n = Cross(Sub(mesh_.vertices[b], mesh_.vertices[a]), Sub(mesh_.vertices[c], mesh_.vertices[a]));
+        if (Dot(n, normal) < 0) std::swap(b, c);
+        Triangle(a, b, c);
+    }
+    // A quad a b c d (in order around it) as two triangles facing `normal`.
+    void FacingQuad(int a, int b, int c, int d, const Vec& normal) {
+        Facing(a, b, c, normal);
+        Facing(a, c, d, normal);
+    }
+    // A convex polygon (in order around it) fanned from its first vertex.
+    void Fan(const std::vector<int>& polygon, const Vec& normal) {
+        for (size_t k = 1; k + 1 < polygon.size(); ++k) Facing(polygon[0], polygon[k], polygon[k + 1], normal);
+    }
+    const Vec& At(int v) const { return mesh_.vertices[v]; }
+    // The mesh, without vertices no triangle uses (points computed for a face that a slot removed).
+    TriangleMesh Take() {
+        std::vector<int> renumber(mesh_.vertices.size(), -1);
+        TriangleMesh out;
+        for (auto& t : mesh_.triangles)
+            for (int& v : t) {
+                if (renumber[v] < 0) {
+                    renumber[v] = static_cast<int>(out.vertices.size());
+                    out.vertices.push_back(mesh_.vertices[v]);
+                }
+                v = renumber[v];
+            }
+        out.triangles = std::move(mesh_.triangles);
+        mesh_ = {};
+        index_.clear();
+        return out;
+    }
+
+private:
+    TriangleMesh mesh_;
+    std::map<Vec, int> index_;
+};
+
+// Samples on rings of constant height: ring j (0 .. nz-1) from the bottom end, sample i around.
+struct Grid {
+    int nz = 0, nt = 0;
+    std::vector<Vec> p;
+    Vec& At(int j, int i) { return p[static_cast<size_t>(j) * nt + (i % nt)]; }
+    const Vec& At(int j, int i) const { return p[static_cast<size_t>(j) * nt + (i % nt)]; }
+};
+
+// cos and sin of sample i's angle, exact at the quarter turns (the mold's split plane and box
+// corners need points that lie exactly on y = 0 and on the diagonals' rays).
+std::pair<double, double> Direction(int i, int nt) {
+    const int k = i % nt;
+    if (k == 0) return {1, 0};
+    if (4 * k == nt) return {0, 1};
+    if (2 * k == nt) return {-1, 0};
+    if (4 * k == 3 * nt) return {0, -1};
+    const double angle = 2 * std::numbers::pi * k / nt;
+    return {std::cos(angle), std::sin(angle)};
+}
+
+double Degrees(int i, int nt) { return 360.0 * (i % nt) / nt; }
+
+}  // namespace
+
+RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error) {
+    const double pi = std::numbers::pi;
+    if (job.model == ModelKind::Thesis) {
+        if (std::string e = ShapeError(job.shape, job.mesh); !e.empty()) {
+            *error = e;
+            return {};
+        }
+        const Positions p = BuildInitialPositions(job.shape, job.mesh);
+        const int r = job.mesh.resolution, n = VertexCount(job.mesh), turns = job.mesh.turns;
+        std::vector<double> rho(static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i) rho[i] = std::hypot(p.x[i], p.y[i]);
+        // Vertex i lies at helix angle 2 pi i / R (x = sin, y = cos) and height (i + 1) / R turns.
+        return [rho, r, n, turns, pi](double t, double angle) {
+            auto along = [&](double s) {  // the radius at a fractional vertex index, clamped to the helix
+                s = std::clamp(s, 0.0, static_cast<double>(n - 1));
+                const int k = std::min(static_cast<int>(s), n - 2);
+                return rho[k] + (s - k) * (rho[k + 1] - rho[k]);
+            };
+            double turn = (0.5 * pi - angle) / (2 * pi);
+            turn -= std::floor(turn);
+            const double h = t * turns, first = turn + 1.0 / r;  // the helix passes this angle at heights first + k
+            const double k = std::floor(h - first);
+            const double below = (turn + k) * r, w = std::clamp(h - (first + k), 0.0, 1.0);
+            return (1 - w) * along(below) + w * along(below + r);
+        };
+    }
+    const ShellProblem problem = BuildTubeProblem(job.shell, job.shape, job.model == ModelKind::Shell, error);
+    if (!error->empty()) return {};
+    const GeometryDef& g = job.shell.geometry;
+    const int r = g.ringVertices, rings = RingCount(g);
+    std::vector<double> rho(static_cast<size_t>(r) * rings);
+    for (int v = 0; v < r * rings; ++v) rho[v] = std::hypot(problem.rest.x[v], problem.rest.y[v]) / g.radiusMm;
+    // Ring j's vertex i lies at angle 2 pi (i + j/2) / R, ring j at height fraction j / (rings - 1).
+    return [rho, r, rings, pi](double t, double angle) {
+        auto ring = [&](int j) {
+            double u = angle * r / (2 * pi) - 0.5 * j;
+            u -= r * std::floor(u / r);
+            const int i = static_cast<int>(u) % r;
+            const double f = u - std::floor(u);
+            return rho[static_cast<size_t>(j) * r + i] + f * (rho[static_cast<size_t>(j) * r + (i + 1) % r] - rho[static_cast<size_t>(j) * r + i]);
+        };
+        const double x = std::clamp(t, 0.0, 1.0) * (rings - 1);
+        const int j = std::min(static_cast<int>(x), rings - 2);
+        return ring(j) + (x - j) * (ring(j + 1) - ring(j));
+    };
+}
+
+double SectorBlendRadians(const PartDef& part) {
+    // Two wall thicknesses of arc at the base radius, and at least three samples.
+    return std::max(2 * part.thicknessMm / part.radiusMm, 3 * 2 * std::numbers::pi / part.angularSamples);
+}
+
+double MeshVolume(const TriangleMesh& mesh) {
+    double six = 0;
+    for (const auto& t : mesh.triangles) six += Dot(mesh.vertices[t[0]], Cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
+    return six / 6;
+}
+
+std::array<double, 6> MeshBounds(const TriangleMesh& mesh) {
+    std::array<double, 6> b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (const Vec& v : mesh.vertices)
+        for (int k = 0; k < 3; ++k) {
+            b[k] = std::min(b[k], v[k]);
+            b[k + 3] = std::max(b[k + 3], v[k]);
+        }
+    return b;
+}
+
+namespace {
+
+// The design's rest surface in millimetres; an error when it has no positive radius somewhere.
+std::string RestSurface(const Shape& shape, const PartDef& part, const RadiusField& measured, Grid* rest) {
+    const bool perVertex = std::holds_alternative<FreeXYShape>(shape) || std::holds_alternative<MeshShape>(shape);
+    if (perVertex && !measured) return std::string(ShapeName(shape)) + " designs are defined per vertex: their radius must be measured from the rest mesh";
+    rest->nz = part.axialSamples;
+    rest->nt = part.angularSamples;
+    rest->p.resize(static_cast<size_t>(rest->nz) * rest->nt);
+    // B-spline sectors meet in a step; a wall cannot follow a step's normals, so the radius is blended
+    // from one sector's to the next over SectorBlendRadians either side of each boundary.
+    const auto* spline = std::get_if<BSplineShape>(&shape);
+    const int sectors = spline ? static_cast<int>(spline->splines.size()) : 1;
+    const double blend = SectorBlendRadians(part);
+    auto radius = [&](double t, double standardAngle) {
+        if (perVertex) return measured(t, standardAngle);
+        // The design's own angle: the thesis helix runs x = sin, y = cos.
+        const double angle = part.helixAngles ? 0.5 * std::numbers::pi - standardAngle : standardAngle;
+        if (sectors < 2) return DesignRadius(shape, t, angle, part.clampFraction);
+        const double step = 2 * std::numbers::pi / sectors;
+        const double boundary = step * std::round(angle / step);
+        const double d = angle - boundary;
+        if (std::fabs(d) >= blend) return DesignRadius(shape, t, angle, part.clampFraction);
+        const double before = DesignRadius(shape, t, boundary - 0.5 * blend, part.clampFraction);
+        const double after = DesignRadius(shape, t, boundary + 0.5 * blend, part.clampFraction);
+        const double u = (d + blend) / (2 * blend);
+        const double w = u * u * (3 - 2 * u);  // smoothstep: level with each sector where it meets it
+        return (1 - w) * before + w * after;
+    };
+    for (int j = 0; j < rest->nz; ++j) {
+        const double t = static_cast<double>(j) / (rest->nz - 1);
+        for (int i = 0; i < rest->nt; ++i) {
+            const double rho = radius(t, 2 * std::numbers::pi * i / rest->nt);
+            if (!(rho > 0))
+                return Format("the design's radius is %.3g mm at z = %.4g mm, angle %.4g deg: a part needs a positive radius everywhere",
+                              rho * part.radiusMm, t * part.lengthMm, Degrees(i, rest->nt));
+            const auto [c, s] = Direction(i, rest->nt);
+            rest->At(j, i) = {part.radiusMm * rho * c, part.radiusMm * rho * s, j == rest->nz - 1 ? part.lengthMm : t * part.lengthMm};
+        }
+    }
+    return "";
+}
+
+// Unit normals of the rest surface from its samples (steep steps between B-spline sectors included),
+// kept horizontal on the end rings (the end faces stay flat) and in the plane y = 0 on the meridians
+// at 0 and 180 degrees (the mold's split plane).
+std::vector<Vec> Normals(const Grid& g) {
+    std::vector<Vec> normals(g.p.size());
+    for (int j = 0; j < g.nz; ++j)
+        for (int i = 0; i < g.nt; ++i) {
+            const Vec around = Sub(g.At(j, i + 1), g.At(j, i + g.nt - 1));
+            const Vec along = Sub(g.At(std::min(j + 1, g.nz - 1), i), g.At(std::max(j - 1, 0), i));
+            Vec n = Cross(around, along);
+            if (j == 0 || j == g.nz - 1) n[2] = 0;
+            if (i == 0 || 2 * i == g.nt) n[1] = 0;
+            const double length = std::sqrt(Dot(n, n));
+            normals[static_cast<size_t>(j) * g.nt + i] = length > 0 ? Vec{n[0] / length, n[1] / length, n[2] / length} : Vec{0, 0, 0};
+        }
+    return normals;
+}
+
+Grid Offset(const Grid& rest, const std::vector<Vec>& normals, double distance) {
+    Grid g = rest;
+    for (size_t k = 0; k < g.p.size(); ++k)
+        for (int c = 0; c < 3; ++c) g.p[k][c] += distance * normals[k][c];
+    return g;
+}
+
+// A wall surface that stays a graph over (angle, height): every sample off the axis, angles rising
+// around each ring, heights rising along each meridian, every cell positively oriented. Otherwise the
+// offset has folded over itself (a wall thicker than the surface's radius of curvature there).
+std::string FoldError(const Grid& g, const Grid& rest, const char* which, const PartDef& part) {
+    auto angle = [&](int j, int i) {
+        const Vec& p = g.At(j, i);
+        const double nominal = 2 * std::numbers::pi * i / g.nt;  // i may be nt: one turn on
+        return nominal + std::remainder(std::atan2(p[1], p[0]) - nominal, 2 * std::numbers::pi);
+    };
+    for (int j = 0; j < g.nz; ++j)
+        for (int i = 0; i < g.nt; ++i) {
+            const Vec& p = g.At(j, i);
+            const Vec& q = rest.At(j, i);
+            // Past the axis, the offset point lies on the other side of it from its rest point.
+            if (!(p[0] * q[0] + p[1] * q[1] > 1e-6 * part.radiusMm * std::hypot(q[0], q[1])) || !std::isfinite(p[0] + p[1] + p[2]))
+                return std::string("the ") + which +
+                       Format(" wall surface reaches the axis at z = %.4g mm, angle %.4g deg: the radius there is below the wall thickness", p[2],
+                              Degrees(i, g.nt));
+        }
+    for (int j = 0; j + 1 < g.nz; ++j)
+        for (int i = 0; i < g.nt; ++i) {
+            const double a0 = angle(j, i), a1 = angle(j, i + 1), b0 = angle(j + 1, i), b1 = angle(j + 1, i + 1);
+            const double z0 = g.At(j, i)[2], z1 = g.At(j, i + 1)[2], w0 = g.At(j + 1, i)[2], w1 = g.At(j + 1, i + 1)[2];
+            // Triangles (j,i) (j,i+1) (j+1,i+1) and (j,i) (j+1,i+1) (j+1,i) in the (angle, z) plane.
+            const double first = (a1 - a0) * (w1 - z0) - (z1 - z0) * (b1 - a0);
+            const double second = (b1 - a0) * (w0 - z0) - (w1 - z0) * (b0 - a0);
+            if (!(first > 0) || !(second > 0) || !(w0 > z0))
+                return std::string("the ") + which +
+                       Format(" wall surface folds over itself near z = %.4g mm, angle %.4g deg: a wall of %.3g mm is thicker than the surface's "
+                              "radius of curvature there (a thinner wall, or --wall outward, may fit)",
+                              g.At(j, i)[2], Degrees(i, g.nt), part.thicknessMm);
+        }
+    return "";
+}
+
+// The block's boundary point on the ray from the axis at sample i's angle, at height z.
+Vec BoxPoint(int i, int nt, double w, double z) {
+    const int k = i % nt;
+    if (8 * k % nt == 0) {  // the eighth turns: the split plane, the box's faces' middles and its corners
+        const int eighth = 8 * k / nt;
+        static constexpr double kX[] = {1, 1, 0, -1, -1, -1, 0, 1}, kY[] = {0, 1, 1, 1, 0, -1, -1, -1};
+        return {kX[eighth] * w, kY[eighth] * w, z};
+    }
+    const auto [c, s] = Direction(i, nt);
+    if (std::fabs(c) >= std::fabs(s)) return {std::copysign(w, c), std::copysign(w, c) * s / c, z};
+    return {std::copysign(w, s) * c / s, std::copysign(w, s), z};
+}
+
+// Which side of the box the ray at sample i meets: 0 x = +w, 1 y = +w, 2 x = -w, 3 y = -w; at a corner
+// both of its sides count.
+bool OnSide(int i, int nt, int side) {
+    const double degrees = Degrees(i, nt);
+    const double from = 90.0 * side - 45, to = 90.0 * side + 45;
+    return (degrees >= from && degrees <= to) || (degrees - 360 >= from && degrees - 360 <= to);
+}
+
+// One half of the mold's block (upper: y >= 0, samples 0 .. nt/2; else y <= 0, samples nt/2 .. nt)
+// less the actuator's outer solid and the core's channels through the end walls.
+// Whether the top end wall is open above sample cell i (from sample i to i + 1): the sprue, centred
+// at 90 degrees (shell A), and the vents at 225 and 315 degrees (shell B), each at least one cell.
+bool IsOpening(int i, int nt, const MoldDef& mold) {
+    const double cell = 360.0 / nt, middle = cell * ((i % nt) + 0.5);
+    auto within = [&](double centre, double width) { return std::fabs(middle - centre) < std::max(width, cell) / 2; };
+    return within(90, mold.sprueDegrees) || within(225, mold.ventDegrees) || within(315, mold.ventDegrees);
+}
+
+// The area between the inner and outer end rings over sample cell i (a slot's cross-section).
+double OpeningArea(const Grid& inner, const Grid& outer, int i) {
+    const int j = outer.nz - 1;
+    const Vec* corners[] = {&inner.At(j, i), &inner.At(j, i + 1), &outer.At(j, i + 1), &outer.At(j, i)};
+    double twice = 0;
+    for (int k = 0; k < 4; ++k) twice += (*corners[k])[0] * (*corners[(k + 1) % 4])[1] - (*corners[(k + 1) % 4])[0] * (*corners[k])[1];
+    return std::fabs(twice) / 2;
+}
+
+// The rows of bands each registration pin covers on each meridian: one pin near each end, about
+// half the margin long. None on meshes too short to hold them apart.
+std::vector<std::pair<int, int>> PinRows(int nz, int length) {
+    if (nz < 10 || 2 * length + 4 > nz) return {};
+    const int low = std::max(1, static_cast<int>(std::lround(0.12 * (nz - 1))));
+    const int high = std::min(nz - 2, static_cast<int>(std::lround(0.88 * (nz - 1))));
+    return {{low, low + length}, {high - length, high}};
+}
+
+// Bands each pin spans: about as long (along z) as it is wide, half the margin.
+int PinBands(const PartDef& part, const MoldDef& mold, int nz) {
+    return std::max(1, static_cast<int>(std::lround(0.5 * mold.marginMm * (nz - 1) / part.lengthMm)));
+}
+
+// A pin's top is its foot inset by the clearance on every side: a clearance of half the foot or more
+// would turn it inside out (its facets reversed).
+std::string PinError(const Grid& outer, const PartDef& part, const MoldDef& mold) {
+    const double c = mold.pinClearanceMm, across = 0.5 * mold.marginMm;
+    if (!(c >= 0)) return "the pins' clearance must not be negative";
+    for (const auto& [ja, jb] : PinRows(outer.nz, PinBands(part, mold, outer.nz)))
+        for (const int i : {0, outer.nt / 2}) {
+            const double along = outer.At(jb, i)[2] - outer.At(ja, i)[2], foot = std::min(across, along);
+            if (!(2 * c < foot))
+                return Format("a pin clearance of %.3g mm does not fit the registration pins (%.3g x %.3g mm at their feet, set by the mold's margin): "
+                              "give a clearance below %.3g mm, or a wider margin",
+                              c, across, along, foot / 2);
+        }
+    return "";
+}
+
+bool InPin(int band, int nz, int length) {
+    for (const auto& [a, b] : PinRows(nz, length))
+        if (band >= a && band < b) return true;
+    return false;
+}
+
+TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, double& openings,
+                   double& pins) {
+    const int nt = outer.nt, nz = outer.nz, half = nt / 2, first = upper ? 0 : half;
+    const double bottom = -mold.endWallMm, top = part.lengthMm + mold.endWallMm;
+    const Vec up{0, 0, 1}, down{0, 0, -1};
+    Builder b;
+    auto O = [&](int j, int k) { return b.Vertex(outer.At(j, first + k)); };
+    auto I = [&](int j, int k) { return b.Vertex(inner.At(j, first + k)); };
+    auto Channel = [&](bool atTop, int k) {  // the core's channel ring on the block's end face
+        const Vec& p = inner.At(atTop ? nz - 1 : 0, first + k);
+        return b.Vertex({p[0], p[1], atTop ? top : bottom});
+    };
+    auto towardAxis = [&](int v) {
+        const Vec& p = b.At(v);
+        return Vec{-p[0], -p[1], 0};
+    };
+    // The top end wall's slots over the silicone's end face (the sprue and the vents), cell by cell.
+    auto Open = [&](int k) { return IsOpening(first + k, nt, mold); };
+    auto Rim = [&](int k) {  // the actuator's outer ring carried up to the block's top face
+        const Vec& p = outer.At(nz - 1, first + k);
+        return b.Vertex({p[0], p[1], top});
+    };
+    for (int k = 0; k < half; ++k) {
+        const bool open = Open(k);
+        // The cavity's wall: the actuator's outer surface, facing the axis.
+        for (int j = 0; j + 1 < nz; ++j) b.Quad(O(j, k), O(j + 1, k), O(j + 1, k + 1), O(j, k + 1));
+        // The end walls' inner faces (the actuator's end faces) and the core's channels.
+        b.Facing(I(0, k), I(0, k + 1), O(0, k + 1), up);
+        b.Facing(I(0, k), O(0, k + 1), O(0, k), up);
+        if (!open) {
+            b.Facing(I(nz - 1, k), O(nz - 1, k + 1), I(nz - 1, k + 1), down);
+            b.Facing(I(nz - 1, k), O(nz - 1, k), O(nz - 1, k + 1), down);
+        }
+        for (const bool atTop : {false, true}) {
+            const int j = atTop ? nz - 1 : 0;
+            const int c0 = Channel(atTop, k), c1 = Channel(atTop, k + 1), i0 = I(j, k), i1 = I(j, k + 1);
+            const double z = atTop ? top : bottom;
+            const int b0 = b.Vertex(BoxPoint(first + k, nt, w, z)), b1 = b.Vertex(BoxPoint(first + k + 1, nt, w, z));
+            if (!atTop) {
+                b.FacingQuad(c0, c1, i1, i0, towardAxis(c0));
+                // The block's end face between the channel and the box, strip by strip along the rays.
+                b.FacingQuad(c0, c1, b1, b0, down);
+                continue;
+            }
+            // At the top the face is split on the actuator's outer ring, so a slot can open its inner part.
+            const int r0 = Rim(k), r1 = Rim(k + 1);
+            b.FacingQuad(r0, r1, b1, b0, up);
+            if (!open) {
+                b.FacingQuad(c0, c1, i1, i0, towardAxis(c0));
+                b.FacingQuad(c0, c1, r1, r0, up);
+                continue;
+            }
+            // A slot: its outer wall, and its ends where the closed cells begin.
+            const int o0 = O(nz - 1, k), o1 = O(nz - 1, k + 1);
+            b.FacingQuad(o0, o1, r1, r0, towardAxis(o0));
+            const auto [c, s] = Direction(first + k, nt);
+            const auto [c2, s2] = Direction(first + k + 1, nt);
+            if (k == 0 || !Open(k - 1)) {
+                b.FacingQuad(i0, o0, r0, c0, Vec{-s, c, 0});
+            }
+            if (k + 1 == half || !Open(k + 1)) {
+                b.FacingQuad(i1, o1, r1, c1, Vec{s2, -c2, 0});
+            }
+            openings += OpeningArea(inner, outer, first + k) * mold.endWallMm;
+        }
+    }
+    // The split face (y = 0) on each meridian: bands between the cavity's profile and the box's edge.
+    const Vec splitNormal{0, upper ? -1.0 : 1.0, 0};
+    // Pins about as long (along z) as they are wide: half the margin.
+    const int pinBands = PinBands(part, mold, nz);
+    std::map<int, std::vector<int>> lineOf;  // meridian sample -> the box edge's vertices on y = 0, upward
+    for (const int m : {0, half}) {
+        const int i = first + m;
+        const double x = (i % nt == 0) ? w : -w;
+        std::vector<int> line;
+        auto L = [&](double z) {
+            const int v = b.Vertex({x, 0, z});
+            if (line.empty() || line.back() != v) line.push_back(v);
+            return v;
+        };
+        // Each band is cut at x1 and x2, the registration pins' sides, in the block's margin.
+        const double sign = x > 0 ? 1 : -1, x1 = sign * (w - 0.75 * mold.marginMm), x2 = sign * (w - 0.25 * mold.marginMm);
+        auto z = [&](int j) { return outer.At(j, i)[2]; };
+        auto P1 = [&](int j) { return b.Vertex({x1, 0, z(j)}); };
+        auto P2 = [&](int j) { return b.Vertex({x2, 0, z(j)}); };
+        const int lb = L(bottom);
+        b.Fan({lb, Channel(false, m), I(0, m), O(0, m), P1(0), P2(0), L(0)}, splitNormal);
+        for (int j = 0; j + 1 < nz; ++j) {
+            const int o0 = O(j, m), o1 = O(j + 1, m), a0 = P1(j), a1 = P1(j + 1), c0 = P2(j), c1 = P2(j + 1);
+            const int l0 = L(z(j)), l1 = L(z(j + 1));
+            b.FacingQuad(o0, o1, a1, a0, splitNormal);
+            b.FacingQuad(c0, c1, l1, l0, splitNormal);
+            if (!InPin(j, nz, pinBands)) {
+                b.FacingQuad(a0, a1, c1, c0, splitNormal);
+            }
+        }
+        // The pins (shell A, standing out of the face, their tops inset by the clearance so they
+        // find their holes) and the holes (shell B, sunk into the face, the pins' feet exactly).
+        for (const auto& [ja, jb] : PinRows(nz, pinBands)) {
+            const double depth = 0.5 * mold.marginMm, c = upper ? mold.pinClearanceMm : 0;
+            const double y = upper ? -depth : -depth;  // A's pins reach into y < 0; B's holes go as deep
+            const double inset = sign * c;
+            const int t1a = b.Vertex({x1 + inset, y, z(ja) + c}), t2a = b.Vertex({x2 - inset, y, z(ja) + c});
+            const int t1b = b.Vertex({x1 + inset, y, z(jb) - c}), t2b = b.Vertex({x2 - inset, y, z(jb) - c});
+            const double out = upper ? 1 : -1;  // faces point away from the pin's inside, or into the hole
+            const Vec towardAxisX{-sign * out, 0, 0}, awayAxisX{sign * out, 0, 0}, lower{0, 0, -out}, higher{0, 0, out};
+            b.FacingQuad(t1a, t2a, t2b, t1b, Vec{0, -out, 0});
+            for (int j = ja; j < jb; ++j) {
+                b.Facing(t1a, P1(j), P1(j + 1), towardAxisX);
+                b.Facing(t2a, P2(j), P2(j + 1), awayAxisX);
+            }
+            b.Facing(t1a, P1(jb), t1b, towardAxisX);
+            b.Facing(t2a, P2(jb), t2b, awayAxisX);
+            b.Facing(P1(ja), P2(ja), t2a, lower);
+            b.Facing(P1(ja), t2a, t1a, lower);
+            b.Facing(P1(jb), P2(jb), t2b, higher);
+            b.Facing(P1(jb), t2b, t1b, higher);
+            // Prismatoid: depth / 6 (base + 4 middle + top).
+            const double wx = std::fabs(x2 - x1), wz = z(jb) - z(ja);
+            const double volume = depth / 6 * (wx * wz + 4 * (wx - c) * (wz - c) + (wx - 2 * c) * (wz - 2 * c));
+            pins += upper ? volume : -volume;
+        }
+        // The top band: from the actuator's end up to the block's top, whose edge carries the rim.
+        const int lt = b.Vertex({x, 0, top});
+        b.Fan({Rim(m), lt, L(part.lengthMm), P2(nz - 1), P1(nz - 1), O(nz - 1, m), I(nz - 1, m), Channel(true, m)}, splitNormal);
+        L(top);
+        lineOf[i % nt] = line;
+    }
+    // The box's sides in this half, each a rectangle fanned from its centre: its bottom and top edges
+    // carry the rays' points, an edge on the split plane carries that meridian's line.
+    for (int side = 0; side < 4; ++side) {
+        std::vector<int> samples;
+        for (int k = 0; k <= half; ++k)
+            if (OnSide(first + k, nt, side)) samples.push_back(first + k);
+        if (samples.size() < 2) continue;
+        std::vector<int> loop;
+        for (int i : samples) loop.push_back(b.Vertex(BoxPoint(i, nt, w, bottom)));
+        if (lineOf.count(samples.back() % nt))
+            for (int v : lineOf[samples.back() % nt]) loop.push_back(v);
+        for (auto it = samples.rbegin(); it != samples.rend(); ++it) loop.push_back(b.Vertex(BoxPoint(*it, nt, w, top)));
+        if (lineOf.count(samples.front() % nt)) {
+            const auto& line = lineOf[samples.front() % nt];
+            for (auto it = line.rbegin(); it != line.rend(); ++it) loop.push_back(*it);
+        }
+        // Drop repeats where the runs meet (a run's end is the next run's start).
+        std::vector<int> polygon;
+        for (int v : loop)
+            if (polygon.empty() || polygon.back() != v) polygon.push_back(v);
+        while (polygon.size() > 1 && polygon.front() == polygon.back()) polygon.pop_back();
+        Vec centre{0, 0, 0};
+        for (int v : polygon)
+            for (int c = 0; c < 3; ++c) centre[c] += b.At(v)[c] / polygon.size();
+        const Vec normal = side == 0 ? Vec{1, 0, 0} : side == 1 ? Vec{0, 1, 0} : side == 2 ? Vec{-1, 0, 0} : Vec{0, -1, 0};
+        centre[side % 2 == 0 ? 0 : 1] = normal[side % 2 == 0 ? 0 : 1] * w;  // exactly on the side's plane
+        const int middle = b.Vertex(centre);
+        for (size_t k = 0; k < polygon.size(); ++k) b.Facing(middle, polygon[k], polygon[(k + 1) % polygon.size()], normal);
+    }
+    return b.Take();
+}
+
+// Area enclosed by a ring of samples, projected on the xy plane (shoelace).
+double RingArea(const Grid& g, int j) {
+    double twice = 0;
+    for (int i = 0; i < g.nt; ++i) {
+        const Vec& a = g.At(j, i);
+        const Vec& c = g.At(j, i + 1);
+        twice += a[0] * c[1] - c[0] * a[1];
+    }
+    return twice / 2;
+}
+
+}  // namespace
+
+// A plug for one end of the tube (bottom: z = 0, the collar below; top: mirrored), built bottom-up
+// and flipped for the top: collar rings, the insert following the inner end ring, an optional bore.
+std::string Fitting(const Grid& inner, const Grid& outer, bool atTop, double port, const FittingDef& f, double insert, const PartDef& part,
+                    TriangleMesh* out) {
+    const int nt = inner.nt, j = atTop ? inner.nz - 1 : 0;
+    double collar = 0, smallest = INFINITY;
+    for (int i = 0; i < nt; ++i) {
+        collar = std::max(collar, std::hypot(outer.At(j, i)[0], outer.At(j, i)[1]));
+        smallest = std::min(smallest, std::hypot(inner.At(j, i)[0], inner.At(j, i)[1]));
+    }
+    collar += f.collarMarginMm;
+    if (port > 0 && port / 2 > smallest - 0.5)
+        return Format("a port of %.3g mm does not fit the tube's end, whose inner radius is %.3g mm (leave 0.5 mm of wall)", port, smallest);
+    // Local height h: 0 at the tube's end, the insert up to `insert`, the collar down to -collarMm.
+    auto place = [&](double x, double y, double h) { return Vec{x, y, atTop ? part.lengthMm - h : h}; };
+    Builder b;
+    const Vec up{0, 0, atTop ? -1.0 : 1.0}, down{0, 0, atTop ? 1.0 : -1.0};
+    const int centreLow = b.Vertex(place(0, 0, -f.collarMm)), centreHigh = b.Vertex(place(0, 0, insert));
+    for (int i = 0; i < nt; ++i) {
+        const auto [c0, s0] = Direction(i, nt);
+        const auto [c1, s1] = Direction(i + 1, nt);
+        const Vec& e0 = inner.At(j, i);
+        const Vec& e1 = inner.At(j, i + 1);
+        const int g0 = b.Vertex(place(collar * c0, collar * s0, -f.collarMm)), g1 = b.Vertex(place(collar * c1, collar * s1, -f.collarMm));
+        const int h0 = b.Vertex(place(collar * c0, collar * s0, 0)), h1 = b.Vertex(place(collar * c1, collar * s1, 0));
+        const int n0 = b.Vertex(place(e0[0], e0[1], 0)), n1 = b.Vertex(place(e1[0], e1[1], 0));
+        const int t0 = b.Vertex(place(e0[0], e0[1], insert)), t1 = b.Vertex(place(e1[0], e1[1], insert));
+        const Vec outward{c0 + c1, s0 + s1, 0};
+        b.FacingQuad(g0, g1, h1, h0, outward);  // the collar's side
+        b.FacingQuad(n0, n1, h1, h0, up);       // the shoulder the actuator's end sits on
+        b.FacingQuad(n0, n1, t1, t0, outward);  // the insert
+        if (port > 0) {
+            const double r = port / 2;
+            const int p0 = b.Vertex(place(r * c0, r * s0, -f.collarMm)), p1 = b.Vertex(place(r * c1, r * s1, -f.collarMm));
+            const int q0 = b.Vertex(place(r * c0, r * s0, insert)), q1 = b.Vertex(place(r * c1, r * s1, insert));
+            b.FacingQuad(p0, p1, g1, g0, down);
+            b.FacingQuad(q0, q1, t1, t0, up);
+            b.FacingQuad(p0, p1, q1, q0, Vec{-(c0 + c1), -(s0 + s1), 0});
+        } else {
+            b.Facing(centreLow, g0, g1, down);
+            b.Facing(centreHigh, t0, t1, up);
+        }
+    }
+    *out = b.Take();
+    return "";
+}
+
+std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings,
+                            const RadiusField& measured) {
+    if (part.angularSamples < 8 || part.angularSamples % 8 != 0) return "the samples around the tube must be a multiple of 8, at least 8";
+    if (part.axialSamples < 3) return "at least 3 samples along the tube";
+    if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
+    if (!(mold.marginMm > 0) || !(mold.endWallMm > 0) || !(mold.handleMm > 0)) return "the mold's margin, end walls and handles must be positive";
+    if (!(mold.sprueDegrees >= 0 && mold.sprueDegrees <= 120) || !(mold.ventDegrees >= 0 && mold.ventDegrees <= 60))
+        return "the sprue spans 0 to 120 degrees and each vent 0 to 60";
+    Grid rest;
+    if (std::string error = RestSurface(shape, part, measured, &rest); !error.empty()) return error;
+    const std::vector<Vec> normals = Normals(rest);
+    for (size_t k = 0; k < normals.size(); ++k)
+        if (Dot(normals[k], normals[k]) == 0)
+            return Format("the surface has no normal at z = %.4g mm, angle %.4g deg", rest.p[k][2], Degrees(static_cast<int>(k) % rest.nt, rest.nt));
+    const double h = part.thicknessMm;
+    const Grid outer = Offset(rest, normals, part.wall == WallSide::Centred ? h / 2 : h);
+    const Grid inner = part.wall == WallSide::Centred ? Offset(rest, normals, -h / 2) : rest;
+    for (const auto& [grid, which] : {std::pair{&outer, "outer"}, std::pair{&inner, "inner"}})
+        if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
+    if (std::string error = PinError(outer, part, mold); !error.empty()) return error;
+    const int nz = rest.nz, nt = rest.nt;
+
+    PartSolids solids;
+    {  // The wall: outer surface out, inner surface in, flat annuli at the ends.
+        Builder b;
+        for (int j = 0; j + 1 < nz; ++j)
+            for (int i = 0; i < nt; ++i) {
+                b.Quad(b.Vertex(outer.At(j, i)), b.Vertex(outer.At(j, i + 1)), b.Vertex(outer.At(j + 1, i + 1)), b.Vertex(outer.At(j + 1, i)));
+                b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j + 1, i)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j, i + 1)));
+            }
+        for (int i = 0; i < nt; ++i)
+            for (const int j : {0, nz - 1}) {
+                const Vec normal{0, 0, j == 0 ? -1.0 : 1.0};
+                const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j, i + 1)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j, i + 1));
+                b.FacingQuad(o0, o1, i1, i0, normal);
+            }
+        solids.actuator = b.Take();
+    }
+    {  // The wall's half at y >= 0: the same faces over half the turn, closed by the two cut faces.
+        Builder b;
+        const int half = nt / 2;
+        for (int i = 0; i < half; ++i) {
+            for (int j = 0; j + 1 < nz; ++j) {
+                b.Quad(b.Vertex(outer.At(j, i)), b.Vertex(outer.At(j, i + 1)), b.Vertex(outer.At(j + 1, i + 1)), b.Vertex(outer.At(j + 1, i)));
+                b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j + 1, i)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j, i + 1)));
+            }
+            for (const int j : {0, nz - 1}) {
+                const Vec normal{0, 0, j == 0 ? -1.0 : 1.0};
+                const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j, i + 1)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j, i + 1));
+                b.FacingQuad(o0, o1, i1, i0, normal);
+            }
+        }
+        for (const int i : {0, half})
+            for (int j = 0; j + 1 < nz; ++j) {
+                const Vec normal{0, -1, 0};
+                const int o0 = b.Vertex(outer.At(j, i)), o1 = b.Vertex(outer.At(j + 1, i)), i0 = b.Vertex(inner.At(j, i)), i1 = b.Vertex(inner.At(j + 1, i));
+                b.FacingQuad(o0, o1, i1, i0, normal);
+            }
+        solids.actuatorCut = b.Take();
+    }
+    const double handleBottom = -mold.endWallMm - mold.handleMm, handleTop = part.lengthMm + mold.endWallMm + mold.handleMm;
+    {  // The core: the inner surface, each end ring drawn straight out through the block as a handle.
+        Builder b;
+        for (int j = 0; j + 1 < nz; ++j)
+            for (int i = 0; i < nt; ++i)
+                b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j, i + 1)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j + 1, i)));
+        for (const bool atTop : {false, true}) {
+            const int j = atTop ? nz - 1 : 0;
+            const double z = atTop ? handleTop : handleBottom;
+            const int centre = b.Vertex({0, 0, z});
+            for (int i = 0; i < nt; ++i) {
+                const Vec& p0 = inner.At(j, i);
+                const Vec& p1 = inner.At(j, i + 1);
+                const int r0 = b.Vertex(p0), r1 = b.Vertex(p1), e0 = b.Vertex({p0[0], p0[1], z}), e1 = b.Vertex({p1[0], p1[1], z});
+                const Vec outward{p0[0] + p1[0], p0[1] + p1[1], 0};
+                b.FacingQuad(e0, e1, r1, r0, outward);
+                b.Facing(centre, e0, e1, Vec{0, 0, atTop ? 1.0 : -1.0});
+            }
+        }
+        solids.core = b.Take();
+        solids.coreOutsideBlockMm3 = (RingArea(inner, 0) + RingArea(inner, nz - 1)) * mold.handleMm;
+    }
+    // The block: the actuator's widest extent plus the margin, the same in x and y.
+    double reach = 0;
+    for (const Vec& p : outer.p) reach = std::max({reach, std::fabs(p[0]), std::fabs(p[1])});
+    const double w = reach + mold.marginMm;
+    solids.shellA = Shell(true, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
+    solids.shellB = Shell(false, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
+    if (fittings.enabled) {
+        // The insert runs as far as the tube does not narrow below its end ring (else it would cut the wall).
+        double insert = fittings.insertMm > 0 ? fittings.insertMm : std::max(part.clampFraction * part.lengthMm, 2 * part.thicknessMm);
+        for (const bool atTop : {false, true}) {
+            for (int step = 1; step < nz; ++step) {
+                const int j = atTop ? nz - 1 - step : step, end = atTop ? nz - 1 : 0;
+                const double h = atTop ? part.lengthMm - inner.At(j, 0)[2] : inner.At(j, 0)[2];
+                if (h > insert) break;
+                for (int i = 0; i < nt; ++i)
+                    if (std::hypot(inner.At(j, i)[0], inner.At(j, i)[1]) < std::hypot(inner.At(end, i)[0], inner.At(end, i)[1]) * (1 - 1e-9)) {
+                        insert = std::min(insert, std::max(0.0, h - 1e-6));
+                        break;
+                    }
+            }
+        }
+        if (insert < part.thicknessMm)
+            return Format("the tube narrows within %.3g mm of its ends: no room for a fitting's insert (at least one wall, %.3g mm)", insert, part.thicknessMm);
+        if (std::string error = Fitting(inner, outer, false, fittings.portMm, fittings, insert, part, &solids.fittingBottom); !error.empty()) return error;
+        Fitting(inner, outer, true, 0, fittings, insert, part, &solids.fittingTop);
+    }
+    *out = std::move(solids);
+    return "";
+}
+
+}  // namespace sim

@@ -1,0 +1,140 @@
+// Fibre-reinforced walls (SHELL.md section 7): each wall triangle's fibre directions from the fibre
+// def, the tension-only fibre energy, and the fibres' state in a deformed wall.
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "shell/shell_problem.h"
+
+namespace sim {
+namespace {
+
+Eigen::Vector3d At(const Positions& p, int v) { return {p.x[v], p.y[v], p.z[v]}; }
+
+constexpr double kDegree = std::numbers::pi / 180;
+
+// The fibre angle at a rest point: by band of its height, by sector of its angle, or the def's.
+double AngleAt(const FibreDef& f, double heightFraction, double angle) {
+    if (!f.bands.empty()) {
+        for (const FibreBand& band : f.bands)
+            if (heightFraction >= band.from && heightFraction <= band.to) return band.angleDeg;
+        return f.bands.back().angleDeg;  // unreachable for a def that passed ShellDefError
+    }
+    if (!f.sectorAnglesDeg.empty()) {
+        double turn = angle / (2 * std::numbers::pi);
+        turn -= std::floor(turn);
+        const int sectors = static_cast<int>(f.sectorAnglesDeg.size());
+        return f.sectorAnglesDeg[static_cast<size_t>(std::min(sectors - 1, static_cast<int>(turn * sectors)))];
+    }
+    return f.angleDeg;
+}
+
+// The rest triangle's tangent frame, as MakeMembraneRest builds it: t1 along the first edge.
+void RestFrame(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, Eigen::Vector3d& t1, Eigen::Vector3d& t2,
+               Eigen::Vector3d& normal) {
+    const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
+    normal = e1.cross(e2).normalized();
+    t1 = e1.normalized();
+    t2 = normal.cross(t1);
+}
+
+// The meridian (the surface's tangent along the axis: the axis projected onto the triangle's plane)
+// and the hoop direction at a triangle.
+void MeridianAndHoop(const Eigen::Vector3d& normal, Eigen::Vector3d& meridian, Eigen::Vector3d& hoop) {
+    const Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+    meridian = (axis - axis.dot(normal) * normal).normalized();
+    hoop = normal.cross(meridian);  // right-handed about the outward normal: +alpha winds one way
+}
+
+}  // namespace
+
+double FibreDensity(const Matrix32& F, const double a[2], double stiffness, Vector6* gradient, Matrix6* hessian, bool tautAtKink) {
+    const Eigen::Vector3d d = F.col(0) * a[0] + F.col(1) * a[1];
+    const double I4 = d.squaredNorm();
+    if (!(I4 > 1)) {  // slack: threads carry no compression
+        // At the kink (a thread at its rest length, within round-off: every thread of the rest
+        // state), the energy's second derivative jumps from 0 to 2k (F a)(F a)^T. Newton's matrix
+        // takes the taut side: the first step from rest then sees the threads it would stretch
+        // (without it, a braided tube's first step overshoots 16-fold and its solve takes twice the
+        // factorisations). Anywhere else this would slow convergence: a slack thread has no stiffness.
+        if (hessian && tautAtKink && I4 > 1 - 1e-12)
+            for (int al = 0; al < 2; ++al)
+                for (int i = 0; i < 3; ++i)
+                    for (int be = 0; be < 2; ++be)
+                        for (int j = 0; j < 3; ++j) (*hessian)(3 * al + i, 3 * be + j) += stiffness * 2 * a[al] * d[i] * a[be] * d[j];
+        return 0;
+    }
+    const double excess = I4 - 1;
+    if (gradient)
+        for (int al = 0; al < 2; ++al)
+            for (int i = 0; i < 3; ++i) (*gradient)[3 * al + i] += stiffness * excess * a[al] * d[i];
+    if (hessian)
+        for (int al = 0; al < 2; ++al)
+            for (int i = 0; i < 3; ++i)
+                for (int be = 0; be < 2; ++be)
+                    for (int j = 0; j < 3; ++j)
+                        (*hessian)(3 * al + i, 3 * be + j) += stiffness * (2 * a[al] * d[i] * a[be] * d[j] + (i == j ? excess * a[al] * a[be] : 0.0));
+    return 0.25 * stiffness * excess * excess;
+}
+
+void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string* error) {
+    if (error) error->clear();
+    p.fibreDirections.assign(p.wall.size(), {0, 0, 0, 0});
+    p.fibreFamilies.assign(p.wall.size(), 0);
+    p.fibreStiffness = f.stiffnessNPerMm;
+    if (f.layout == FibreLayout::None) return;
+    for (size_t t = 0; t < p.wall.size(); ++t) {
+        const auto& tri = p.wall[t];
+        const Eigen::Vector3d x0 = At(p.rest, tri[0]), x1 = At(p.rest, tri[1]), x2 = At(p.rest, tri[2]);
+        Eigen::Vector3d t1, t2, normal, meridian, hoop;
+        RestFrame(x0, x1, x2, t1, t2, normal);
+        const Eigen::Vector3d centroid = (x0 + x1 + x2) / 3;
+        MeridianAndHoop(normal, meridian, hoop);
+        if (!meridian.allFinite()) {
+            if (error) *error = "a wall triangle faces along the axis: its meridian, and so its fibre direction, is undefined";
+            return;
+        }
+        double angle = 0;
+        switch (f.layout) {
+            case FibreLayout::Meridian: angle = 0; break;
+            case FibreLayout::Hoop: angle = 90; break;
+            default: angle = AngleAt(f, centroid.z() / lengthMm, std::atan2(centroid.y(), centroid.x()));
+        }
+        std::vector<double> angles;
+        if (f.layout == FibreLayout::Braid) {
+            if (f.plus) angles.push_back(angle);
+            if (f.minus) angles.push_back(-angle);
+        } else if (f.layout != FibreLayout::Single || f.plus) {
+            angles.push_back(angle);
+        }
+        for (size_t k = 0; k < angles.size(); ++k) {
+            const Eigen::Vector3d a = std::cos(angles[k] * kDegree) * meridian + std::sin(angles[k] * kDegree) * hoop;
+            p.fibreDirections[t][2 * k] = a.dot(t1);
+            p.fibreDirections[t][2 * k + 1] = a.dot(t2);
+        }
+        p.fibreFamilies[t] = static_cast<int>(angles.size());
+    }
+}
+
+FibreState FibreStates(const ShellProblem& p, const Positions& x) {
+    FibreState s;
+    for (size_t t = 0; t < p.wall.size(); ++t) {
+        if (p.fibreFamilies.empty() || p.fibreFamilies[t] == 0) continue;
+        const auto& tri = p.wall[t];
+        const Matrix32 F = DeformationGradient(p, static_cast<int>(t), x);
+        const Eigen::Vector3d centroid = (At(x, tri[0]) + At(x, tri[1]) + At(x, tri[2])) / 3;
+        const Eigen::Vector3d radial = Eigen::Vector3d(centroid.x(), centroid.y(), 0).normalized();
+        const Eigen::Vector3d around = Eigen::Vector3d::UnitZ().cross(radial);
+        const double restHeight = (p.rest.z[tri[0]] + p.rest.z[tri[1]] + p.rest.z[tri[2]]) / 3;
+        for (int k = 0; k < p.fibreFamilies[t]; ++k) {
+            const Eigen::Vector3d d = F.col(0) * p.fibreDirections[t][2 * k] + F.col(1) * p.fibreDirections[t][2 * k + 1];
+            s.stretch.push_back(d.norm());
+            s.angleDeg.push_back(std::atan2(std::fabs(d.dot(around)), std::fabs(d.z())) / kDegree);
+            s.restHeightMm.push_back(restHeight);
+        }
+    }
+    return s;
+}
+
+}  // namespace sim

@@ -1,0 +1,392 @@
+// The shell models' total energy E = membrane + bending - p (V - V0) - F u (+ anchor), its gradient
+// and Hessian over the unknowns, assembled into a sparse matrix whose pattern is built once per
+// problem. Per-element Hessians are projected to positive semi-definite for Newton's steps (the
+// membrane by a 6 x 6 eigen-solve of its F-Hessian, the bending hinge by its Gauss-Newton part);
+// the pressure Hessian is never projected: it carries the limit point.
+//
+// [SECTION] Pattern
+// [SECTION] Volume
+// [SECTION] Assembly
+// [SECTION] Self-intersection
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "shell/shell_problem.h"
+
+namespace sim {
+namespace {
+
+Eigen::Vector3d At(const Positions& p, int v) { return {p.x[v], p.y[v], p.z[v]}; }
+
+// The unknown a coordinate maps to, or -1.
+int Unknown(const ShellProblem& p, int v, int c) {
+    const int d = p.dofOf[3 * v + c];
+    return d >= 0 ? d : d == kAxial ? p.axial : -1;
+}
+
+template <size_t N>
+std::array<int, 3 * N> UnknownsOfVertices(const ShellProblem& p, const std::array<int, N>& vertices) {
+    std::array<int, 3 * N> u{};
+    for (size_t k = 0; k < N; ++k)
+        for (int c = 0; c < 3; ++c) u[3 * k + c] = Unknown(p, vertices[k], c);
+    return u;
+}
+
+// Neumaier's compensated sum: the enclosed volume is a small difference of large triple products.
+struct CompensatedSum {
+    double sum = 0, carry = 0;
+    void Add(double v) {
+        const double t = sum + v;
+        carry += std::fabs(sum) >= std::fabs(v) ? (sum - t) + v : (v - t) + sum;
+        sum = t;
+    }
+    double Value() const { return sum + carry; }
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Pattern
+// ---------------------------------------------------------------------------------------------
+
+HessianPattern::HessianPattern(const ShellProblem& p) {
+    std::vector<Eigen::Triplet<double>> entries;
+    auto addBlock = [&](const int* u, int count) {
+        for (int i = 0; i < count; ++i)
+            for (int j = 0; j < count; ++j)
+                if (u[i] >= 0 && u[j] >= 0) entries.emplace_back(u[i], u[j], 0.0);
+    };
+    for (const auto& t : p.wall) addBlock(UnknownsOfVertices(p, t).data(), 9);
+    for (const auto& t : p.caps) addBlock(UnknownsOfVertices(p, t).data(), 9);
+    for (const auto& h : p.hinges) addBlock(UnknownsOfVertices(p, h).data(), 12);
+    std::vector<int> anchored;
+    for (int v : p.anchor.vertices)
+        for (int c = 0; c < 3; ++c) anchored.push_back(Unknown(p, v, c));
+    addBlock(anchored.data(), static_cast<int>(anchored.size()));
+    for (int d = 0; d < p.unknowns; ++d) entries.emplace_back(d, d, 0.0);  // a full diagonal for shifts
+    matrix.resize(p.unknowns, p.unknowns);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    matrix.makeCompressed();
+
+    auto slot = [&](int row, int col) -> int {
+        if (row < 0 || col < 0) return -1;
+        const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col];
+        const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col + 1];
+        return static_cast<int>(std::lower_bound(begin, end, row) - matrix.innerIndexPtr());
+    };
+    auto slots = [&](const int* u, int count, std::vector<int>& into) {
+        for (int i = 0; i < count; ++i)
+            for (int j = 0; j < count; ++j) into.push_back(slot(u[i], u[j]));
+    };
+    for (const auto& t : p.wall) slots(UnknownsOfVertices(p, t).data(), 9, wallSlots);
+    for (const auto& t : p.caps) slots(UnknownsOfVertices(p, t).data(), 9, capSlots);
+    for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
+    slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
+}
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Volume
+// ---------------------------------------------------------------------------------------------
+
+double EnclosedVolume(const ShellProblem& p, const Positions& x) {
+    CompensatedSum sum;
+    for (const auto* triangles : {&p.wall, &p.caps})
+        for (const auto& t : *triangles) sum.Add(At(x, t[0]).dot(At(x, t[1]).cross(At(x, t[2]))));
+    return sum.Value() / 6;
+}
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Assembly
+// ---------------------------------------------------------------------------------------------
+
+EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, const LoadTerms& load, const EnergyTerms& terms, bool wantGradient,
+                            HessianPattern* hessian, HessianKind kind) {
+    Positions x;
+    PositionsOf(p, q, x);
+    EnergyResult r;
+    if (wantGradient) {
+        r.gradient = Eigen::VectorXd::Zero(p.unknowns);
+        r.volumeGradient = Eigen::VectorXd::Zero(p.unknowns);
+    }
+    double* values = nullptr;
+    if (hessian) {
+        values = hessian->matrix.valuePtr();
+        std::fill(values, values + hessian->matrix.nonZeros(), 0.0);
+    }
+    double axialForce = 0;  // dE/du, accumulated from every axial coordinate
+    auto addGradient = [&](Eigen::VectorXd& g, int v, int c, double value, double* axial) {
+        const int d = p.dofOf[3 * v + c];
+        if (d >= 0) g[d] += value;
+        else if (d == kAxial) {
+            if (p.axial >= 0) g[p.axial] += value;
+            if (axial) *axial += value;
+        }
+    };
+    auto addHessian = [&](const int* slots, const double* local, int count) {
+        for (int i = 0; i < count * count; ++i)
+            if (slots[i] >= 0) values[slots[i]] += local[i];
+    };
+
+    CompensatedSum energy;
+    // Membrane and fibres: A0 (Psi(F) + sum over families (k/4)(I4 - 1)^2) per wall triangle.
+    const bool withFibres = terms.fibres && !p.fibreFamilies.empty();
+    if (terms.membrane || withFibres) {
+        for (size_t t = 0; t < p.wall.size(); ++t) {
+            const int families = withFibres ? p.fibreFamilies[t] : 0;
+            if (!terms.membrane && families == 0) continue;
+            const auto& tri = p.wall[t];
+            const MembraneRest& rest = p.membrane[t];
+            const Matrix32 F = DeformationGradient(p, static_cast<int>(t), x);
+            Vector6 gF = Vector6::Zero();
+            Matrix6 hF = Matrix6::Zero();
+            Vector6* gradientOfF = wantGradient || hessian ? &gF : nullptr;
+            Matrix6* hessianOfF = hessian ? &hF : nullptr;
+            double density = terms.membrane ? MembraneDensity(p.material, F, gradientOfF, hessianOfF) : 0.0;
+            // The fibres' part is positive semi-definite where taut and zero where slack.
+            for (int k = 0; k < families; ++k)
+                density += FibreDensity(F, &p.fibreDirections[t][2 * k], p.fibreStiffness, gradientOfF, hessianOfF, kind != HessianKind::Exact);
+            energy.Add(rest.area * density);
+            if (wantGradient || hessian) {
+                // dE/dx_a = A0 sum_alpha g_a[alpha] dPsi/df_alpha.
+                if (wantGradient)
+                    for (int a = 0; a < 3; ++a)
+                        for (int c = 0; c < 3; ++c)
+                            addGradient(r.gradient, tri[a], c, rest.area * (rest.g[a][0] * gF[c] + rest.g[a][1] * gF[3 + c]), &axialForce);
+            }
+            if (hessian) {
+                // Projected to positive semi-definite: most elements in tension already are (a 6 x 6
+                // Cholesky says so cheaply); the rest go through an eigen-solve with the negative
+                // eigenvalues clamped to zero.
+                if (kind != HessianKind::Exact && Eigen::LLT<Matrix6>(hF).info() != Eigen::Success) {
+                    Eigen::SelfAdjointEigenSolver<Matrix6> eigen(hF);
+                    const Vector6 clamped = eigen.eigenvalues().cwiseMax(0.0);
+                    hF = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
+                }
+                double local[81];
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b)
+                        for (int i = 0; i < 3; ++i)
+                            for (int j = 0; j < 3; ++j) {
+                                double sum = 0;
+                                for (int al = 0; al < 2; ++al)
+                                    for (int be = 0; be < 2; ++be) sum += rest.g[a][al] * rest.g[b][be] * hF(3 * al + i, 3 * be + j);
+                                local[(3 * a + i) * 9 + 3 * b + j] = rest.area * sum;
+                            }
+                addHessian(&hessian->wallSlots[81 * t], local, 9);
+            }
+        }
+    }
+    // Bending: k (theta - theta0)^2 per hinge.
+    if (terms.bending && p.bending) {
+        for (size_t k = 0; k < p.hinges.size(); ++k) {
+            const auto& h = p.hinges[k];
+            Eigen::Matrix<double, 12, 1> xs, gTheta;
+            Eigen::Matrix<double, 12, 12> hTheta;
+            for (int v = 0; v < 4; ++v) xs.segment<3>(3 * v) = At(x, h[v]);
+            const bool exactHessian = hessian && kind == HessianKind::Exact;
+            const double theta = HingeAngle(xs, wantGradient || hessian ? &gTheta : nullptr, exactHessian ? &hTheta : nullptr);
+            double d = theta - p.hingeRestAngle[k];
+            d -= 2 * std::numbers::pi * std::round(d / (2 * std::numbers::pi));  // the short way round
+            const double stiffness = p.hingeStiffness[k];
+            energy.Add(stiffness * d * d);
+            if (wantGradient)
+                for (int v = 0; v < 4; ++v)
+                    for (int c = 0; c < 3; ++c) addGradient(r.gradient, h[v], c, 2 * stiffness * d * gTheta[3 * v + c], &axialForce);
+            if (hessian) {
+                // Gauss-Newton (2k g g^T) for Newton's steps: positive semi-definite by construction.
+                Eigen::Matrix<double, 12, 12, Eigen::RowMajor> local = 2 * stiffness * gTheta * gTheta.transpose();
+                if (exactHessian) local += 2 * stiffness * d * hTheta;
+                addHessian(&hessian->hingeSlots[144 * k], local.data(), 12);
+            }
+        }
+    }
+    // Pressure (or sealed gas): -p (V - V0), with V = (1/6) sum x_a . (x_b x x_c) over walls and caps.
+    CompensatedSum volumeChange;
+    for (const auto* triangles : {&p.wall, &p.caps})
+        for (const auto& t : *triangles)
+            volumeChange.Add(At(x, t[0]).dot(At(x, t[1]).cross(At(x, t[2]))) - At(p.rest, t[0]).dot(At(p.rest, t[1]).cross(At(p.rest, t[2]))));
+    const double deltaV = volumeChange.Value() / 6;
+    r.volume = p.restVolume + deltaV;
+    const bool gas = load.gasConstant > 0;
+    const double pressure = gas ? load.gasConstant / r.volume - load.atmosphere : load.pressure;  // gauge
+    if (terms.pressure) {
+        if (gas) energy.Add(-load.gasConstant * std::log(r.volume / p.restVolume) + load.atmosphere * deltaV);
+        else energy.Add(-load.pressure * deltaV);
+    }
+    if (wantGradient || hessian) {
+        size_t capIndex = 0;
+        for (const auto* triangles : {&p.wall, &p.caps}) {
+            const bool caps = triangles == &p.caps;
+            for (size_t t = 0; t < triangles->size(); ++t) {
+                const auto& tri = (*triangles)[t];
+                const Eigen::Vector3d a = At(x, tri[0]), b = At(x, tri[1]), c = At(x, tri[2]);
+                const Eigen::Vector3d dV[3] = {b.cross(c) / 6, c.cross(a) / 6, a.cross(b) / 6};
+                if (wantGradient)
+                    for (int k = 0; k < 3; ++k)
+                        for (int cc = 0; cc < 3; ++cc) {
+                            addGradient(r.volumeGradient, tri[k], cc, dV[k][cc], nullptr);
+                            if (terms.pressure) addGradient(r.gradient, tri[k], cc, -pressure * dV[k][cc], &axialForce);
+                        }
+                if (hessian && terms.pressure && kind != HessianKind::Definite) {
+                    // d2V/dx_a dx_b = -[x_c]x / 6 for (a, b) cyclic; its transpose for (b, a).
+                    auto cross = [](const Eigen::Vector3d& v) {
+                        Eigen::Matrix3d m;
+                        m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+                        return m;
+                    };
+                    Eigen::Matrix<double, 9, 9, Eigen::RowMajor> local = Eigen::Matrix<double, 9, 9, Eigen::RowMajor>::Zero();
+                    const Eigen::Vector3d* corner[3] = {&a, &b, &c};
+                    for (int k = 0; k < 3; ++k) {
+                        const int next = (k + 1) % 3, last = (k + 2) % 3;
+                        local.block<3, 3>(3 * k, 3 * next) = -pressure * -cross(*corner[last]) / 6;
+                        local.block<3, 3>(3 * next, 3 * k) = -pressure * cross(*corner[last]) / 6;
+                    }
+                    addHessian(caps ? &hessian->capSlots[81 * capIndex] : &hessian->wallSlots[81 * t], local.data(), 9);
+                }
+                if (caps) ++capIndex;
+            }
+        }
+    }
+    // Axial force on the top clamp: -F u.
+    const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
+    if (terms.force && load.force != 0) {
+        energy.Add(-load.force * u);
+        if (wantGradient && p.axial >= 0) r.gradient[p.axial] -= load.force;
+        axialForce -= load.force;
+    }
+    // Anchor against rigid motions: (k/2)(|T|^2 + |R|^2).
+    if (terms.anchor && !p.anchor.vertices.empty()) {
+        const Anchor& an = p.anchor;
+        Eigen::Vector3d T = Eigen::Vector3d::Zero(), R = Eigen::Vector3d::Zero();
+        for (int v : an.vertices) {
+            const Eigen::Vector3d X = At(p.rest, v), d = At(x, v) - X;
+            T += d;
+            R += X.cross(d);
+        }
+        for (int c = 0; c < 3; ++c) {
+            if (!an.translation[c]) T[c] = 0;
+            if (!an.rotation[c]) R[c] = 0;
+        }
+        energy.Add(0.5 * an.stiffness * (T.squaredNorm() + R.squaredNorm()));
+        // Each selected component s is linear in the coordinates: s = a . x; E = (k/2) sum s^2.
+        const int n = static_cast<int>(an.vertices.size());
+        std::vector<Eigen::VectorXd> rows;
+        for (int c = 0; c < 3; ++c) {
+            if (an.translation[c]) {
+                Eigen::VectorXd a = Eigen::VectorXd::Zero(3 * n);
+                for (int k = 0; k < n; ++k) a[3 * k + c] = 1;
+                rows.push_back(a);
+            }
+            if (an.rotation[c]) {
+                Eigen::VectorXd a = Eigen::VectorXd::Zero(3 * n);
+                for (int k = 0; k < n; ++k) {
+                    const Eigen::Vector3d X = At(p.rest, an.vertices[k]);
+                    Eigen::Matrix3d m;
+                    m << 0, -X.z(), X.y(), X.z(), 0, -X.x(), -X.y(), X.x(), 0;
+                    a.segment<3>(3 * k) = m.row(c).transpose();
+                }
+                rows.push_back(a);
+            }
+        }
+        std::vector<double> components;
+        for (int c = 0; c < 3; ++c) {
+            if (an.translation[c]) components.push_back(T[c]);
+            if (an.rotation[c]) components.push_back(R[c]);
+        }
+        if (wantGradient)
+            for (size_t s = 0; s < rows.size(); ++s)
+                for (int k = 0; k < n; ++k)
+                    for (int c = 0; c < 3; ++c) addGradient(r.gradient, an.vertices[k], c, an.stiffness * components[s] * rows[s][3 * k + c], &axialForce);
+        if (hessian) {
+            Eigen::MatrixXd local = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+            for (const auto& a : rows) local += an.stiffness * a * a.transpose();
+            Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rowMajor = local;
+            addHessian(hessian->anchorSlots.data(), rowMajor.data(), 3 * n);
+        }
+    }
+    r.energy = energy.Value();
+    r.axialForce = axialForce;
+    return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Self-intersection
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+// Whether segment [a, b] crosses triangle (p, q, r) (Moller-Trumbore, strict interior).
+bool SegmentHitsTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                         const Eigen::Vector3d& r) {
+    const Eigen::Vector3d dir = b - a, e1 = q - p, e2 = r - p;
+    const Eigen::Vector3d h = dir.cross(e2);
+    const double det = e1.dot(h);
+    const double scale = e1.norm() * e2.norm() * dir.norm();
+    if (std::fabs(det) <= 1e-12 * scale) return false;  // parallel (coplanar contact is not a crossing)
+    const double inv = 1 / det;
+    const Eigen::Vector3d s = a - p;
+    const double u = inv * s.dot(h);
+    if (u <= 0 || u >= 1) return false;
+    const Eigen::Vector3d qv = s.cross(e1);
+    const double v = inv * dir.dot(qv);
+    if (v <= 0 || u + v >= 1) return false;
+    const double t = inv * e2.dot(qv);
+    return t > 0 && t < 1;
+}
+
+bool TrianglesIntersect(const std::array<Eigen::Vector3d, 3>& A, const std::array<Eigen::Vector3d, 3>& B) {
+    for (int k = 0; k < 3; ++k) {
+        if (SegmentHitsTriangle(A[k], A[(k + 1) % 3], B[0], B[1], B[2])) return true;
+        if (SegmentHitsTriangle(B[k], B[(k + 1) % 3], A[0], A[1], A[2])) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+bool SelfIntersects(const ShellProblem& p, const Positions& x) {
+    std::vector<std::array<int, 3>> triangles = p.wall;
+    triangles.insert(triangles.end(), p.caps.begin(), p.caps.end());
+    if (triangles.empty()) return false;
+    // A uniform hash grid, cells about the longest edge: each triangle goes into every cell its box touches.
+    double cell = 0;
+    for (const auto& t : triangles)
+        for (int k = 0; k < 3; ++k) cell = std::max(cell, (At(x, t[k]) - At(x, t[(k + 1) % 3])).norm());
+    if (!(cell > 0) || !std::isfinite(cell)) return false;
+    std::unordered_map<std::uint64_t, std::vector<int>> grid;
+    auto key = [](long long i, long long j, long long k) {
+        return (static_cast<std::uint64_t>(i & 0x1fffff) << 42) | (static_cast<std::uint64_t>(j & 0x1fffff) << 21) | static_cast<std::uint64_t>(k & 0x1fffff);
+    };
+    std::vector<Eigen::Vector3d> lows(triangles.size()), highs(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        Eigen::Vector3d lo = At(x, triangles[t][0]), hi = lo;
+        for (int k = 1; k < 3; ++k) {
+            lo = lo.cwiseMin(At(x, triangles[t][k]));
+            hi = hi.cwiseMax(At(x, triangles[t][k]));
+        }
+        lows[t] = lo;
+        highs[t] = hi;
+        for (long long i = std::llround(std::floor(lo.x() / cell)); i <= std::llround(std::floor(hi.x() / cell)); ++i)
+            for (long long j = std::llround(std::floor(lo.y() / cell)); j <= std::llround(std::floor(hi.y() / cell)); ++j)
+                for (long long k = std::llround(std::floor(lo.z() / cell)); k <= std::llround(std::floor(hi.z() / cell)); ++k)
+                    grid[key(i, j, k)].push_back(static_cast<int>(t));
+    }
+    for (const auto& [unused, members] : grid)
+        for (size_t m = 0; m < members.size(); ++m)
+            for (size_t n = m + 1; n < members.size(); ++n) {
+                const auto& A = triangles[members[m]];
+                const auto& B = triangles[members[n]];
+                // Boxes apart: most pairs sharing a cell (cheaper than the exact test by far).
+                if ((lows[members[m]].array() > highs[members[n]].array()).any() || (lows[members[n]].array() > highs[members[m]].array()).any()) continue;
+                bool adjacent = false;
+                for (int a : A)
+                    for (int b : B) adjacent = adjacent || a == b;
+                if (adjacent) continue;
+                if (TrianglesIntersect({At(x, A[0]), At(x, A[1]), At(x, A[2])}, {At(x, B[0]), At(x, B[1]), At(x, B[2])})) return true;
+            }
+    return false;
+}
+
+}  // namespace sim

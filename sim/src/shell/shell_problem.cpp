@@ -1,0 +1,361 @@
+// Shell problems: the tube of a design (staggered rings, caps, clamps), the verification sphere and
+// patch, their hinges and unknowns.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "sim/search.h"
+#include "shell/shell_problem.h"
+
+namespace sim {
+namespace {
+
+Eigen::Vector3d At(const Positions& p, int v) { return {p.x[v], p.y[v], p.z[v]}; }
+
+// Rest data of every wall triangle, the rest volume and the mean edge.
+void FinishRest(ShellProblem& p) {
+    p.membrane.clear();
+    double edges = 0;
+    for (const auto& t : p.wall) {
+        p.membrane.push_back(MakeMembraneRest(At(p.rest, t[0]), At(p.rest, t[1]), At(p.rest, t[2])));
+        for (int k = 0; k < 3; ++k) edges += (At(p.rest, t[k]) - At(p.rest, t[(k + 1) % 3])).norm();
+    }
+    p.meanEdgeMm = p.wall.empty() ? 1 : edges / (3.0 * p.wall.size());
+    p.restVolume = EnclosedVolume(p, p.rest);
+    if (p.bending) SetHingeRest(p);
+    p.held = p.rest;
+}
+
+// Numbers the unknowns: every coordinate not fixed or axial, then u last (when it is unknown).
+void NumberUnknowns(ShellProblem& p, bool axialUnknown) {
+    int next = 0;
+    for (int& d : p.dofOf)
+        if (d >= 0 || d == -3) d = next++;
+    p.axial = axialUnknown ? next++ : -1;
+    p.unknowns = next;
+}
+constexpr int kFree = -3;  // marks a free coordinate before numbering
+
+}  // namespace
+
+void TubeTriangles(int R, int H, std::vector<std::array<int, 3>>& wall, std::vector<std::array<int, 3>>& caps) {
+    // Per strip: (j,i) (j,i+1) (j+1,i) and (j,i+1) (j+1,i+1) (j+1,i), outward (SHELL.md section 2).
+    for (int j = 0; j + 1 < H; ++j)
+        for (int i = 0; i < R; ++i) {
+            const int a = j * R + i, b = j * R + (i + 1) % R, c = (j + 1) * R + i, d = (j + 1) * R + (i + 1) % R;
+            wall.push_back({a, b, c});
+            wall.push_back({b, d, c});
+        }
+    // Fans to one vertex per end on the axis (bottom cap R*H, top cap R*H + 1), facing out.
+    const int bottomCap = R * H, topCap = R * H + 1;
+    for (int i = 0; i < R; ++i) {
+        caps.push_back({bottomCap, (i + 1) % R, i});
+        caps.push_back({topCap, (H - 1) * R + i, (H - 1) * R + (i + 1) % R});
+    }
+}
+
+MembraneMaterial MembraneMaterialOf(const ShellDef& def) {
+    MembraneMaterial m;
+    m.law = def.material.law;
+    m.thicknessMm = def.geometry.thicknessMm;
+    m.mu = def.material.muKpa * 1e-3;
+    m.c10 = def.material.c10Kpa * 1e-3;
+    m.c01 = def.material.c01Kpa * 1e-3;
+    m.c20 = def.material.c20Kpa * 1e-3;
+    m.c30 = def.material.c30Kpa * 1e-3;
+    return m;
+}
+
+std::vector<std::array<int, 4>> HingesOf(const std::vector<std::array<int, 3>>& triangles) {
+    // Each directed edge (a, b) of a triangle with its opposite vertex; a hinge pairs (a, b) with (b, a).
+    std::map<std::pair<int, int>, int> opposite;
+    for (const auto& t : triangles)
+        for (int k = 0; k < 3; ++k) opposite[{t[k], t[(k + 1) % 3]}] = t[(k + 2) % 3];
+    std::vector<std::array<int, 4>> hinges;
+    for (const auto& [edge, q] : opposite) {
+        const auto [a, b] = edge;
+        if (a > b) continue;
+        const auto other = opposite.find({b, a});
+        if (other != opposite.end()) hinges.push_back({a, b, q, other->second});
+    }
+    return hinges;
+}
+
+void SetHingeRest(ShellProblem& p) {
+    // D = E h^3 / (12 (1 - nu^2)) with E = 3 mu, nu = 1/2: mu h^3 / 3.
+    const double D = MembraneMaterialShearModulus(p.material) * std::pow(p.material.thicknessMm, 3) / 3;
+    p.hingeRestAngle.clear();
+    p.hingeStiffness.clear();
+    for (const auto& h : p.hinges) {
+        Eigen::Matrix<double, 12, 1> x;
+        for (int k = 0; k < 4; ++k) x.segment<3>(3 * k) = At(p.rest, h[k]);
+        p.hingeRestAngle.push_back(HingeAngle(x, nullptr, nullptr));
+        const Eigen::Vector3d e = At(p.rest, h[1]) - At(p.rest, h[0]);
+        const double a1 = 0.5 * e.cross(At(p.rest, h[2]) - At(p.rest, h[0])).norm();
+        const double a2 = 0.5 * e.cross(At(p.rest, h[3]) - At(p.rest, h[0])).norm();
+        // SHELL.md writes k_e = (D/2) 3 |e|^2 / (A1 + A2); on a regular mesh bent onto a cylinder that
+        // stores 2.95 x (D/2) A / r^2 (tests/sim/shell_verification_test.cpp, BendingCalibration).
+        // The calibration it also asks for holds without the 3: Sum theta^2 |e|^2 / (A1 + A2) tends
+        // to A / r^2 for either bending direction.
+        p.hingeStiffness.push_back(0.5 * D * e.squaredNorm() / (a1 + a2));
+    }
+}
+
+double MembraneMaterialShearModulus(const MembraneMaterial& m) {
+    switch (m.law) {
+        case MaterialLaw::NeoHookean: return m.mu;
+        case MaterialLaw::MooneyRivlin: return 2 * (m.c10 + m.c01);
+        case MaterialLaw::Yeoh: return 2 * m.c10;
+    }
+    return m.mu;
+}
+
+namespace {
+// Rings for near-equilateral triangles (ring spacing sqrt(3)/2 of the edge along the ring), as a real
+// number: it may be far beyond what an int holds for a long thin tube.
+double EquilateralRings(const GeometryDef& g) {
+    const double edge = 2 * std::numbers::pi * g.radiusMm / g.ringVertices;
+    return std::max<double>(2 * g.clampRings + 2, std::round(g.lengthMm / (0.5 * std::sqrt(3.0) * edge)) + 1);
+}
+}  // namespace
+
+int RingCount(const GeometryDef& g) {
+    if (g.rings > 0) return g.rings;
+    return static_cast<int>(std::min(EquilateralRings(g), 1e9));
+}
+
+double EvaluationBytesEstimate(const ShellDef& def) {
+    const GeometryDef& g = def.geometry;
+    const double vertices = double(std::max(1, g.ringVertices)) * (g.rings > 0 ? g.rings : EquilateralRings(g)) + 2;
+    const double positionsPerStep = 24 * vertices;
+    return 40e6 + 1750 * vertices * std::log2(std::max(2.0, vertices)) + positionsPerStep * (std::max(1, def.load.steps) + 2);
+}
+
+ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bending, std::string* error) {
+    const GeometryDef& g = def.geometry;
+    const int R = g.ringVertices, H = RingCount(g), c = g.clampRings;
+    const int ringCount = R * H;
+    ShellProblem p;
+    p.material = MembraneMaterialOf(def);
+    p.bending = bending;
+    p.rest.Resize(ringCount + 2);
+    const double clampFraction = H > 1 ? double(c - 1) / (H - 1) : 0;
+    auto fail = [&](const std::string& why) {
+        if (error) *error = why;
+        return ShellProblem{};
+    };
+    const auto* freeXY = std::get_if<FreeXYShape>(&shape);
+    const auto* mesh = std::get_if<MeshShape>(&shape);
+    if (freeXY && (static_cast<int>(freeXY->dx.size()) != ringCount || static_cast<int>(freeXY->dy.size()) != ringCount))
+        return fail("free-xy needs one (dx, dy) per vertex of the " + std::to_string(R) + " x " + std::to_string(H) + " ring mesh: " +
+                    std::to_string(ringCount) + " pairs");
+    if (mesh && mesh->positions.Size() != ringCount)
+        return fail("the mesh has " + std::to_string(mesh->positions.Size()) + " vertices; the ring mesh needs " + std::to_string(ringCount) + " (" +
+                    std::to_string(R) + " per ring x " + std::to_string(H) + " rings)");
+    for (int j = 0; j < H; ++j) {
+        const double z = g.lengthMm * j / (H - 1);
+        for (int i = 0; i < R; ++i) {
+            const int v = j * R + i;
+            const double angle = 2 * std::numbers::pi * (i + 0.5 * j) / R;
+            if (mesh) {
+                p.rest.x[v] = mesh->positions.x[v];
+                p.rest.y[v] = mesh->positions.y[v];
+                p.rest.z[v] = mesh->positions.z[v];
+                continue;
+            }
+            double rho = freeXY ? 1.0 : DesignRadius(shape, z / g.lengthMm, angle, clampFraction);
+            if (!(rho > 0))
+                return fail("the radius is " + std::to_string(rho * g.radiusMm) + " mm at height " + std::to_string(z) +
+                            " mm: the shell models need a positive radius everywhere");
+            p.rest.x[v] = g.radiusMm * rho * std::cos(angle);
+            p.rest.y[v] = g.radiusMm * rho * std::sin(angle);
+            p.rest.z[v] = z;
+            if (freeXY) {
+                p.rest.x[v] += g.radiusMm * freeXY->dx[v];
+                p.rest.y[v] += g.radiusMm * freeXY->dy[v];
+            }
+        }
+    }
+    const int bottomCap = ringCount, topCap = ringCount + 1;
+    p.rest.x[bottomCap] = p.rest.y[bottomCap] = 0;
+    p.rest.z[bottomCap] = p.rest.z[0];
+    p.rest.x[topCap] = p.rest.y[topCap] = 0;
+    p.rest.z[topCap] = p.rest.z[(H - 1) * R];
+    TubeTriangles(R, H, p.wall, p.caps);
+    if (p.bending) p.hinges = HingesOf(p.wall);
+
+    // Unknowns: clamped rings and caps ride on the clamps (bottom fixed, top by u along the axis);
+    // sliding ends hold only the end rings' heights, with an anchor against rigid motion.
+    p.dofOf.assign(3 * p.rest.Size(), kFree);
+    auto hold = [&](int v, int coordinate, int how) { p.dofOf[3 * v + coordinate] = how; };
+    const bool clamped = g.ends == EndCondition::Clamped;
+    for (int j = 0; j < H; ++j)
+        for (int i = 0; i < R; ++i) {
+            const int v = j * R + i;
+            const bool bottom = clamped ? j < c : j == 0, top = clamped ? j >= H - c : j == H - 1;
+            if (!bottom && !top) continue;
+            if (clamped) {
+                hold(v, 0, kFixed);
+                hold(v, 1, kFixed);
+            }
+            hold(v, 2, bottom ? kFixed : kAxial);
+        }
+    for (int coordinate = 0; coordinate < 3; ++coordinate) {
+        hold(bottomCap, coordinate, kFixed);
+        hold(topCap, coordinate, coordinate == 2 ? kAxial : kFixed);
+    }
+    if (!clamped) {
+        for (int i = 0; i < R; ++i) p.anchor.vertices.push_back(i);
+        p.anchor.translation[0] = p.anchor.translation[1] = true;
+        p.anchor.rotation[2] = true;
+    }
+    const bool blocked = def.load.kind == ShellLoad::Blocked;
+    NumberUnknowns(p, !blocked);
+    FinishRest(p);
+    p.anchor.stiffness = MembraneMaterialShearModulus(p.material) * p.material.thicknessMm / std::max(1, R);
+    for (const auto& rest : p.membrane)
+        if (!(rest.area > 1e-12 * p.meanEdgeMm * p.meanEdgeMm)) return fail("the rest shape has a degenerate triangle (two vertices in one place)");
+    if (SelfIntersects(p, p.rest)) return fail("the rest shape passes through itself");
+    std::string fibreError;
+    SetFibres(p, def.fibres, g.lengthMm, &fibreError);
+    if (!fibreError.empty()) return fail(fibreError);
+    if (error) error->clear();
+    return p;
+}
+
+ShellProblem BuildSphereProblem(const MembraneMaterial& material, double radius, int subdivisions, bool bending) {
+    // An icosahedron, each triangle split in four `subdivisions` times, projected onto the sphere.
+    const double t = (1 + std::sqrt(5.0)) / 2;
+    std::vector<Eigen::Vector3d> v{{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<std::array<int, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                      {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (int s = 0; s < subdivisions; ++s) {
+        std::map<std::pair<int, int>, int> middle;
+        auto mid = [&](int a, int b) {
+            const auto key = std::minmax(a, b);
+            if (auto it = middle.find(key); it != middle.end()) return it->second;
+            v.push_back(0.5 * (v[a] + v[b]));
+            return middle[key] = static_cast<int>(v.size()) - 1;
+        };
+        std::vector<std::array<int, 3>> next;
+        for (const auto& tri : f) {
+            const int ab = mid(tri[0], tri[1]), bc = mid(tri[1], tri[2]), ca = mid(tri[2], tri[0]);
+            next.insert(next.end(), {{tri[0], ab, ca}, {tri[1], bc, ab}, {tri[2], ca, bc}, {ab, bc, ca}});
+        }
+        f = std::move(next);
+    }
+    ShellProblem p;
+    p.material = material;
+    p.bending = bending;
+    p.rest.Resize(static_cast<int>(v.size()));
+    for (size_t k = 0; k < v.size(); ++k) {
+        const Eigen::Vector3d x = radius * v[k].normalized();
+        p.rest.x[k] = x.x();
+        p.rest.y[k] = x.y();
+        p.rest.z[k] = x.z();
+    }
+    p.wall = f;
+    if (bending) p.hinges = HingesOf(p.wall);
+    p.dofOf.assign(3 * v.size(), kFree);
+    // The icosahedron's twelve corners: symmetric about the centre, few enough to keep the anchor sparse.
+    for (int k = 0; k < 12; ++k) p.anchor.vertices.push_back(k);
+    for (int c = 0; c < 3; ++c) p.anchor.translation[c] = p.anchor.rotation[c] = true;
+    NumberUnknowns(p, false);
+    FinishRest(p);
+    p.anchor.stiffness = MembraneMaterialShearModulus(material) * material.thicknessMm;
+    return p;
+}
+
+ShellProblem BuildPatchProblem(const MembraneMaterial& material, double size, int n, const Eigen::Matrix<double, 3, 2>& boundaryF) {
+    ShellProblem p;
+    p.material = material;
+    p.bending = false;
+    p.rest.Resize(n * n);
+    auto index = [n](int i, int j) { return j * n + i; };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            // A slightly irregular grid: the patch test must hold for any mesh.
+            const double jitter = (i > 0 && i < n - 1 && j > 0 && j < n - 1) ? 0.15 * std::sin(3.7 * i + 1.3 * j) : 0;
+            p.rest.x[index(i, j)] = size * (i + jitter) / (n - 1);
+            p.rest.y[index(i, j)] = size * (j - jitter) / (n - 1);
+            p.rest.z[index(i, j)] = 0;
+        }
+    for (int j = 0; j + 1 < n; ++j)
+        for (int i = 0; i + 1 < n; ++i) {
+            p.wall.push_back({index(i, j), index(i + 1, j), index(i, j + 1)});
+            p.wall.push_back({index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)});
+        }
+    p.dofOf.assign(3 * n * n, kFree);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            if (i == 0 || j == 0 || i == n - 1 || j == n - 1)
+                for (int c = 0; c < 3; ++c) p.dofOf[3 * index(i, j) + c] = kFixed;
+    NumberUnknowns(p, false);
+    FinishRest(p);
+    // The boundary is held where F puts it.
+    for (int v = 0; v < n * n; ++v) {
+        const Eigen::Vector3d x = boundaryF * Eigen::Vector2d(p.rest.x[v], p.rest.y[v]);
+        p.held.x[v] = x.x();
+        p.held.y[v] = x.y();
+        p.held.z[v] = x.z();
+    }
+    return p;
+}
+
+Eigen::VectorXd UnknownsOf(const ShellProblem& p, const Positions& x) {
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(p.unknowns);
+    bool axialRead = false;
+    for (int v = 0; v < x.Size(); ++v)
+        for (int c = 0; c < 3; ++c) {
+            const int d = p.dofOf[3 * v + c];
+            const double value = c == 0 ? x.x[v] : c == 1 ? x.y[v] : x.z[v];
+            if (d >= 0) q[d] = value;
+            else if (d == kAxial && !axialRead && p.axial >= 0) {
+                q[p.axial] = value - p.rest.z[v];
+                axialRead = true;
+            }
+        }
+    return q;
+}
+
+void PositionsOf(const ShellProblem& p, const Eigen::VectorXd& q, Positions& x) {
+    const int n = p.rest.Size();
+    if (x.Size() != n) x.Resize(n);
+    const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
+    for (int v = 0; v < n; ++v) {
+        const int* d = &p.dofOf[3 * v];
+        x.x[v] = d[0] >= 0 ? q[d[0]] : p.held.x[v];
+        x.y[v] = d[1] >= 0 ? q[d[1]] : p.held.y[v];
+        x.z[v] = d[2] >= 0 ? q[d[2]] : d[2] == kAxial ? p.rest.z[v] + u : p.held.z[v];
+    }
+}
+
+Matrix32 DeformationGradient(const ShellProblem& p, int t, const Positions& x) {
+    const auto& tri = p.wall[t];
+    const MembraneRest& r = p.membrane[t];
+    Matrix32 F = Matrix32::Zero();
+    for (int a = 0; a < 3; ++a) F += At(x, tri[a]) * Eigen::RowVector2d(r.g[a][0], r.g[a][1]);
+    return F;
+}
+
+std::vector<int> VertexBlockPlaces(const ShellProblem& p) {
+    std::vector<int> places(p.unknowns, -1);
+    int blocks = 0;
+    for (int v = 0; v < p.vertexCount(); ++v) {
+        bool free = false;
+        for (int c = 0; c < 3; ++c)
+            if (const int d = p.dofOf[3 * v + c]; d >= 0) {
+                places[d] = 3 * blocks + c;
+                free = true;
+            }
+        blocks += free;
+    }
+    if (p.axial >= 0) places[p.axial] = 3 * blocks;
+    return places;
+}
+
+}  // namespace sim

@@ -1,0 +1,841 @@
+// Static equilibrium of the shell models (SHELL.md section 6) and what an evaluation reports
+// (section 10).
+//
+// [SECTION] Factorisation: 3 x 3 vertex blocks; pattern and analysis kept per thread and topology
+// [SECTION] Newton: projected Hessian, steps by conjugate gradients on an earlier factor (a fresh
+//           factorisation when they are slow, with a growing diagonal shift on failure),
+//           backtracking line search on E, round-off guard; a trust region where the exact
+//           Hessian shows negative curvature
+// [SECTION] Loads: pressure steps with bisection, sealed gas, volume control, axial force
+// [SECTION] Evaluation: outputs, statuses
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "sim/batch.h"
+#include "shell/block_ldlt.h"
+#include "shell/shell_problem.h"
+
+namespace sim {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Factorisation
+// ---------------------------------------------------------------------------------------------
+
+struct Counters {
+    int iterations = 0;
+    int factorizations = 0;
+};
+
+// An LDL^T factor in vertex blocks whose symbolic analysis is done once for a pattern and reused.
+class Factor {
+public:
+    // Factorises H (+ shift I); `places` gives each unknown's vertex block. False when a pivot is
+    // not positive (for a matrix that must be positive definite) or the factorisation failed.
+    bool Compute(const SparseMatrix& H, const std::vector<int>& places, double shift, bool requirePositive, Counters& counters) {
+        if (!ldlt_.Analysed()) ldlt_.Analyse(H, places);
+        ++counters.factorizations;
+        if (!ldlt_.Factorise(H, shift)) return false;
+        return !requirePositive || ldlt_.SmallestPivot() > 0;
+    }
+    Eigen::VectorXd Solve(const Eigen::VectorXd& b) const { return ldlt_.Solve(b); }
+    double SmallestPivot() const { return ldlt_.SmallestPivot(); }
+    // Negative pivots: by Sylvester's law of inertia, the number of negative eigenvalues.
+    int NegativePivots() const { return ldlt_.NegativePivots(); }
+    Eigen::VectorXd NegativeCurvatureDirection() const { return ldlt_.NegativeCurvatureDirection(); }
+
+private:
+    BlockLdlt ldlt_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Newton
+// ---------------------------------------------------------------------------------------------
+
+enum class NewtonEnd {
+    Converged,
+    NotConverged,
+    NonFinite,
+    Runaway,  // the volume passed its limit: no equilibrium nearby (past the pressure maximum)
+};
+
+// What a solve needs that depends on the mesh's topology alone: the Hessian's pattern and the
+// factors' symbolic analysis. Building and ordering the pattern costs about as much as a
+// factorisation, and the evaluations a thread runs one after another (a sweep, a population) nearly
+// always share one mesh, so each thread keeps the last one (SHELL.md section 11). Results do not
+// depend on it: every factor is computed afresh before it is read.
+struct Workspace {
+    // The topology: what the pattern is built from.
+    std::vector<int> dofOf, anchored;
+    std::vector<std::array<int, 3>> wall, caps;
+    std::vector<std::array<int, 4>> hinges;
+    int unknowns = 0, axial = -1;
+
+    std::vector<int> places;      // each unknown's place in the factors' vertex blocks
+    HessianPattern pattern;       // Newton's Hessian (projected, exact or definite, as each step needs)
+    Factor factor;
+    HessianPattern exactPattern;  // the exact Hessian (inertia, stiffness, volume control), factorised apart
+    Factor exactFactor;           // so that Newton's last factor stays to precondition with
+
+    explicit Workspace(const ShellProblem& p)
+        : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
+          places(VertexBlockPlaces(p)), pattern(p), exactPattern(pattern) {}
+    bool Fits(const ShellProblem& p) const {
+        return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
+               caps == p.caps && hinges == p.hinges;
+    }
+};
+
+// This thread's last workspace: taken by a solver while it runs (a solver inside another builds its own).
+thread_local std::unique_ptr<Workspace> tLastWorkspace;
+
+std::unique_ptr<Workspace> TakeWorkspace(const ShellProblem& p) {
+    std::unique_ptr<Workspace> w = std::move(tLastWorkspace);
+    if (w && w->Fits(p)) return w;
+    return std::make_unique<Workspace>(p);
+}
+
+struct Solver {
+    const ShellProblem& problem;
+    const SolverDef& def;
+    std::unique_ptr<Workspace> workspace;
+    HessianPattern& pattern;
+    Factor* factor;       // Newton's: the workspace's two, swapped when the exact one is the fresher preconditioner
+    HessianPattern& exactPattern;
+    Factor* exactFactor;
+    Counters counters;
+    bool holdAxial = false;   // u is held at its current value (the blocked test)
+    double forceTolerance;    // N
+    EnergyTerms terms;
+    // Newton's steps by preconditioned conjugate gradients (PreconditionedStep).
+    static constexpr double kStepResidual = 1e-4;  // of the gradient's norm: the step's linear residual
+    static constexpr int kMaxStepIterations = 30;  // then a fresh factorisation is cheaper
+    bool preconditioner = false;                   // `factor` holds a positive definite factor to precondition with
+    bool refresh = false;                          // the last preconditioned step was slow: factorise next time
+    bool exactSteps = false;                       // Newton's steps on the exact Hessian first (see Minimise)
+    bool direct = false;                           // factorise at every step (see Minimise)
+    int factorAge = 0;                             // Newton steps taken since `factor` was computed
+    // Trust-region steps (TrustRegionStep): the radius carries over from step to step and load to
+    // load, as the curvature it was fitted to does.
+    static constexpr double kFirstTrustRadius = 0.1;  // of the mean edge: the saddle escape's step
+    static constexpr int kTrustTries = 10;            // radii tried from one state, each a quarter of the last
+    double trustRadiusMm = 0;                         // 0: not yet needed
+
+    Solver(const ShellProblem& p, const SolverDef& d)
+        : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
+          exactPattern(workspace->exactPattern), exactFactor(&workspace->exactFactor) {
+        forceTolerance = d.tolerance * MembraneMaterialShearModulus(p.material) * p.material.thicknessMm * p.meanEdgeMm;
+    }
+    ~Solver() { tLastWorkspace = std::move(workspace); }
+    Solver(const Solver&) = delete;
+    Solver& operator=(const Solver&) = delete;
+
+    // The largest force on a free vertex (and on the top clamp, unless held).
+    double LargestForce(const Eigen::VectorXd& g) const {
+        double largest = 0;
+        for (int v = 0; v < problem.vertexCount(); ++v) {
+            double sum = 0;
+            for (int c = 0; c < 3; ++c) {
+                const int d = problem.dofOf[3 * v + c];
+                if (d >= 0) sum += g[d] * g[d];
+            }
+            largest = std::max(largest, std::sqrt(sum));
+        }
+        if (problem.axial >= 0 && !holdAxial) largest = std::max(largest, std::fabs(g[problem.axial]));
+        return largest;
+    }
+
+    void HoldGradient(Eigen::VectorXd& g) const {
+        if (holdAxial && problem.axial >= 0) g[problem.axial] = 0;
+    }
+    void HoldMatrix(SparseMatrix& H) const {
+        if (!holdAxial || problem.axial < 0) return;
+        // Dirichlet by elimination: the held unknown's row and column become the identity.
+        for (int col = 0; col < H.outerSize(); ++col)
+            for (SparseMatrix::InnerIterator it(H, col); it; ++it)
+                if (it.row() == problem.axial || it.col() == problem.axial) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+    }
+
+    // (H + c w w^T) v: the sealed gas's term beside the sparse matrix, never formed.
+    static Eigen::VectorXd WithRankOne(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& v) {
+        Eigen::VectorXd Hv = H * v;
+        if (c != 0) Hv += (c * w.dot(v)) * w;
+        return Hv;
+    }
+
+    // Solves (H + c w w^T) x = b by Sherman-Morrison on the sparse factor (the sealed gas's term).
+    Eigen::VectorXd SolveWithRankOne(const Eigen::VectorXd& b, double c, const Eigen::VectorXd& w) const {
+        Eigen::VectorXd x = factor->Solve(b);
+        if (c == 0) return x;
+        const Eigen::VectorXd y = factor->Solve(w);
+        return x - (c * w.dot(x) / (1 + c * w.dot(y))) * y;
+    }
+
+    // The Newton step by conjugate gradients on (H + c w w^T) s = -g, preconditioned by `factor`, the
+    // factorisation of an earlier (nearby) state's matrix: a factorisation costs about 35
+    // back-substitutions, and a factor a few Newton iterations or a load step old still clusters the
+    // spectrum tightly. Solved, or why not; `used` counts the iterations.
+    enum class Linear { Solved, Indefinite, Slow, NonFinite };  // Indefinite: negative curvature met; Slow: iterations ran out
+    Linear PreconditionedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, Eigen::VectorXd& step, int* used,
+                            int maxIterations = kMaxStepIterations) {
+        step = Eigen::VectorXd::Zero(g.size());
+        Eigen::VectorXd r = -g;
+        Eigen::VectorXd z = factor->Solve(r);
+        Eigen::VectorXd p = z, Ap;
+        double rz = r.dot(z);
+        // Relative to the gradient, but never below a tenth of the convergence tolerance: the step
+        // that ends a solve needs no more than that.
+        const double target = std::max(kStepResidual * g.norm(), 0.1 * forceTolerance);
+        for (int k = 1; k <= maxIterations; ++k) {
+            *used = k;
+            Ap = WithRankOne(H, c, w, p);
+            const double curvature = p.dot(Ap);
+            if (!(curvature > 0) || !(rz > 0)) return Linear::Indefinite;
+            const double alpha = rz / curvature;
+            step += alpha * p;
+            r -= alpha * Ap;
+            if (r.norm() <= target) return step.allFinite() ? Linear::Solved : Linear::NonFinite;
+            z = factor->Solve(r);
+            const double next = r.dot(z);
+            p = z + (next / rz) * p;
+            rz = next;
+        }
+        return Linear::Slow;
+    }
+    // Steihaug and Toint's truncated conjugate gradients on the model m(s) = g.s + s.(H + c w w^T)s / 2
+    // within |s| <= radius, preconditioned by `factor`: conjugate gradients until the step leaves the
+    // region or meets negative curvature, then on to the boundary. Every iterate lowers the model, so
+    // the step is one of descent; `predicted` is the model's decrease (> 0).
+    Eigen::VectorXd TruncatedStep(const SparseMatrix& H, double c, const Eigen::VectorXd& w, const Eigen::VectorXd& g, double radius,
+                                  double* predicted) const {
+        Eigen::VectorXd s = Eigen::VectorXd::Zero(g.size());
+        Eigen::VectorXd r = -g;
+        Eigen::VectorXd z = factor->Solve(r);
+        Eigen::VectorXd p = z, Ap;
+        double rz = r.dot(z);
+        const double target = std::max(kStepResidual * g.norm(), 0.1 * forceTolerance);
+        // s + tau p on the boundary, tau >= 0.
+        auto toBoundary = [&] {
+            const double a = p.squaredNorm(), b = s.dot(p), outside = s.squaredNorm() - radius * radius;
+            s += ((-b + std::sqrt(b * b - a * outside)) / a) * p;
+        };
+        for (int k = 1; k <= kMaxStepIterations; ++k) {
+            Ap = WithRankOne(H, c, w, p);
+            const double curvature = p.dot(Ap);
+            if (!(curvature > 0)) {
+                toBoundary();
+                break;
+            }
+            const double alpha = rz / curvature;
+            if ((s + alpha * p).norm() >= radius) {
+                toBoundary();
+                break;
+            }
+            s += alpha * p;
+            r -= alpha * Ap;
+            if (r.norm() <= target) break;
+            z = factor->Solve(r);
+            const double next = r.dot(z);
+            p = z + (next / rz) * p;
+            rz = next;
+        }
+        *predicted = -(g.dot(s) + 0.5 * s.dot(WithRankOne(H, c, w, s)));
+        return s;
+    }
+
+    // A trust-region step from q on the exact Hessian H that has shown negative curvature: Newton's
+    // steps on the projected Hessian (positive definite by construction) walk off a saddle at a
+    // fixed ratio per step (1.5 on a fibre design: 25 iterations, each with a fresh factor), and the
+    // unstable path curves within a tenth of an edge, so no straight step along the negative
+    // curvature serves. Here the radius grows while the model predicts the energy well and shrinks
+    // when it does not. True with the step and its state (energy and gradient assembled) when one
+    // lowered E; false after kTrustTries radii (the caller's other steps then stand).
+    bool TrustRegionStep(const Eigen::VectorXd& q, const LoadTerms& load, const EnergyResult& r, double c, const Eigen::VectorXd& w,
+                         const SparseMatrix& H, Eigen::VectorXd& step, EnergyResult& reached) {
+        if (trustRadiusMm == 0) trustRadiusMm = kFirstTrustRadius * problem.meanEdgeMm;
+        for (int attempt = 0; attempt < kTrustTries; ++attempt) {
+            double predicted = 0;
+            Eigen::VectorXd s = TruncatedStep(H, c, w, r.gradient, trustRadiusMm, &predicted);
+            if (!s.allFinite() || !(predicted > 0)) return false;
+            EnergyResult trial = AssembleEnergy(problem, q + s, load, terms, true, nullptr, HessianKind::Projected);
+            const double agreement = (r.energy - trial.energy) / predicted;  // actual decrease / predicted
+            const bool onBoundary = s.norm() > 0.99 * trustRadiusMm;
+            if (!(agreement >= 0.25)) trustRadiusMm *= 0.25;  // NaN too
+            else if (agreement > 0.75 && onBoundary) trustRadiusMm *= 2;
+            if (std::isfinite(trial.energy) && trial.gradient.allFinite() && agreement > 1e-4) {
+                step = std::move(s);
+                reached = std::move(trial);
+                return true;
+            }
+        }
+        return false;
+    }
+
+    // A step from a fresh factorisation of H (+ the gas's rank-one term): a descent direction, or
+    // empty. When H is not definite, the pressure's part is left out, which is positive
+    // semi-definite by construction; a tiny growing shift takes care of what is singular.
+    Eigen::VectorXd FactorisedStep(const Eigen::VectorXd& q, const LoadTerms& load, const EnergyResult& r, double gasTerm, const Eigen::VectorXd& w,
+                                   SparseMatrix& H, bool definite) {
+        Eigen::VectorXd step;
+        double shift = 0;
+        for (int attempt = 0; attempt < 12; ++attempt) {
+            preconditioner = factor->Compute(H, workspace->places, shift, true, counters);
+            factorAge = 0;
+            if (preconditioner) {
+                step = -SolveWithRankOne(r.gradient, gasTerm, w);
+                if (step.allFinite() && step.dot(r.gradient) < 0) return step;
+            }
+            if (!definite) {
+                definite = true;
+                AssembleEnergy(problem, q, load, terms, false, &pattern, HessianKind::Definite);  // H is pattern.matrix
+                HoldMatrix(H);
+                continue;
+            }
+            const double scale = H.diagonal().cwiseAbs().maxCoeff();
+            shift = shift == 0 ? 1e-10 * scale : 10 * shift;
+        }
+        return Eigen::VectorXd();
+    }
+
+    // Minimises the total energy at `load` from q (in place), in at most def.maxIterations
+    // iterations; Runaway once the volume passes `volumeLimit`.
+    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity()) {
+        // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
+        EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
+        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
+            ++counters.iterations;
+            if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
+            if (r.volume > volumeLimit) return NewtonEnd::Runaway;
+            HoldGradient(r.gradient);
+            if (LargestForce(r.gradient) < forceTolerance) return NewtonEnd::Converged;
+            const double gasTerm = load.gasConstant > 0 ? load.gasConstant / (r.volume * r.volume) : 0;
+            Eigen::VectorXd w = r.volumeGradient;
+            HoldGradient(w);
+            // Newton's step, by conjugate gradients on an earlier factor when there is one, else (or
+            // when they are slow) from a fresh factorisation. On the projected Hessian (elastic parts
+            // positive semi-definite by construction, the pressure's exact), until a whole step shows
+            // it converging linearly: it clamps compressed membrane parts and leaves out the hinges'
+            // curvature term, and on curved or wrinkled walls needs 100-1,800 iterations where the
+            // exact one needs 30-70. From then on the exact Hessian first: where conjugate gradients
+            // meet negative curvature on it (a saddle, a buckle), a trust-region step on it; the
+            // projected one's when that fails, or when the exact one's are slow.
+            Eigen::VectorXd step;
+            EnergyResult trusted;    // a trust-region step's state, energy and gradient assembled
+            bool trustStep = false;  // step is a trust-region step: taken whole, no line search
+            bool projected = false;  // pattern.matrix holds the projected Hessian at q
+            auto assemble = [&](HessianKind kind) {
+                AssembleEnergy(problem, q, load, terms, false, &pattern, kind);
+                HoldMatrix(pattern.matrix);
+                projected = kind == HessianKind::Projected;
+            };
+            if (!preconditioner) {
+                // The solve's first factorisation: of the Hessian without the pressure's part. From
+                // the rest state the whole one is rarely definite, and a factorisation that fails
+                // costs as much as one that succeeds. It preconditions the whole Hessian, or gives
+                // the step itself.
+                assemble(HessianKind::Projected);
+                AssembleEnergy(problem, q, load, terms, false, &exactPattern, HessianKind::Definite);
+                HoldMatrix(exactPattern.matrix);
+                const Eigen::VectorXd fallback = FactorisedStep(q, load, r, gasTerm, w, exactPattern.matrix, true);
+                int used = 0;
+                if (preconditioner && !(PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used) == Linear::Solved && step.dot(r.gradient) < 0))
+                    step = fallback;
+                refresh = used > kMaxStepIterations / 2;
+            } else if (!refresh && !direct) {
+                int used = 0;
+                for (HessianKind kind : {HessianKind::Exact, HessianKind::Projected}) {
+                    if (kind == HessianKind::Exact && !exactSteps) continue;
+                    assemble(kind);
+                    const Linear end = PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used);
+                    if (end == Linear::Solved && step.dot(r.gradient) < 0) break;
+                    step.resize(0);
+                    if (kind == HessianKind::Exact && end == Linear::Indefinite &&
+                        (trustStep = TrustRegionStep(q, load, r, gasTerm, w, pattern.matrix, step, trusted)))
+                        break;
+                    if (end != Linear::Indefinite) break;  // too slow (or not finite): the projected one would be too
+                }
+                refresh = step.size() == 0 || used > kMaxStepIterations / 2;
+                // Not even a factor one step old preconditions this matrix: far from equilibrium,
+                // with threads going taut and slack, it changes faster than a factor pays back.
+                // Factorise at every step until Newton settles.
+                if (step.size() == 0 && factorAge <= 1) direct = true;
+            }
+            if (step.size() == 0) {
+                refresh = false;
+                if (!projected) assemble(HessianKind::Projected);
+                step = FactorisedStep(q, load, r, gasTerm, w, pattern.matrix, false);
+                // Exact steps: the fresh factor of the projected Hessian preconditions the exact one
+                // at the same state, for a few iterations at most; else the projected step stands.
+                if (exactSteps && step.size() != 0 && preconditioner) {
+                    assemble(HessianKind::Exact);
+                    Eigen::VectorXd exact;
+                    int used = 0;
+                    if (PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, exact, &used, kMaxStepIterations / 3) == Linear::Solved &&
+                        exact.dot(r.gradient) < 0)
+                        step = std::move(exact);
+                }
+            }
+            if (step.size() == 0) return NewtonEnd::NotConverged;
+            // Backtracking on E (a trust-region step has been judged already). When the predicted
+            // decrease is below round-off, energy can no longer judge the step: take it whole (a
+            // clamped tube would otherwise stall near 5e-10).
+            const double lastGradientNorm = r.gradient.norm();  // held
+            const double slope = step.dot(r.gradient);
+            const bool roundOff = std::fabs(slope) < 1e-13 * std::max(1.0, std::fabs(r.energy));
+            double alpha = 1;
+            Eigen::VectorXd next;
+            bool accepted = trustStep;
+            if (trustStep) {
+                next = q + step;
+                r = std::move(trusted);
+            }
+            for (int halving = 0; halving < 40 && !accepted; ++halving) {
+                next = q + alpha * step;
+                // With the gradient: the next iteration's (most steps are taken whole).
+                EnergyResult trial = AssembleEnergy(problem, next, load, terms, true, nullptr, HessianKind::Projected);
+                if (roundOff || (std::isfinite(trial.energy) && trial.energy <= r.energy + 1e-4 * alpha * slope)) {
+                    r = std::move(trial);
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if (!accepted) return NewtonEnd::NotConverged;
+            // A whole step that left more than a quarter of the force: the projected Hessian is
+            // converging linearly; exact steps from here on (for the rest of the evaluation).
+            HoldGradient(r.gradient);
+            if (alpha == 1 && !exactSteps) exactSteps = r.gradient.norm() > 0.25 * lastGradientNorm;
+            // Newton settled (a whole step took away nine tenths of the force): preconditioned steps again.
+            if (direct && alpha == 1 && r.gradient.norm() < 0.1 * lastGradientNorm) direct = false;
+            ++factorAge;
+            const double moved = (alpha * step).lpNorm<Eigen::Infinity>();
+            const double largest = (next - UnknownsOf(problem, problem.rest)).lpNorm<Eigen::Infinity>();
+            q = std::move(next);
+            if (moved < 1e-12 * std::max(largest, problem.meanEdgeMm)) return NewtonEnd::Converged;
+        }
+        return NewtonEnd::NotConverged;
+    }
+
+    // Bordered Newton on (q, p) for a prescribed volume: the gradient vanishes and V = target.
+    NewtonEnd AtVolume(Eigen::VectorXd& q, double& p, double target) {
+        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
+            LoadTerms l;
+            l.pressure = p;
+            EnergyResult r = AssembleEnergy(problem, q, l, terms, true, &exactPattern, HessianKind::Exact);
+            ++counters.iterations;
+            if (!r.gradient.allFinite() || !std::isfinite(r.volume)) return NewtonEnd::NonFinite;
+            HoldGradient(r.gradient);
+            HoldMatrix(exactPattern.matrix);
+            const double volumeError = r.volume - target;
+            if (LargestForce(r.gradient) < forceTolerance && std::fabs(volumeError) < 1e-10 * problem.restVolume) return NewtonEnd::Converged;
+            if (!exactFactor->Compute(exactPattern.matrix, workspace->places, 0, false, counters)) return NewtonEnd::NotConverged;
+            Eigen::VectorXd w = r.volumeGradient;
+            HoldGradient(w);
+            // [K -w; -w^T 0][dq; dp] = -[g; -(V - target)]: with a = K^-1 g, b = K^-1 w,
+            // dq = -a + dp b and w^T dq = -(V - target).
+            const Eigen::VectorXd a = exactFactor->Solve(r.gradient), b = exactFactor->Solve(w);
+            const double dp = (w.dot(a) - volumeError) / w.dot(b);
+            const Eigen::VectorXd dq = -a + dp * b;
+            if (!dq.allFinite() || !std::isfinite(dp)) return NewtonEnd::NonFinite;
+            q += dq;
+            p += dp;
+        }
+        return NewtonEnd::NotConverged;
+    }
+
+    // Makes the exact Hessian's factor (just computed, positive definite) Newton's preconditioner: it
+    // is fresher than Newton's own.
+    void PreconditionWithExact() {
+        if (!(exactFactor->SmallestPivot() > 0)) return;
+        std::swap(factor, exactFactor);
+        preconditioner = true;
+        refresh = false;
+        direct = false;
+        factorAge = 0;
+    }
+
+    // The exact Hessian at q, factorised (indefinite allowed); its negative pivots.
+    int ExactInertia(const Eigen::VectorXd& q, const LoadTerms& load, EnergyResult* r) {
+        *r = AssembleEnergy(problem, q, load, terms, true, &exactPattern, HessianKind::Exact);
+        HoldGradient(r->gradient);
+        HoldMatrix(exactPattern.matrix);
+        if (!exactFactor->Compute(exactPattern.matrix, workspace->places, 0, false, counters)) return -1;
+        return exactFactor->NegativePivots();
+    }
+    // Is the equilibrium q stable? The count of directions in which it is not (the exact Hessian's
+    // negative pivots, each confirmed; below), with its factor left in exactFactor; -1 when it
+    // cannot be factorised. Newton's steps find stationary points, and on a wavy wall they can end
+    // on a saddle beside a stable state at the same load: then step down along the negative
+    // curvature and minimise again, with a load step's budget (def.maxIterations): a smaller one of
+    // its own made the verdict depend on it (a fibre design whose stable state lies 100 iterations
+    // away was a limit point with 50). Newton may end on another saddle on the way down; it is
+    // stepped off in turn, kEscapes times at most. A stable state within volumeLimit replaces q
+    // (then *escaped, if given); otherwise q stays, with its own inertia.
+    static constexpr int kEscapes = 3;
+    static constexpr int kInverseIterations = 8;  // a back-substitution each
+    static constexpr double kConfirmedCurvature = 1e-9;  // of the Hessian's median diagonal entry
+    int StableState(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit, EnergyResult* exact, bool* escaped = nullptr) {
+        if (escaped) *escaped = false;
+        int negative = ExactInertia(q, load, exact);
+        if (negative <= 0) return negative;  // most states: nothing to copy or confirm
+        Eigen::VectorXd from = q;  // the state examined (its factor and matrix in exactFactor, exactPattern)
+        EnergyResult fromExact = *exact;
+        bool moved = false;        // exactFactor is no longer q's
+        for (int escape = 0; negative > 0; ++escape) {
+            Eigen::VectorXd down = exactFactor->NegativeCurvatureDirection();
+            HoldGradient(down);
+            if (down.size() != q.size() || !down.allFinite() || !(down.lpNorm<Eigen::Infinity>() > 0)) break;
+            down /= down.lpNorm<Eigen::Infinity>();
+            // Unpivoted LDL^T can give a pivot near zero the wrong sign. A wall at its buckling load
+            // has such pivots, and there the energy grows as a step's fourth power whichever way it
+            // goes: a negative pivot counts only when a direction of negative curvature shows it.
+            // The factor's own direction, spread by L^-T, may be mostly stiff modes; a few inverse
+            // iterations on H turn it toward the eigenvector whose eigenvalue is nearest zero.
+            const SparseMatrix& H = exactPattern.matrix;
+            auto curvature = [&](const Eigen::VectorXd& d) { return d.allFinite() ? d.dot(H * d) / d.squaredNorm() : 0.0; };
+            Eigen::VectorXd refined = down;
+            for (int k = 0; k < kInverseIterations; ++k) {
+                refined = exactFactor->Solve(refined);
+                HoldGradient(refined);
+                refined /= refined.lpNorm<Eigen::Infinity>();
+            }
+            Eigen::VectorXd diagonal = H.diagonal().cwiseAbs();  // its median: the wall's stiffness (a folded
+            std::nth_element(diagonal.begin(), diagonal.begin() + diagonal.size() / 2, diagonal.end());  // triangle's can be 1e9 times that)
+            if (!(std::min(curvature(down), curvature(refined)) < -kConfirmedCurvature * diagonal[diagonal.size() / 2])) {
+                negative = 0;
+                break;
+            }
+            if (escape == kEscapes) break;
+            // A tenth of an edge along the factor's direction, the way the energy falls, or else the
+            // other way: Newton can come down to a stable state from there too (a fibre design of
+            // reproduce's part 2, +2.2 %, is found only so; not with the energy required to fall).
+            down *= 0.1 * problem.meanEdgeMm;
+            Eigen::VectorXd trial = from + down;
+            if (!(AssembleEnergy(problem, trial, load, terms, false, nullptr, HessianKind::Projected).energy < fromExact.energy)) trial = from - down;
+            const NewtonEnd end = Minimise(trial, load, volumeLimit);
+            Positions x;
+            PositionsOf(problem, trial, x);
+            if (!(end == NewtonEnd::Converged && EnclosedVolume(problem, x) <= volumeLimit)) break;  // limit: infinite for a force load
+            EnergyResult reached;
+            const int reachedNegative = ExactInertia(trial, load, &reached);
+            moved = true;
+            if (reachedNegative < 0) break;
+            from = std::move(trial);
+            fromExact = std::move(reached);
+            negative = reachedNegative;
+        }
+        if (negative == 0) {
+            if (escaped) *escaped = moved;
+            q = std::move(from);
+            *exact = std::move(fromExact);
+            return 0;
+        }
+        return moved ? ExactInertia(q, load, exact) : negative;  // q's factor again, for what follows
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Evaluation
+// ---------------------------------------------------------------------------------------------
+
+double Contraction(const ShellProblem& p, const Eigen::VectorXd& q, double length) {
+    const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
+    return (0.0 - 100 * u) / length;  // +0, not -0, when the clamp is held
+}
+
+void MaxStretchAndStress(const ShellProblem& p, const Positions& x, double* stretch, double* stress) {
+    *stretch = 0;
+    *stress = 0;
+    for (size_t t = 0; t < p.wall.size(); ++t) {
+        const PrincipalValues v = Principal(p.material, DeformationGradient(p, static_cast<int>(t), x));
+        *stretch = std::max(*stretch, v.stretch[0]);
+        *stress = std::max(*stress, v.stress[0]);
+    }
+}
+
+// The fibres' largest and mean strain, and their mean angle to the axis over the middle third of the
+// tube (away from the clamps: where a braided tube is an ideal McKibben muscle).
+void FibreOutputs(const ShellProblem& p, const Positions& x, double length, ShellOutputs& out) {
+    const FibreState state = FibreStates(p, x);
+    if (state.stretch.empty()) return;
+    double largest = -INFINITY, sum = 0, angles = 0;
+    int middle = 0;
+    for (size_t k = 0; k < state.stretch.size(); ++k) {
+        largest = std::max(largest, state.stretch[k] - 1);
+        sum += state.stretch[k] - 1;
+        if (state.restHeightMm[k] >= length / 3 && state.restHeightMm[k] <= 2 * length / 3) {
+            angles += state.angleDeg[k];
+            ++middle;
+        }
+    }
+    out.maxFibreStrain = largest;
+    out.meanFibreStrain = sum / static_cast<double>(state.stretch.size());
+    out.fibreAngleDeg = middle ? angles / middle : NAN;
+}
+
+// A state whose volume passes this multiple of the last converged one has left the load path: no
+// equilibrium nearby (past the pressure maximum), or a snap through to a distant branch.
+constexpr double kRunawayVolume = 3;
+
+// One pressure-controlled (or gas, or force) load path in steps to the target, each step tried
+// whole from the previous state and halved on failure.
+struct PathEnd {
+    Status status = Status::Ok;
+    double reached = 0;  // the load parameter reached (pressure kPa, or force N)
+};
+
+}  // namespace
+
+Status SolveStatic(const ShellProblem& problem, const LoadTerms& load, const SolverDef& def, Eigen::VectorXd& q, bool holdAxial, int* iterations) {
+    Solver solver(problem, def);
+    solver.holdAxial = holdAxial;
+    const NewtonEnd end = solver.Minimise(q, load);
+    if (iterations) *iterations = solver.counters.iterations;
+    return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+}
+
+Status SolveVolume(const ShellProblem& problem, const SolverDef& def, double volume, Eigen::VectorXd& q, double& pressure, int* iterations) {
+    Solver solver(problem, def);
+    const NewtonEnd end = solver.AtVolume(q, pressure, volume);
+    if (iterations) *iterations = solver.counters.iterations;
+    return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+}
+
+SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
+    const auto started = std::chrono::steady_clock::now();
+    SimResult result;
+    ShellOutputs& out = result.shell;
+    const LoadDef& load = def.load;
+    out.stretchLimit = StretchLimit(def.material);
+    out.tensileStrengthKpa = def.material.tensileStrengthKpa;
+    auto finish = [&](Status status) {
+        result.status = status;
+        result.fitness = status == Status::Ok ? result.contractionPercent : std::nan("");
+        if (status != Status::Ok) result.contractionPercent = std::nan("");
+        result.elapsedMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+        return result;
+    };
+    std::string error;
+    const ShellProblem problem = BuildTubeProblem(def, shape, bending, &error);
+    if (!error.empty()) return finish(Status::InvalidGeometry);
+    result.initial = problem.rest;
+    result.final = problem.rest;
+    out.restVolumeMm3 = problem.restVolume;
+
+    Solver solver(problem, def.solver);
+    Eigen::VectorXd q = UnknownsOf(problem, problem.rest);
+    LoadTerms terms;
+    const double length = def.geometry.lengthMm;
+    solver.holdAxial = load.kind == ShellLoad::Blocked;
+
+    // The load parameter at fraction s of the target.
+    auto loadAt = [&](double s) {
+        LoadTerms l;
+        switch (load.kind) {
+            case ShellLoad::Inflate:
+            case ShellLoad::Blocked: l.pressure = s * load.pressureKpa * 1e-3; break;
+            case ShellLoad::Gas: l.gasConstant = (l.atmosphere + s * load.pressureKpa * 1e-3) * problem.restVolume; break;
+            case ShellLoad::Force: l.force = s * load.forceN; break;
+            case ShellLoad::Volume: break;
+        }
+        return l;
+    };
+    Positions x;
+    auto record = [&](double pressureKpa) {
+        PositionsOf(problem, q, x);
+        out.curvePressureKpa.push_back(pressureKpa);
+        out.curveContractionPercent.push_back(Contraction(problem, q, length));
+        out.curveVolumeMm3.push_back(EnclosedVolume(problem, x));
+        out.steps.push_back(x);
+    };
+    // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
+    // current state q); a prescribed one is s times the target, exactly the target at s = 1.
+    auto gaugeKpa = [&](double s) {
+        const LoadTerms l = loadAt(s);
+        if (l.gasConstant > 0) {
+            PositionsOf(problem, q, x);
+            return (l.gasConstant / EnclosedVolume(problem, x) - l.atmosphere) * 1e3;
+        }
+        return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
+    };
+
+    // Where Newton stops as Runaway after a state of this volume (a force load has no such limit).
+    auto volumeLimitAfter = [&](double volume) {
+        return load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : kRunawayVolume * volume;
+    };
+
+    Status status = Status::Ok;
+    if (load.kind == ShellLoad::Volume) {
+        double p = 0;
+        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
+            const double target = problem.restVolume * (1 + (load.volumeRatio - 1) * k / load.steps);
+            const NewtonEnd end = solver.AtVolume(q, p, target);
+            if (end == NewtonEnd::Converged) record(p * 1e3);
+            else status = end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+        }
+        out.targetPressureKpa = p * 1e3;
+    } else {
+        // Steps to the target, each tried whole, halved on failure down to 1/2^maxBisections.
+        double reached = 0;
+        double lastVolume = problem.restVolume;
+        // The tangent dq/dp = K^-1 dV/dq at the last converged state predicts the next one (pressure
+        // loads): Newton then starts close and needs fewer iterations.
+        Eigen::VectorXd tangent;
+        const bool predict = load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Blocked;
+        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
+            const double goal = double(k) / load.steps;
+            double increment = goal - reached;
+            const double smallest = increment / std::pow(2.0, def.solver.maxBisections);
+            while (reached < goal - 1e-15 && status == Status::Ok) {
+                const double next = std::min(goal, reached + increment);
+                Eigen::VectorXd trial = q;
+                if (predict && tangent.size() == q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
+                const NewtonEnd end = solver.Minimise(trial, loadAt(next), volumeLimitAfter(lastVolume));
+                if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
+                if (end == NewtonEnd::Runaway && increment <= smallest) {
+                    out.limitPressureKpa = gaugeKpa(reached);
+                    status = Status::LimitPoint;
+                    break;
+                }
+                if (end == NewtonEnd::Converged) {
+                    PositionsOf(problem, trial, x);
+                    const double volume = EnclosedVolume(problem, x);
+                    // A converged state far beyond the last one has snapped through to a distant branch:
+                    // past the pressure maximum. (An unstable state is caught at the end, by inertia.)
+                    if (volume > volumeLimitAfter(lastVolume)) {
+                        out.limitPressureKpa = gaugeKpa(reached);
+                        status = Status::LimitPoint;
+                        break;
+                    }
+                    q = std::move(trial);
+                    reached = next;
+                    lastVolume = volume;
+                    if (predict) {
+                        Eigen::VectorXd w = AssembleEnergy(problem, q, loadAt(reached), solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
+                        solver.HoldGradient(w);
+                        // With the last Newton step's Hessian (a moment before convergence), solved as
+                        // Newton's steps are; the preconditioner alone when that fails.
+                        int used = 0;
+                        if (!solver.preconditioner || solver.PreconditionedStep(solver.pattern.matrix, 0, w, -w, tangent, &used) != Solver::Linear::Solved)
+                            tangent = solver.factor->Solve(w);
+                        if (!tangent.allFinite()) tangent.resize(0);
+                    }
+                    continue;
+                }
+                if (increment <= smallest) {
+                    // Newton runs away when no equilibrium exists: past the pressure maximum.
+                    PositionsOf(problem, trial, x);
+                    const double volume = EnclosedVolume(problem, x);
+                    if (load.kind != ShellLoad::Force && (end == NewtonEnd::Runaway || !std::isfinite(volume) || volume > 2 * lastVolume)) {
+                        out.limitPressureKpa = gaugeKpa(reached);
+                        status = Status::LimitPoint;
+                    } else if (status == Status::Ok) {
+                        status = Status::NotConverged;
+                    }
+                    break;
+                }
+                increment *= 0.5;
+            }
+            if (status == Status::Ok) record(gaugeKpa(reached));
+        }
+        out.targetPressureKpa = gaugeKpa(reached);
+    }
+
+    // The exact Hessian's inertia at the end of the path tells a stable equilibrium from one past the
+    // pressure maximum (StableState steps off a saddle beside a stable state first).
+    const LoadTerms finalLoad = load.kind == ShellLoad::Volume ? [&] {
+        LoadTerms l;
+        l.pressure = out.targetPressureKpa * 1e-3;
+        return l;
+    }() : loadAt(1.0);
+    int negative = -1;  // the exact Hessian's negative pivots at q (its factor stays in solver.exactFactor)
+    EnergyResult exact;
+    if (status == Status::Ok && load.kind == ShellLoad::Volume) {
+        negative = solver.ExactInertia(q, finalLoad, &exact);  // volume control holds a state past the maximum
+    } else if (status == Status::Ok) {
+        bool escaped = false;
+        negative = solver.StableState(q, finalLoad, volumeLimitAfter(out.curveVolumeMm3.back()), &exact, &escaped);
+        if (escaped) {
+            PositionsOf(problem, q, x);
+            out.targetPressureKpa = gaugeKpa(1.0);  // status ok: the path reached its target
+            out.curvePressureKpa.back() = out.targetPressureKpa;
+            out.curveContractionPercent.back() = Contraction(problem, q, length);
+            out.curveVolumeMm3.back() = EnclosedVolume(problem, x);
+            out.steps.back() = x;
+        }
+    }
+
+    PositionsOf(problem, q, x);
+    result.final = x;
+    out.newtonIterations = solver.counters.iterations;
+    result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
+    out.displacementMm = problem.axial >= 0 ? q[problem.axial] : 0;
+    out.volumeMm3 = EnclosedVolume(problem, x);
+    MaxStretchAndStress(problem, x, &out.maxStretch, &out.maxStressKpa);
+    out.maxStressKpa *= 1e3;
+    FibreOutputs(problem, x, length, out);
+    result.contractionPercent = Contraction(problem, q, length);
+    if (status != Status::Ok) {
+        out.factorizations = solver.counters.factorizations;
+        return finish(status);
+    }
+    if (def.solver.selfContact && SelfIntersects(problem, x)) {
+        out.factorizations = solver.counters.factorizations;
+        return finish(Status::SelfIntersection);
+    }
+
+    // Stiffness at the free equilibrium: 1 / (K^-1)_uu of the exact Hessian (its Schur complement).
+    Eigen::VectorXd axialResponse;  // dq per unit axial force: K^-1 e_u
+    {
+        if (negative > 0 && load.kind != ShellLoad::Volume) {
+            out.limitPressureKpa = out.targetPressureKpa;
+            out.factorizations = solver.counters.factorizations;
+            return finish(Status::LimitPoint);
+        }
+        if (negative >= 0 && problem.axial >= 0 && !solver.holdAxial) {
+            Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.unknowns);
+            unit[problem.axial] = 1;
+            axialResponse = solver.exactFactor->Solve(unit);
+            out.axialStiffnessNPerMm = 1 / axialResponse[problem.axial];
+        }
+    }
+    // Blocking force: the top clamp held at its rest place at the final load, from the free state.
+    if (load.kind == ShellLoad::Blocked) {
+        out.blockingForceN = AssembleEnergy(problem, q, finalLoad, solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+    } else if (load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Gas) {
+        // Starting from the free state's linear response to the clamp's return (not from the free
+        // state with the clamp alone moved, which strains the rings beside it the most).
+        Eigen::VectorXd held = q;
+        if (axialResponse.allFinite() && axialResponse.size() == q.size() && axialResponse[problem.axial] > 0)
+            held -= (q[problem.axial] / axialResponse[problem.axial]) * axialResponse;
+        held[problem.axial] = 0;
+        solver.PreconditionWithExact();
+        solver.holdAxial = true;
+        // Only a stable held state's force is the actuator's: pulled back, a buckled wall can come to
+        // rest on a saddle (12 of 285 GA designs of reproduce's part 2), whose force no clamp would measure.
+        if (solver.Minimise(held, finalLoad) == NewtonEnd::Converged) {
+            Positions heldPositions;
+            PositionsOf(problem, held, heldPositions);
+            EnergyResult heldExact;
+            if (solver.StableState(held, finalLoad, volumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0)
+                out.blockingForceN = heldExact.axialForce;
+        }
+        solver.holdAxial = false;
+    }
+    out.newtonIterations = solver.counters.iterations;
+    result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
+    out.factorizations = solver.counters.factorizations;
+    if (out.maxStretch > out.stretchLimit) return finish(Status::OverStretched);
+    return finish(Status::Ok);
+}
+
+}  // namespace sim

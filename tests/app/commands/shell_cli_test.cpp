@@ -1,0 +1,236 @@
+// The membrane and shell models through every command, as a user runs them: simulate's JSON in
+// physical units, render's pictures, sweeps over pressure, GA runs, archives and --from, and every
+// kind of bad input refused with one line, exit code 2 and nothing written.
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.h"
+#include "formats/csv.h"
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+using ShellCli = CliTest;
+
+namespace {
+
+// A small, fast mesh and two load steps: the commands' plumbing, not the physics (that is the
+// verification label's).
+const std::string kSmall = " --ring-vertices 16 --rings 20 --steps 2";
+
+}  // namespace
+
+// The issue's example: a plain tube at P = p R / (mu h) = 0.6 lengthens by about 3 %.
+TEST_F(ShellCli, APlainTubeLengthensAndTheJsonCarriesEveryOutputInUnits) {
+    const Result r = Run("simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 "
+                         "--ring-vertices 30 --rings 30 --pressure-kpa 1.8");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["status"], "ok");
+    EXPECT_NEAR(json["contraction_percent"].get<double>(), -3.15, 0.1);
+    for (const char* key : {"limit_pressure_kpa", "blocking_force_n", "axial_stiffness_n_per_mm", "volume_mm3", "max_stretch", "max_stress_kpa",
+                            "newton_iterations", "curve", "stretch_limit", "tensile_strength_kpa"})
+        EXPECT_TRUE(json.contains(key)) << key;
+    EXPECT_TRUE(json["limit_pressure_kpa"].is_null()) << "0.6 is below the tube's limit point";
+    EXPECT_LT(json["blocking_force_n"].get<double>(), 0) << "a lengthening tube pushes on supports that hold it";
+    EXPECT_GT(json["axial_stiffness_n_per_mm"].get<double>(), 0);
+    EXPECT_GT(json["volume_mm3"].get<double>(), json["rest_volume_mm3"].get<double>());
+    EXPECT_GT(json["max_stretch"].get<double>(), 1);
+    EXPECT_GT(json["newton_iterations"].get<int>(), 0);
+    EXPECT_EQ(json["curve"].size(), 4u);
+    EXPECT_EQ(json["curve"].back()["pressure_kpa"], 1.8) << "the last load step is the target pressure, exactly";
+    EXPECT_EQ(json["model"]["name"], "membrane");
+    EXPECT_EQ(json["model"]["mu_kpa"], 30);
+}
+
+TEST_F(ShellCli, PresetsAndOverridesReachTheModel) {
+    const auto preset = nlohmann::json::parse(Run("simulate --model membrane --shape cylinder --material dragon-skin-10" + kSmall).out);
+    EXPECT_EQ(preset["model"]["material"], "dragon-skin-10");
+    const auto softer = nlohmann::json::parse(Run("simulate --model membrane --shape cylinder --material dragon-skin-10 --mu-kpa 20" + kSmall).out);
+    EXPECT_EQ(softer["model"]["mu_kpa"], 20);
+    EXPECT_EQ(softer["model"]["law"], "neo-hookean");
+    // A softer wall at the same pressure stretches more.
+    EXPECT_GT(softer["max_stretch"].get<double>(), preset["max_stretch"].get<double>());
+}
+
+TEST_F(ShellCli, BadInputIsRefusedWithOneLineAndNothingWritten) {
+    const std::string save = " --save-mesh " + Path("out.obj");
+    ExpectRefused("simulate --model shell --thickness-mm -1" + save, "--thickness-mm");
+    ExpectRefused("simulate --model shell --thickness-mm 0" + save, "--thickness-mm");
+    ExpectRefused("simulate --model shell --radius-mm 0" + save, "--radius-mm");
+    ExpectRefused("simulate --model shell --length-mm -5" + save, "--length-mm");
+    ExpectRefused("simulate --model shell --mu-kpa 0" + save, "shear modulus");
+    ExpectRefused("simulate --model shell --mu-kpa -3" + save, "--mu-kpa");
+    ExpectRefused("simulate --model shell --pressure-kpa abc" + save, "--pressure-kpa");
+    ExpectRefused("simulate --model shell --material unobtainium" + save, "ecoflex-00-30");
+    ExpectRefused("simulate --model shell --load stretch" + save, "inflate, gas, volume, force or blocked");
+    ExpectRefused("simulate --model shell --iterations 100" + save, "thesis model");
+    ExpectRefused("simulate --pressure-kpa 3" + save, "membrane and shell");
+    ExpectRefused("simulate --model shell --resolution 20" + save, "--ring-vertices");
+    ExpectRefused("simulate --model plastic" + save, "thesis, membrane or shell");
+    ExpectRefused("render --model shell --shape cylinder --color-by stretch --timelapse 3 --steps 5 --out " + Path("pictures"), "--steps");
+    ExpectRefused("render --shape cylinder --color-by stress --out " + Path("pictures"), "membrane or shell");
+    // A mesh that is not the model's surface.
+    Write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    ExpectRefused("simulate --model shell --mesh " + Path("quad.obj") + save, "triangles");
+    Write("few.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+    ExpectRefused("simulate --model shell --mesh " + Path("few.obj") + save, "3 vertices");
+    EXPECT_FALSE(fs::exists(dir_ / "out.obj"));
+    EXPECT_FALSE(fs::exists(dir_ / "pictures" / "inflation.png"));
+}
+
+TEST_F(ShellCli, SavedMeshesReadBackAndAMeshOfAnotherTopologyIsRefused) {
+    const Result first = Run("simulate --model membrane --shape sine --amplitude 1" + kSmall + " --save-initial " + Path("rest.obj"));
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    const Result again = Run("simulate --model membrane --mesh " + Path("rest.obj") + kSmall);
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(nlohmann::json::parse(again.out)["contraction_percent"], nlohmann::json::parse(first.out)["contraction_percent"]);
+    // The same vertices with two faces swapped for others: not this mesh's surface.
+    std::string text = Slurp(dir_ / "rest.obj");
+    const size_t face = text.find("\nf ");
+    text.replace(face + 1, text.find('\n', face + 1) - face - 1, "f 1 2 40");
+    Write("other.obj", text);
+    ExpectRefused("simulate --model membrane --mesh " + Path("other.obj") + kSmall, "expected topology");
+}
+
+TEST_F(ShellCli, RenderDrawsStretchThePressureCurveAndAFramePerLoadStep) {
+    const Result r = Run("render --model shell --shape sine --amplitude 1.3 --pressure-kpa 3 --timelapse 3 --size 320x240" +
+                         std::string(" --ring-vertices 16 --rings 20 --out ") + Path("pictures"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["model"], "shell");
+    EXPECT_EQ(json["inflation"]["status"], "ok");
+    testing_support::ExpectPicture(dir_ / "pictures" / "inflation.png");
+    testing_support::ExpectPicture(dir_ / "pictures" / "pressure_curve.png");
+    EXPECT_FALSE(fs::exists(dir_ / "pictures" / "stretch.png")) << "the thesis's stretch test is not a shell model's figure";
+    for (int k = 0; k < 3; ++k) testing_support::ExpectPicture(dir_ / "pictures" / "timelapse" / ("frame_000" + std::to_string(k) + ".png"));
+    EXPECT_FALSE(fs::exists(dir_ / "pictures" / "timelapse" / "frame_0003.png")) << "one frame per load step: --timelapse 3 sets 3 steps";
+}
+
+// A sweep over pressure is a design's contraction-pressure curve; its archive gives each point back.
+TEST_F(ShellCli, APressureSweepIsTheContractionPressureCurveAndItsArchiveReplays) {
+    Write("pressure.json", R"({"id": "p", "model": {"name": "membrane", "geometry": {"ring_vertices": 16, "rings": 20}, "load": {"steps": 2}},
+        "sweep": {"shape": {"family": "sine", "amplitude": 1.3}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2, 3]}]},
+        "render": {"figures": false, "thumbnails": false}})");
+    const Result r = Run("sweep " + Path("pressure.json") + " --out " + Path("runs"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = app::ParseCsv(Slurp(dir_ / "runs" / "results.csv"));
+    ASSERT_EQ(rows.size(), 4u);
+    EXPECT_EQ(rows[0][1], "pressure_kpa");
+    std::vector<double> contraction;
+    for (size_t k = 1; k < rows.size(); ++k) contraction.push_back(std::stod(rows[k][3]));
+    EXPECT_GT(contraction[0], contraction[1]) << "lengthens more with pressure";
+    EXPECT_GT(contraction[1], contraction[2]);
+    const auto log = app::ParseCsv(Slurp(dir_ / "runs" / "evaluations.csv"));
+    const auto column = [&](const std::string& name) { return static_cast<size_t>(std::find(log[0].begin(), log[0].end(), name) - log[0].begin()); };
+    ASSERT_LT(column("max_stretch"), log[0].size());
+    EXPECT_EQ(log[1][column("model")], "membrane");
+    EXPECT_EQ(log[3][column("pressure_kpa")], "3");
+    EXPECT_FALSE(log[3][column("max_stretch")].empty());
+    // The stored job replays to the same number.
+    const Result replay = Run("simulate --from " + Path("runs/evaluations.capnp") + " --index 2");
+    ASSERT_EQ(replay.exitCode, 0) << replay.err;
+    EXPECT_EQ(nlohmann::json::parse(replay.out)["contraction_percent"].get<double>(), contraction[2]);
+    // And the thesis model has no pressure axis.
+    Write("thesis.json", R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2]}]}})");
+    ExpectRefused("sweep " + Path("thesis.json") + " --out " + Path("never"), "pressure_kpa");
+    EXPECT_FALSE(fs::exists(dir_ / "never" / "evaluations.capnp"));
+}
+
+TEST_F(ShellCli, ModelBlockKeysThatDoNotApplyAreRefused) {
+    const std::string sweep = R"("sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]})";
+    Write("a.json", R"({"model": {"name": "thesis", "geometry": {"radius_mm": 5}}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("a.json") + " --out " + Path("a"), "does not apply to the thesis model");
+    Write("b.json", R"({"model": {"name": "shell"}, "sim": {"iterations": 100}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("b.json") + " --out " + Path("b"), "thesis model only");
+    Write("c.json", R"({"model": {"name": "shell", "material": {"preset": "ecoflex-00-30", "mu_kpa": -1}}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("c.json") + " --out " + Path("c"), "model.material.mu_kpa");
+    Write("d.json", R"({"model": {"name": "shell", "geometry": {"thickness": 1}}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("d.json") + " --out " + Path("d"), "model.geometry.thickness_mm");
+    for (const char* folder : {"a", "b", "c", "d"}) EXPECT_FALSE(fs::exists(dir_ / folder / "evaluations.capnp")) << folder;
+}
+
+// The GA under the membrane model gives the same bytes on one thread or two.
+TEST_F(ShellCli, EvolveUnderTheMembraneModelDoesNotDependOnThreads) {
+    Write("ga.json", R"({"id": "g", "seed": 4, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16},
+        "load": {"steps": 1, "pressure_kpa": 0.5}},
+        "evolve": {"runs": 1, "population": 4, "generations": 1, "elite": 1, "genome": {"kind": "bspline", "region": "middle", "splines": 1}},
+        "render": {"figures": false, "thumbnails": false}})");
+    ASSERT_EQ(Run("evolve " + Path("ga.json") + " --threads 1 --out " + Path("one")).exitCode, 0);
+    ASSERT_EQ(Run("evolve " + Path("ga.json") + " --threads 2 --out " + Path("two")).exitCode, 0);
+    for (const char* file : {"evaluations.csv", "run_1/logbook.csv", "run_1/halloffame.csv"})
+        EXPECT_EQ(Slurp(dir_ / "one" / file), Slurp(dir_ / "two" / file)) << file;
+    const auto logbook = app::ParseCsv(Slurp(dir_ / "one" / "run_1" / "logbook.csv"));
+    ASSERT_EQ(logbook.size(), 3u);
+    EXPECT_FALSE(logbook[1][2].empty()) << "generation 0 has a best contraction";
+}
+
+// Fibres from the command line and from experiment files; bad fibre input refused.
+TEST_F(ShellCli, FibresReachTheModelAndBadFibreInputIsRefused) {
+    const Result braid = Run("simulate --model membrane --shape cylinder --fibres braid --fibre-angle-deg 30 --fibre-stiffness-n-per-mm 40" + kSmall);
+    ASSERT_EQ(braid.exitCode, 0) << braid.err;
+    const auto json = nlohmann::json::parse(braid.out);
+    EXPECT_GT(json["contraction_percent"].get<double>(), 0) << "a braid at 30 degrees makes the tube contract";
+    EXPECT_EQ(json["model"]["fibres"], "braid");
+    EXPECT_EQ(json["model"]["fibre_angle_deg"], 30);
+    EXPECT_GE(json["max_fibre_strain"].get<double>(), 0);
+    EXPECT_GT(json["fibre_angle_deg"].get<double>(), 30) << "the braid opens towards the magic angle";
+    ExpectRefused("simulate --model shell --fibres braid --fibre-angle-deg nan", "--fibre-angle-deg");
+    ExpectRefused("simulate --model shell --fibres braid --fibre-angle-deg 91", "--fibre-angle-deg");
+    ExpectRefused("simulate --model shell --fibres braid --fibre-stiffness-n-per-mm -2", "--fibre-stiffness-n-per-mm");
+    ExpectRefused("simulate --model shell --fibres knitted", "braid");
+    ExpectRefused("simulate --fibres braid", "membrane and shell");
+    const std::string sweep = R"("sweep": {"shape": {"family": "sine", "amplitude": 1}, "axes": [{"parameter": "fibre_angle_deg", "values": [20, 40]}]})";
+    Write("gap.json", R"({"model": {"name": "shell", "fibres": "braid", "fibre_bands": [{"from": 0, "to": 0.4, "angle_deg": 20},
+        {"from": 0.5, "to": 1, "angle_deg": 40}]}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("gap.json") + " --out " + Path("gap"), "cover the length");
+    Write("short.json", R"({"model": {"name": "shell", "fibres": "braid", "fibre_bands": [{"from": 0, "to": 0.7, "angle_deg": 20}]}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("short.json") + " --out " + Path("short"), "up to 1");
+    Write("none.json", R"({"model": {"name": "shell"}, )" + sweep + "}");
+    ExpectRefused("sweep " + Path("none.json") + " --out " + Path("none"), "fibre_angle_deg axis needs fibres");
+    Write("genes.json", R"({"model": {"name": "shell"}, "evolve": {"genome": {"kind": "bspline", "fibre_angles": 1}}})");
+    ExpectRefused("evolve " + Path("genes.json") + " --out " + Path("genes"), "fibre genes need fibres");
+    for (const char* folder : {"gap", "short", "none", "genes"}) EXPECT_FALSE(fs::exists(dir_ / folder / "evaluations.capnp")) << folder;
+}
+
+// A fibre angle sweep: the braid's angle is a sweep axis, and the magic angle shows in the numbers.
+TEST_F(ShellCli, AFibreAngleSweepCrossesZeroAtTheMagicAngle) {
+    Write("angles.json", R"({"id": "a", "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2},
+        "fibres": "braid"}, "sweep": {"shape": {"family": "sine", "amplitude": 1, "phase": ["pi/2", "pi/2"]},
+        "axes": [{"parameter": "pressure_kpa", "values": [2, 4]}, {"parameter": "fibre_angle_deg", "values": [35, 75]}]},
+        "render": {"thumbnails": false}})");
+    const Result r = Run("sweep " + Path("angles.json") + " --out " + Path("angles"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = app::ParseCsv(Slurp(dir_ / "angles" / "results.csv"));
+    ASSERT_EQ(rows.size(), 5u);
+    EXPECT_EQ(rows[0][2], "fibre_angle_deg");
+    for (size_t k = 1; k < rows.size(); ++k) {
+        const double angle = std::stod(rows[k][2]), contraction = std::stod(rows[k][4]);
+        EXPECT_EQ(contraction > 0, angle < 54.7) << "at " << rows[k][1] << " kPa and " << angle << " degrees";
+    }
+    testing_support::ExpectPicture(dir_ / "angles" / "landscape.png");
+}
+
+// The GA searches fibre genes beside the shape's, and they are archived with the design.
+TEST_F(ShellCli, TheGaSearchesFibreGenes) {
+    Write("genes.json", R"({"id": "g", "seed": 7, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16},
+        "load": {"pressure_kpa": 3, "steps": 1}, "fibres": "braid"},
+        "evolve": {"runs": 1, "population": 6, "generations": 2, "elite": 1,
+                   "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [1, 3], "fibre_angles": 2, "fibre_switches": true}},
+        "render": {"figures": false, "thumbnails": false}})");
+    const Result r = Run("evolve " + Path("genes.json") + " --out " + Path("genes"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto fame = app::ParseCsv(Slurp(dir_ / "genes" / "run_1" / "halloffame.csv"));
+    ASSERT_GE(fame.size(), 2u);
+    // The genome: the spline's control points, then two angles and two switches.
+    const std::string genome = fame[1][2];
+    const std::string fibres = genome.substr(genome.find(';') + 1);
+    EXPECT_EQ(std::count(fibres.begin(), fibres.end(), ','), 3) << genome;
+    const auto log = app::ParseCsv(Slurp(dir_ / "genes" / "evaluations.csv"));
+    const size_t column = static_cast<size_t>(std::find(log[0].begin(), log[0].end(), "fibres") - log[0].begin());
+    ASSERT_LT(column, log[0].size());
+    EXPECT_EQ(log[1][column], "braid");
+    // The archive gives the fibres back: the best design replays to its fitness.
+    const Result replay = Run("simulate --from " + Path("genes/evaluations.capnp") + " --index 0");
+    ASSERT_EQ(replay.exitCode, 0) << replay.err;
+    EXPECT_EQ(nlohmann::json::parse(replay.out)["model"]["fibres"], "braid");
+}

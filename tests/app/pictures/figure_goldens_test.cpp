@@ -1,0 +1,148 @@
+// Visual regression of the report's figures of numbers and its contact sheet: a fitness landscape as
+// a line (with the thesis's point), a heat map (diverging, with the thesis's marks), an evolution
+// plot (range, interquartile band, the thesis's reference line) and a contact sheet on a sweep's
+// axes. Fixed data, so only layout and drawing can change them. UPDATE_GOLDENS=1 rewrites them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "experiments/experiment.h"
+#include "pictures/figures.h"
+#include "pictures/plots.h"
+#include "render/image.h"
+#include "sim/batch.h"
+#include "sim/solid.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::uint8_t> ReadBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void ExpectMatchesGolden(const std::string& name, const render::Image& actual) {
+    ASSERT_FALSE(actual.Empty());
+    ASSERT_FALSE(render::IsUniform(actual)) << name << " is blank";
+    const fs::path golden = fs::path(ACTUATOR_GOLDEN_DIR) / (name + ".png");
+    const auto bytes = render::EncodePng(actual, 9);
+    const char* update = std::getenv("UPDATE_GOLDENS");
+    if (update && std::string(update) == "1") {
+        std::ofstream(golden, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        return;
+    }
+    render::Image expected;
+    std::string error;
+    ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run UPDATE_GOLDENS=1 ctest -L visual to create it";
+    ASSERT_TRUE(render::DecodePng(ReadBytes(golden), &expected, &error)) << error;
+    const auto comparison = render::CompareImages(expected, actual, render::ImageTolerance{});
+    if (!comparison.matches) {
+        const fs::path out = fs::path(ACTUATOR_VISUAL_OUT_DIR);
+        fs::create_directories(out);
+        std::ofstream(out / (name + ".actual.png"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        ADD_FAILURE() << name << ": " << comparison.Summary() << "\n  actual: " << (out / (name + ".actual.png")).string()
+                      << "\n  accept the new picture with: UPDATE_GOLDENS=1 ctest -L visual";
+    }
+}
+
+app::Experiment Sweep(const std::string& axes, const std::string& points) {
+    return app::ParseExperiment(R"({"id": "G", "title": "golden", "sim": {"iterations": 2000},
+        "sweep": {"shape": {"family": "abs-sine", "phase": [0, "pi"]}, "axes": )" + axes + R"(},
+        "thesis_result": {"points": )" + points + "}}", "golden.json");
+}
+
+TEST(FigureGoldens, LandscapeLine) {
+    const app::Experiment e = Sweep(R"([{"parameter": "amplitude", "from": 1, "to": 10, "points": 19}])", R"([{"amplitude": 4.1, "fitness": 0.75}])");
+    std::vector<double> fitness;
+    for (double a : e.sweep.axes[0].values) fitness.push_back(0.6 - 0.05 * (a - 3.7) * (a - 3.7));
+    fitness[15] = NAN;  // a failed point leaves a gap
+    ExpectMatchesGolden("plot_landscape_line", app::LandscapeImage(e, fitness, 5, "best: amplitude 3.5,  fitness 0.598"));
+}
+
+TEST(FigureGoldens, LandscapeHeatmapDivergesAboutZeroAndMarksTheThesisPoints) {
+    const app::Experiment e = Sweep(R"([{"parameter": "amplitude", "from": 1, "to": 10, "points": 10}, {"parameter": "cycles", "values": [2, 3, 4, 5, 6, 7, 8]}])",
+                                    R"([{"amplitude": 4, "cycles": 4, "fitness": 0.97}, {"amplitude": 10, "cycles": 8, "fitness": 3.61}])");
+    std::vector<double> fitness;
+    for (double a : e.sweep.axes[0].values)
+        for (double n : e.sweep.axes[1].values) fitness.push_back(0.4 * (n - 3.5) * std::sqrt(a) - 0.3);
+    ExpectMatchesGolden("plot_landscape_heatmap", app::LandscapeImage(e, fitness, static_cast<int>(fitness.size()) - 1, "best: amplitude 10, cycles 8"));
+}
+
+TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
+    const app::Experiment e = app::ParseExperiment(R"({"id": "G", "title": "golden GA", "sim": {"iterations": 2000},
+        "evolve": {"runs": 2, "genome": {"kind": "bspline"}}})", "golden.json");
+    std::vector<app::RunCurve> runs;
+    for (int r = 0; r < 2; ++r) {
+        app::RunCurve curve{"run " + std::to_string(r + 1), {}};
+        for (int g = 0; g <= 20; ++g) {
+            sim::LogbookRow row;
+            row.generation = g;
+            row.evaluations = 10;
+            row.best = 1 + 2 * (1 - std::exp(-g / (5.0 + r)));
+            row.worst = -1 + 0.05 * g;
+            row.median = row.best - 0.6;
+            row.q1 = row.median - 0.4;
+            row.q3 = row.median + 0.3;
+            row.mean = row.median - 0.1;
+            curve.logbook.push_back(row);
+        }
+        curve.reference = 1.1 + 0.05 * r;
+        curve.referenceLabel = "thesis's best";
+        runs.push_back(curve);
+    }
+    ExpectMatchesGolden("plot_evolution", app::EvolutionImage(e, runs));
+}
+
+TEST(FigureGoldens, ContactSheetOnTheSweepAxes) {
+    sim::EvalJob job;
+    job.model = sim::ModelKind::Thesis;
+    job.params = sim::DefaultSimParams();
+    job.params.iterations = 1500;
+    std::vector<sim::SimResult> results;
+    const double amplitudes[] = {1, 2.5, 4};
+    const int cycles[] = {2, 4};
+    for (int n : cycles)
+        for (double a : amplitudes) {
+            job.shape = sim::AbsSineShape{a, 0, n * 3.141592653589793};
+            results.push_back(sim::Evaluate(job));
+        }
+    std::vector<app::SheetEntry> entries;
+    for (const auto& r : results) entries.push_back({&r, app::FitnessCaption(r)});
+    app::SheetAxes axes{3, {"1", "2.5", "4"}, {"2", "4"}, "amplitude A", "cycles"};
+    const fs::path path = fs::path(ACTUATOR_VISUAL_OUT_DIR) / "contact_sheet_golden_case.png";
+    fs::create_directories(path.parent_path());
+    std::unique_ptr<render::MeshRenderer> renderer;
+    app::WriteContactSheet(path, "golden  -  contact sheet", entries, job, renderer, axes);
+    render::Image image;
+    std::string error;
+    ASSERT_TRUE(render::DecodePng(ReadBytes(path), &image, &error)) << error;
+    ExpectMatchesGolden("contact_sheet_axes", image);
+}
+
+// The exported solids as `render --solid` draws them: a short sine tube cut along its axis, and its
+// mold pulled apart.
+sim::PartSolids GoldenSolids() {
+    sim::PartDef part;
+    part.radiusMm = 8;
+    part.lengthMm = 40;
+    part.thicknessMm = 1.5;
+    part.angularSamples = 48;
+    part.axialSamples = 25;
+    sim::PartSolids solids;
+    EXPECT_EQ(sim::BuildPartSolids(sim::SineShape{1.3, 0.5, 3.141592653589793 - 0.5}, part, {}, &solids), "");
+    return solids;
+}
+
+TEST(FigureGoldens, SolidCutaway) {
+    ExpectMatchesGolden("solid_cutaway", app::MakeRenderer(480, 360)->Render(app::CutawayScene(GoldenSolids(), "golden cut-away")));
+}
+
+TEST(FigureGoldens, SolidMoldExploded) {
+    ExpectMatchesGolden("solid_mold", app::MakeRenderer(640, 400)->Render(app::ExplodedMoldScene(GoldenSolids(), "golden mold")));
+}
+
+}  // namespace

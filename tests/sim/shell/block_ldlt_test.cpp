@@ -1,0 +1,159 @@
+// The block L D L^T against dense factorisations: solutions, inertia (the shell models' limit-point
+// test reads it), shifts, padded blocks, zero pivots; and against Eigen's scalar SimplicialLDLT on
+// a shell model's Hessian.
+#include "shell/block_ldlt.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <numbers>
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include "shell/shell_problem.h"
+
+namespace {
+
+// A random sparse symmetric matrix over `unknowns` with about `perColumn` couplings per column,
+// made diagonally dominant (positive definite), then shifted down by `shiftDown` (indefinite).
+Eigen::SparseMatrix<double> RandomSymmetric(int unknowns, int perColumn, double shiftDown, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> pick(0, unknowns - 1);
+    std::uniform_real_distribution<double> value(-1, 1);
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(unknowns, unknowns);
+    for (int col = 0; col < unknowns; ++col)
+        for (int k = 0; k < perColumn; ++k) {
+            const int row = pick(rng);
+            const double v = value(rng);
+            dense(row, col) += v;
+            dense(col, row) += v;
+        }
+    for (int d = 0; d < unknowns; ++d) dense(d, d) = dense.row(d).cwiseAbs().sum() + 1 - shiftDown;
+    return dense.sparseView();
+}
+
+// Places with partly used blocks: unknowns in runs of 3, 2 and 1 per block, shuffled.
+std::vector<int> Places(int unknowns, unsigned seed) {
+    std::vector<int> places;
+    int block = 0;
+    for (int used = 3; static_cast<int>(places.size()) < unknowns; ++block, used = used == 1 ? 3 : used - 1)
+        for (int c = 0; c < used && static_cast<int>(places.size()) < unknowns; ++c) places.push_back(3 * block + (c + block) % 3);
+    std::shuffle(places.begin(), places.end(), std::mt19937(seed));
+    return places;
+}
+
+Eigen::SparseMatrix<double> WithFullDiagonal(Eigen::SparseMatrix<double> m) {
+    for (int d = 0; d < m.rows(); ++d) m.coeffRef(d, d) += 0;
+    m.makeCompressed();
+    return m;
+}
+
+int NegativeEigenvalues(const Eigen::MatrixXd& m) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(m);
+    return static_cast<int>((eigen.eigenvalues().array() < 0).count());
+}
+
+TEST(BlockLdlt, SolvesPositiveDefiniteAndIndefiniteSystemsWithTheirInertia) {
+    for (unsigned seed : {1u, 2u, 3u})
+        for (double shiftDown : {0.0, 2.0, 4.0}) {
+            const Eigen::SparseMatrix<double> A = WithFullDiagonal(RandomSymmetric(61, 3, shiftDown, seed));
+            sim::BlockLdlt ldlt;
+            ldlt.Analyse(A, Places(61, seed));
+            ASSERT_TRUE(ldlt.Factorise(A, 0)) << "seed " << seed << ", shift " << shiftDown;
+            const Eigen::MatrixXd dense = A;
+            const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(61, -1, 2);
+            const Eigen::VectorXd x = ldlt.Solve(b);
+            EXPECT_LT((dense * x - b).norm(), 1e-10 * b.norm() * dense.norm()) << "seed " << seed << ", shift " << shiftDown;
+            EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(dense)) << "seed " << seed << ", shift " << shiftDown;
+            const Eigen::VectorXd down = ldlt.NegativeCurvatureDirection();
+            if (shiftDown == 0) {
+                EXPECT_GT(ldlt.SmallestPivot(), 0);
+                EXPECT_EQ(down.size(), 0);
+            } else {
+                EXPECT_GT(NegativeEigenvalues(dense), 0) << "the shifted matrix should be indefinite";
+                ASSERT_EQ(down.size(), 61);
+                EXPECT_LT(down.dot(dense * down), -1e-6 * down.squaredNorm()) << "seed " << seed << ", shift " << shiftDown;
+            }
+        }
+}
+
+TEST(BlockLdlt, AShiftIsTheShiftedMatrixsFactor) {
+    const Eigen::SparseMatrix<double> A = WithFullDiagonal(RandomSymmetric(40, 4, 3.0, 7));
+    sim::BlockLdlt ldlt;
+    ldlt.Analyse(A, Places(40, 7));
+    ASSERT_TRUE(ldlt.Factorise(A, 2.5));
+    const Eigen::MatrixXd shifted = Eigen::MatrixXd(A) + 2.5 * Eigen::MatrixXd::Identity(40, 40);
+    const Eigen::VectorXd b = Eigen::VectorXd::Ones(40);
+    // Backward stable: the residual is round-off of |A| |x|.
+    const Eigen::VectorXd x = ldlt.Solve(b);
+    EXPECT_LT((shifted * x - b).norm(), 1e-12 * shifted.norm() * x.norm());
+    EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(shifted));
+    // Factorising again with other values reuses the analysis and forgets the last values.
+    ASSERT_TRUE(ldlt.Factorise(A, 6.0));
+    const Eigen::MatrixXd other = Eigen::MatrixXd(A) + 6.0 * Eigen::MatrixXd::Identity(40, 40);
+    const Eigen::VectorXd y = ldlt.Solve(b);
+    EXPECT_LT((other * y - b).norm(), 1e-12 * other.norm() * y.norm());
+    EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(other));
+}
+
+// The same bits from every analysis of a pattern, also when threads analyse at once (METIS keeps
+// its random state in globals).
+TEST(BlockLdlt, AnalysesOfOnePatternGiveTheSameBitsOnEveryThread) {
+    const Eigen::SparseMatrix<double> A = WithFullDiagonal(RandomSymmetric(300, 3, 0.0, 11));
+    const std::vector<int> places = Places(300, 11);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(300, -1, 1);
+    auto solve = [&] {
+        sim::BlockLdlt ldlt;
+        ldlt.Analyse(A, places);
+        EXPECT_TRUE(ldlt.Factorise(A, 0));
+        return ldlt.Solve(b);
+    };
+    const Eigen::VectorXd first = solve();
+    std::vector<Eigen::VectorXd> others(8);
+    std::vector<std::thread> threads;
+    for (auto& other : others) threads.emplace_back([&] { other = solve(); });
+    for (auto& t : threads) t.join();
+    for (const auto& other : others) EXPECT_EQ(0, std::memcmp(first.data(), other.data(), sizeof(double) * first.size()));
+}
+
+TEST(BlockLdlt, AZeroPivotIsAFailureNotACrash) {
+    Eigen::SparseMatrix<double> A = WithFullDiagonal(RandomSymmetric(12, 2, 0.0, 3));
+    // Unknown 0 decoupled with a zero diagonal: its pivot is zero whatever the order.
+    for (int col = 0; col < A.outerSize(); ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it)
+            if (it.row() == 0 || it.col() == 0) it.valueRef() = 0;
+    sim::BlockLdlt ldlt;
+    ldlt.Analyse(A, Places(12, 3));
+    EXPECT_FALSE(ldlt.Factorise(A, 0));
+    EXPECT_TRUE(ldlt.Factorise(A, 1e-3));
+}
+
+TEST(BlockLdlt, MatchesEigensScalarFactorisationOnAShellHessian) {
+    sim::ShellDef def = sim::DefaultShellDef();
+    def.geometry.ringVertices = 12;
+    def.geometry.rings = 10;
+    std::string error;
+    const sim::ShellProblem problem = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, true, &error);
+    ASSERT_TRUE(error.empty()) << error;
+    sim::HessianPattern pattern(problem);
+    Eigen::VectorXd q = sim::UnknownsOf(problem, problem.rest);
+    for (int i = 0; i < q.size(); ++i) q[i] += 0.2 * std::sin(1.7 * i);  // a state away from rest: an indefinite exact Hessian
+    sim::LoadTerms load;
+    load.pressure = 0.003;
+    sim::AssembleEnergy(problem, q, load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
+    sim::BlockLdlt ldlt;
+    ldlt.Analyse(pattern.matrix, sim::VertexBlockPlaces(problem));
+    ASSERT_TRUE(ldlt.Factorise(pattern.matrix, 0));
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> scalar(pattern.matrix);
+    ASSERT_EQ(scalar.info(), Eigen::Success);
+    const int scalarNegative = static_cast<int>((scalar.vectorD().array() < 0).count());
+    EXPECT_GT(scalarNegative, 0);
+    EXPECT_EQ(ldlt.NegativePivots(), scalarNegative);
+    EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(Eigen::MatrixXd(pattern.matrix)));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(problem.unknowns, -1, 1);
+    EXPECT_LT((ldlt.Solve(b) - scalar.solve(b)).norm(), 1e-9 * scalar.solve(b).norm());
+}
+
+}  // namespace
