@@ -3,6 +3,7 @@
 // [SECTION] Experiment files
 // [SECTION] Saved experiments, hashes, titles
 #include "formats/json_out.h"
+#include "pictures/plots.h"
 #include "experiments/experiment.h"
 
 #include <algorithm>
@@ -860,6 +861,25 @@ std::string ExperimentTitle(const Experiment& e) {
     std::string title = e.id.empty() ? std::filesystem::path(e.path).stem().string() : e.id;
     if (!e.title.empty()) title += "  " + e.title;
     return title;
+}
+
+PlotContext PlotContextOf(const Experiment& e) {
+    PlotContext c;
+    c.title = ExperimentTitle(e);
+    const bool thesis = e.model == sim::ModelKind::Thesis;
+    if (e.kind == ExperimentKind::Optimize) {
+        const sim::Objective& o = e.optimizer.objectives[0];
+        c.fitnessLabel = fmt::format("{} ({})", sim::ObjectiveUnit(o.kind), o.maximise ? "maximised" : "minimised");
+    } else {
+        c.fitnessLabel = thesis ? "fitness (contraction, mesh units)" : "fitness: contraction (percent, positive = shorter)";
+    }
+    c.valueLabel = thesis ? "fitness" : "contraction (%)";
+    c.seriesLabel = thesis ? "fitness after " + std::to_string(e.params.iterations) + " iterations"
+                           : std::string("contraction at equilibrium, ") + sim::Name(e.model) + " model";
+    c.axes = e.sweep.axes;
+    for (const auto& point : e.thesisResult.points) c.thesisPoints.push_back({point.at, point.fitness});
+    c.objectives = e.optimizer.objectives;
+    return c;
 }
 
 sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {

@@ -108,6 +108,10 @@ struct Experiment {
     nlohmann::ordered_json document;  // the file with every --set applied: what DIR/experiment.json holds
 };
 
+// What the experiment's plots say and mark (titles, axis labels, the thesis's points, objectives).
+struct PlotContext;
+PlotContext PlotContextOf(const Experiment& e);
+
 // A --set KEY.PATH=VALUE. VALUE is JSON when it parses as JSON, else a string ("pi/2" is a string
 // that number fields read as an expression).
 struct Override {

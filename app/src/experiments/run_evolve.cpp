@@ -295,7 +295,7 @@ void RunEvolution(RunContext& c) {
             curves.back().referenceLabel = fmt::format("thesis's best: {:g}", e.thesisResult.runBest[r]);
         }
     }
-    WritePng((c.dir / "evolution.png").string(), EvolutionImage(e, curves), 6);
+    WritePng((c.dir / "evolution.png").string(), EvolutionImage(PlotContextOf(e), curves), 6);
     c.outcome.figures.push_back("evolution.png");
     // The best of each run before and after, beside the thesis's own design for that run where its
     // table prints one (evaluated here): Figures 5.4, 5.6 and 5.8 and the tables' specimens.

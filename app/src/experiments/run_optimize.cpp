@@ -341,7 +341,7 @@ void RunOptimization(RunContext& c) {
             }
             curves.push_back(std::move(curve));
         }
-        WritePng((c.dir / "evolution.png").string(), EvolutionImage(e, curves), 6);
+        WritePng((c.dir / "evolution.png").string(), EvolutionImage(PlotContextOf(e), curves), 6);
         c.outcome.figures.push_back("evolution.png");
     } else {
         // The front of the first run, numbered, with every design it saw behind it; its designs'
@@ -358,7 +358,7 @@ void RunOptimization(RunContext& c) {
             ids.push_back(runs[0].cache->IdOf(d.x));
             captions.push_back(fmt::format("{}:  {}", k + 1, Caption(d.score)));
         }
-        WritePng((c.dir / "pareto_front.png").string(), ParetoImage(e, all, front), 6);
+        WritePng((c.dir / "pareto_front.png").string(), ParetoImage(PlotContextOf(e), all, front), 6);
         c.outcome.figures.push_back("pareto_front.png");
         if (!ids.empty()) {
             const std::vector<ArchiveRecord> records = c.recorder.ReadBack(ids);
@@ -374,7 +374,7 @@ void RunOptimization(RunContext& c) {
             for (const auto& row : runs[r].run.logbook) points.push_back({double(row.generation), row.hypervolume});
             curves.push_back({fmt::format("run {}", r + 1), points});
         }
-        WritePng((c.dir / "hypervolume.png").string(), HypervolumeImage(e, curves), 6);
+        WritePng((c.dir / "hypervolume.png").string(), HypervolumeImage(PlotContextOf(e), curves), 6);
         c.outcome.figures.push_back("hypervolume.png");
     }
     for (int r = 0; r < e.runs; ++r) {

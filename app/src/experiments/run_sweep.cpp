@@ -183,7 +183,7 @@ void RunSweep(RunContext& c) {
     }
 
     if (!e.render.figures) return;
-    WritePng((c.dir / "landscape.png").string(), LandscapeImage(e, fitness, best, bestText), 6);
+    WritePng((c.dir / "landscape.png").string(), LandscapeImage(PlotContextOf(e), fitness, best, bestText), 6);
     c.outcome.figures.push_back("landscape.png");
 
     // The designs the thesis names, before and after (Figure 4.6 for Table 4.4's three).

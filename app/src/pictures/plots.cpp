@@ -22,15 +22,6 @@ std::string AxisLabel(sim::SweepParameter parameter) {
 
 namespace {
 
-// The fitness's meaning and unit under the experiment's model.
-std::string FitnessLabel(const Experiment& e) {
-    if (e.kind == ExperimentKind::Optimize) {
-        const sim::Objective& o = e.optimizer.objectives[0];
-        return fmt::format("{} ({})", sim::ObjectiveUnit(o.kind), o.maximise ? "maximised" : "minimised");
-    }
-    return e.model == sim::ModelKind::Thesis ? "fitness (contraction, mesh units)" : "fitness: contraction (percent, positive = shorter)";
-}
-
 std::unique_ptr<render::PlotRenderer> MakePlots(int width, int height) {
     std::string error;
     auto plots = render::PlotRenderer::Create(width, height, &error);
@@ -40,18 +31,16 @@ std::unique_ptr<render::PlotRenderer> MakePlots(int width, int height) {
 
 }  // namespace
 
-render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fitness, int best, const std::string& bestText) {
+render::Image LandscapeImage(const PlotContext& e, const std::vector<double>& fitness, int best, const std::string& bestText) {
     auto plots = MakePlots(1024, 640);
-    const std::string title = ExperimentTitle(e) + "  -  fitness landscape";
-    const auto& axes = e.sweep.axes;
+    const std::string title = e.title + "  -  fitness landscape";
+    const auto& axes = e.axes;
     if (axes.size() == 1) {
         render::LinePlot plot;
         plot.xLabel = AxisLabel(axes[0].parameter);
-        plot.yLabel = FitnessLabel(e);
+        plot.yLabel = e.fitnessLabel;
         plot.zeroLine = true;
-        const std::string what = e.model == sim::ModelKind::Thesis ? "fitness after " + std::to_string(e.params.iterations) + " iterations"
-                                                                   : std::string("contraction at equilibrium, ") + sim::Name(e.model) + " model";
-        render::LineSeries series{what, axes[0].values, fitness, {0.13f, 0.35f, 0.75f}, true};
+        render::LineSeries series{e.seriesLabel, axes[0].values, fitness, {0.13f, 0.35f, 0.75f}, true};
         plot.series.push_back(series);
         if (best >= 0) {
             plot.highlight = std::pair{axes[0].values[static_cast<size_t>(best)], fitness[static_cast<size_t>(best)]};
@@ -60,12 +49,12 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
         // The thesis's own numbers where it gives them (Figure 4.1's peak).
         render::LineSeries thesis{"", {}, {}, {0.85f, 0.45f, 0.10f}, true};
         thesis.lines = false;
-        for (const auto& point : e.thesisResult.points)
+        for (const auto& point : e.thesisPoints)
             for (const auto& [parameter, value] : point.at)
                 if (parameter == axes[0].parameter) {
                     thesis.x.push_back(value);
-                    thesis.y.push_back(point.fitness);
-                    thesis.label += (thesis.label.empty() ? "thesis: " : ", ") + fmt::format("{:g} at {} = {:g}", point.fitness, sim::Name(parameter), value);
+                    thesis.y.push_back(point.value);
+                    thesis.label += (thesis.label.empty() ? "thesis: " : ", ") + fmt::format("{:g} at {} = {:g}", point.value, sim::Name(parameter), value);
                 }
         if (!thesis.x.empty()) plot.series.push_back(thesis);
         return plots->RenderLines(title, {plot});
@@ -75,7 +64,7 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
     if (axes[shortAxis].values.size() <= 6 && axes[longAxis].values.size() > axes[shortAxis].values.size()) {
         render::LinePlot plot;
         plot.xLabel = AxisLabel(axes[longAxis].parameter);
-        plot.yLabel = FitnessLabel(e);
+        plot.yLabel = e.fitnessLabel;
         plot.zeroLine = true;
         const render::Rgb colours[] = {{0.13f, 0.35f, 0.75f}, {0.85f, 0.45f, 0.10f}, {0.15f, 0.60f, 0.25f},
                                        {0.60f, 0.20f, 0.65f}, {0.55f, 0.35f, 0.20f}, {0.30f, 0.30f, 0.30f}};
@@ -117,7 +106,7 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
     render::Heatmap heatmap;
     heatmap.xLabel = AxisLabel(axes[1].parameter);
     heatmap.yLabel = AxisLabel(axes[0].parameter);
-    heatmap.valueLabel = e.model == sim::ModelKind::Thesis ? "fitness" : "contraction (%)";
+    heatmap.valueLabel = e.valueLabel;
     heatmap.xValues = axes[1].values;
     heatmap.yValues = axes[0].values;
     heatmap.values = fitness;
@@ -127,9 +116,9 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
         heatmap.highlightLabel = bestText + (anyFailed ? "  (grey cells: failed evaluations)" : "");
     }
     // The designs the thesis names (Table 4.4), at their parameters.
-    for (size_t k = 0; k < e.thesisResult.points.size(); ++k) {
-        const auto& point = e.thesisResult.points[k];
-        render::Heatmap::Mark mark{NAN, NAN, fmt::format("T{}: {:g}", k + 1, point.fitness)};
+    for (size_t k = 0; k < e.thesisPoints.size(); ++k) {
+        const auto& point = e.thesisPoints[k];
+        render::Heatmap::Mark mark{NAN, NAN, fmt::format("T{}: {:g}", k + 1, point.value)};
         for (const auto& [parameter, value] : point.at) {
             if (parameter == axes[1].parameter) mark.x = value;
             if (parameter == axes[0].parameter) mark.y = value;
@@ -140,14 +129,14 @@ render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fit
     return plots->RenderHeatmap(title, heatmap);
 }
 
-render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs) {
+render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& runs) {
     auto plots = MakePlots(std::min(2400, 560 * static_cast<int>(runs.size()) + 200), 640);
     std::vector<render::LinePlot> panels;
     for (const RunCurve& run : runs) {
         render::LinePlot plot;
         plot.title = run.title;
         plot.xLabel = "generation";
-        plot.yLabel = FitnessLabel(e);
+        plot.yLabel = e.fitnessLabel;
         // The whole population's spread (worst to best) and its middle half (interquartile range),
         // with the best and the median: bands that cannot rise above the best line.
         const render::Rgb blue{0.13f, 0.35f, 0.75f};
@@ -188,13 +177,13 @@ render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& r
         }
         panels.push_back(plot);
     }
-    return plots->RenderLines(ExperimentTitle(e) + "  -  evolution", panels);
+    return plots->RenderLines(e.title + "  -  evolution", panels);
 }
 
-render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front) {
+render::Image ParetoImage(const PlotContext& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front) {
     auto plots = MakePlots(1200, 800);
-    const sim::Objective& a = e.optimizer.objectives[0];
-    const sim::Objective& b = e.optimizer.objectives[1];
+    const sim::Objective& a = e.objectives[0];
+    const sim::Objective& b = e.objectives[1];
     render::LinePlot plot;
     plot.xLabel = fmt::format("{} ({})", sim::ObjectiveUnit(a.kind), a.maximise ? "better to the right" : "better to the left");
     plot.yLabel = fmt::format("{} ({})", sim::ObjectiveUnit(b.kind), b.maximise ? "better up" : "better down");
@@ -213,16 +202,16 @@ render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& a
         line.pointLabels.push_back(std::to_string(k + 1));
     }
     plot.series = {cloud, line};
-    std::string extra = e.optimizer.objectives.size() > 2 ? fmt::format(" (first two of {} objectives)", e.optimizer.objectives.size()) : "";
-    return plots->RenderLines(ExperimentTitle(e) + "  -  Pareto front, run 1" + extra, {plot});
+    std::string extra = e.objectives.size() > 2 ? fmt::format(" (first two of {} objectives)", e.objectives.size()) : "";
+    return plots->RenderLines(e.title + "  -  Pareto front, run 1" + extra, {plot});
 }
 
-render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs) {
+render::Image HypervolumeImage(const PlotContext& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs) {
     auto plots = MakePlots(1024, 640);
     render::LinePlot plot;
     plot.xLabel = "generation";
     std::string units;
-    for (const sim::Objective& o : e.optimizer.objectives) units += (units.empty() ? "" : " x ") + std::string(sim::ObjectiveUnit(o.kind));
+    for (const sim::Objective& o : e.objectives) units += (units.empty() ? "" : " x ") + std::string(sim::ObjectiveUnit(o.kind));
     plot.yLabel = "hypervolume of every valid design so far (" + units + ")";
     const render::Rgb colours[] = {{0.13f, 0.35f, 0.75f}, {0.80f, 0.20f, 0.15f}, {0.10f, 0.55f, 0.20f}, {0.55f, 0.25f, 0.65f}, {0.85f, 0.55f, 0.10f}};
     for (size_t r = 0; r < runs.size(); ++r) {
@@ -233,7 +222,7 @@ render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<
         }
         plot.series.push_back(series);
     }
-    return plots->RenderLines(ExperimentTitle(e) + "  -  hypervolume (reference point fixed at generation 0)", {plot});
+    return plots->RenderLines(e.title + "  -  hypervolume (reference point fixed at generation 0)", {plot});
 }
 
 render::Image PressureCurveImage(const std::string& title, const sim::SimResult& r) {

@@ -2,16 +2,35 @@
 // axis, a heat map for two) and a GA's evolution (best, mean and worst per generation, per run).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
-#include "experiments/experiment.h"
 #include "render/image.h"
+#include "sim/batch.h"
+#include "sim/optimize.h"
+#include "sim/search.h"
 
 namespace app {
 
+// What an experiment's plots say and mark, made from the experiment (experiments/PlotContextOf), so
+// that pictures need nothing of experiment files.
+struct PlotContext {
+    std::string title;         // the experiment's, e.g. "4.1  Variable amplitude search"
+    std::string fitnessLabel;  // the fitness axis: its meaning and unit
+    std::string valueLabel;    // a heat map's colour bar, e.g. "contraction (%)"
+    std::string seriesLabel;   // a one-axis landscape's line, e.g. "fitness after 10000 iterations"
+    std::vector<sim::SweepAxis> axes;  // a sweep's axes
+    struct Mark {
+        std::vector<std::pair<sim::SweepParameter, double>> at;
+        double value = NAN;
+    };
+    std::vector<Mark> thesisPoints;          // the thesis's own designs and fitness (Table 4.4, Figure 4.1's peak)
+    std::vector<sim::Objective> objectives;  // an optimizer's (Pareto front, hypervolume)
+};
+
 // `fitness` in grid order (NaN for failed points); `best` the best point's index or -1.
-render::Image LandscapeImage(const Experiment& e, const std::vector<double>& fitness, int best, const std::string& bestText);
+render::Image LandscapeImage(const PlotContext& e, const std::vector<double>& fitness, int best, const std::string& bestText);
 
 struct RunCurve {
     std::string title;  // e.g. "run 2"
@@ -20,16 +39,16 @@ struct RunCurve {
     double reference = NAN;           // the thesis's best for this run, drawn as a line; NaN: none
     std::string referenceLabel{};     // e.g. "thesis, Table 5.4: 1.13"
 };
-render::Image EvolutionImage(const Experiment& e, const std::vector<RunCurve>& runs);
+render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& runs);
 
 // An optimizer's two-objective Pareto front (natural units and directions): every valid design
 // faint, the front's designs numbered 1, 2, ... in the order of pareto_front.csv.
 struct ParetoPoint {
     double x, y;
 };
-render::Image ParetoImage(const Experiment& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front);
+render::Image ParetoImage(const PlotContext& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front);
 // The hypervolume of each run against its generation.
-render::Image HypervolumeImage(const Experiment& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs);
+render::Image HypervolumeImage(const PlotContext& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs);
 
 // A membrane or shell result's contraction-pressure curve at its load steps, the target pressure
 // and the limit point (the pressure maximum) marked when met.

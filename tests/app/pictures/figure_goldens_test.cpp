@@ -60,7 +60,7 @@ TEST(FigureGoldens, LandscapeLine) {
     std::vector<double> fitness;
     for (double a : e.sweep.axes[0].values) fitness.push_back(0.6 - 0.05 * (a - 3.7) * (a - 3.7));
     fitness[15] = NAN;  // a failed point leaves a gap
-    ExpectMatchesGolden("plot_landscape_line", app::LandscapeImage(e, fitness, 5, "best: amplitude 3.5,  fitness 0.598"));
+    ExpectMatchesGolden("plot_landscape_line", app::LandscapeImage(app::PlotContextOf(e), fitness, 5, "best: amplitude 3.5,  fitness 0.598"));
 }
 
 TEST(FigureGoldens, LandscapeHeatmapDivergesAboutZeroAndMarksTheThesisPoints) {
@@ -69,7 +69,7 @@ TEST(FigureGoldens, LandscapeHeatmapDivergesAboutZeroAndMarksTheThesisPoints) {
     std::vector<double> fitness;
     for (double a : e.sweep.axes[0].values)
         for (double n : e.sweep.axes[1].values) fitness.push_back(0.4 * (n - 3.5) * std::sqrt(a) - 0.3);
-    ExpectMatchesGolden("plot_landscape_heatmap", app::LandscapeImage(e, fitness, static_cast<int>(fitness.size()) - 1, "best: amplitude 10, cycles 8"));
+    ExpectMatchesGolden("plot_landscape_heatmap", app::LandscapeImage(app::PlotContextOf(e), fitness, static_cast<int>(fitness.size()) - 1, "best: amplitude 10, cycles 8"));
 }
 
 TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
@@ -94,7 +94,7 @@ TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
         curve.referenceLabel = "thesis's best";
         runs.push_back(curve);
     }
-    ExpectMatchesGolden("plot_evolution", app::EvolutionImage(e, runs));
+    ExpectMatchesGolden("plot_evolution", app::EvolutionImage(app::PlotContextOf(e), runs));
 }
 
 TEST(FigureGoldens, ContactSheetOnTheSweepAxes) {
