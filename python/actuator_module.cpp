@@ -69,17 +69,17 @@ sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std:
     if (job.model == sim::ModelKind::Thesis) {
         if (geometry || material || load || solver || fibres)
             throw py::value_error("geometry, material, load, solver and fibres are the membrane and shell models'; the thesis model takes params and mesh");
-        job.params = params.value_or(sim::DefaultSimParams());
-        job.mesh = mesh.value_or(sim::DefaultMeshDef());
+        job.Thesis().params = params.value_or(sim::DefaultSimParams());
+        job.Thesis().mesh = mesh.value_or(sim::DefaultMeshDef());
     } else {
         if (params || mesh) throw py::value_error(std::string("params and mesh are the thesis model's; the ") + model + " model takes geometry, material, load, solver and fibres");
-        job.shell = sim::DefaultShellDef();
-        if (geometry) job.shell.geometry = *geometry;
-        if (material) job.shell.material = *material;
-        if (load) job.shell.load = *load;
-        if (solver) job.shell.solver = *solver;
-        if (fibres) job.shell.fibres = *fibres;
-        if (const std::string error = sim::ShellFieldsWithoutEffect(job.shell); !error.empty()) throw py::value_error(error);
+        job.Shell() = sim::DefaultShellDef();
+        if (geometry) job.Shell().geometry = *geometry;
+        if (material) job.Shell().material = *material;
+        if (load) job.Shell().load = *load;
+        if (solver) job.Shell().solver = *solver;
+        if (fibres) job.Shell().fibres = *fibres;
+        if (const std::string error = sim::ShellFieldsWithoutEffect(job.Shell()); !error.empty()) throw py::value_error(error);
     }
     if (const std::string error = sim::JobError(job); !error.empty()) throw py::value_error(error);
     return job;

@@ -7,6 +7,31 @@
 
 namespace sim {
 
+double SweepValue(const EvalJob& job, SweepParameter parameter) {
+    if (parameter == SweepParameter::PressureKpa) return job.model == ModelKind::Thesis ? NAN : job.Shell().load.pressureKpa;
+    if (parameter == SweepParameter::FibreAngleDeg) return job.model == ModelKind::Thesis ? NAN : job.Shell().fibres.angleDeg;
+    return SweepParameterValue(job.shape, parameter);
+}
+
+EvalJob WithSweepValue(EvalJob job, SweepParameter parameter, double value) {
+    if (parameter == SweepParameter::PressureKpa) job.Shell().load.pressureKpa = value;
+    else if (parameter == SweepParameter::FibreAngleDeg) job.Shell().fibres.angleDeg = value;
+    else job.shape = WithSweepParameter(job.shape, parameter, value);
+    return job;
+}
+
+std::vector<EvalJob> SweepJobs(const SweepDef& def, const EvalJob& base) {
+    std::vector<EvalJob> jobs{base};
+    jobs.front().shape = def.base;
+    for (const SweepAxis& axis : def.axes) {
+        std::vector<EvalJob> next;
+        for (const EvalJob& job : jobs)
+            for (double value : axis.values) next.push_back(WithSweepValue(job, axis.parameter, value));
+        jobs = std::move(next);
+    }
+    return jobs;
+}
+
 int HardwareThreads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threads, const BatchProgress& onDone) {

@@ -16,15 +16,15 @@ namespace {
 
 sim::EvalJob Job(sim::ModelKind model, int ringVertices, int rings) {
     sim::EvalJob job;
-    job.model = model;
+    job.SetModel(model);
     job.shape = sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5};
-    job.shell.geometry.ringVertices = ringVertices;
-    job.shell.geometry.rings = rings;
+    job.Shell().geometry.ringVertices = ringVertices;
+    job.Shell().geometry.rings = rings;
     return job;
 }
 
 void BM_Thesis30x30(benchmark::State& state) {
-    const sim::EvalJob job{sim::SineShape{4.1, 0.5, std::numbers::pi - 0.5}, sim::DefaultMeshDef(), sim::DefaultSimParams()};
+    const sim::EvalJob job{sim::SineShape{4.1, 0.5, std::numbers::pi - 0.5}, sim::ModelKind::Thesis, sim::ThesisDef{}};
     for (auto _ : state) benchmark::DoNotOptimize(sim::Evaluate(job).fitness);
 }
 
@@ -44,7 +44,7 @@ void Measure(benchmark::State& state, const sim::EvalJob& job) {
 void BM_Shell(benchmark::State& state, sim::ModelKind model, sim::FibreLayout fibres) {
     const int n = static_cast<int>(state.range(0));
     sim::EvalJob job = Job(model, n, n);
-    job.shell.fibres.layout = fibres;  // braid at the default 30 degrees, 50 N/mm
+    job.Shell().fibres.layout = fibres;  // braid at the default 30 degrees, 50 N/mm
     Measure(state, job);
 }
 
@@ -54,19 +54,19 @@ void BM_Shell(benchmark::State& state, sim::ModelKind model, sim::FibreLayout fi
 // family) and an S5.4F individual (four sector B-splines, a single family at 11-31 degrees in four bands).
 sim::EvalJob GaDesign(int which, bool fibres) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
-    job.shell.load.pressureKpa = 1;
+    job.SetModel(sim::ModelKind::Shell);
+    job.Shell().load.pressureKpa = 1;
     sim::BSplineShape shape;
     if (which == 0) {
         shape.splines = {{7, 8, 1, 5, 7, 5, 5}};
-        job.shell.fibres.angleDeg = 43.6062675338317;
+        job.Shell().fibres.angleDeg = 43.6062675338317;
     } else {
         shape.splines = {{5, 7, 0, 2, 7, 3, 7}, {5, 2, 1, 4, 6}, {4, 2, 1, 1, 1}, {0, 5, 0, 8, 4, 3, 2, 5, 4, 6, 2, 7, 4}};
-        job.shell.fibres.bands = {{0, 0.25, 12.308510908575812}, {0.25, 0.5, 31.12818092256292}, {0.5, 0.75, 29.65807805103285}, {0.75, 1, 10.786319724686154}};
+        job.Shell().fibres.bands = {{0, 0.25, 12.308510908575812}, {0.25, 0.5, 31.12818092256292}, {0.5, 0.75, 29.65807805103285}, {0.75, 1, 10.786319724686154}};
     }
     job.shape = shape;
-    job.shell.fibres.layout = fibres ? sim::FibreLayout::Braid : sim::FibreLayout::None;
-    job.shell.fibres.minus = false;
+    job.Shell().fibres.layout = fibres ? sim::FibreLayout::Braid : sim::FibreLayout::None;
+    job.Shell().fibres.minus = false;
     return job;
 }
 
@@ -78,17 +78,17 @@ void BM_GaDesign(benchmark::State& state, int which, bool fibres) { Measure(stat
 // without them, at the same state.
 void BM_Assembly(benchmark::State& state, bool hessian, bool fibres) {
     sim::EvalJob job = Job(sim::ModelKind::Shell, 30, 30);
-    job.shell.fibres.layout = sim::FibreLayout::Braid;
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
     const sim::SimResult solved = sim::Evaluate(job);
     std::string error;
-    const sim::ShellProblem problem = sim::BuildTubeProblem(job.shell, job.shape, true, &error);
+    const sim::ShellProblem problem = sim::BuildTubeProblem(job.Shell(), job.shape, true, &error);
     if (solved.status != sim::Status::Ok || !error.empty()) {
         state.SkipWithError("the braided sine did not solve");
         return;
     }
     const Eigen::VectorXd q = sim::UnknownsOf(problem, solved.final);
     sim::LoadTerms load;
-    load.pressure = job.shell.load.pressureKpa * 1e-3;  // MPa
+    load.pressure = job.Shell().load.pressureKpa * 1e-3;  // MPa
     sim::EnergyTerms terms;
     terms.fibres = fibres;
     sim::HessianPattern pattern(problem);

@@ -35,9 +35,9 @@ void BM_DecodeResponse(benchmark::State& state) {
 void BM_EvaluateZeroIterations(benchmark::State& state) {
     sim::EvalJob job;
     job.shape = sim::SineShape{4.1, 0.5, 2.64};
-    job.params = sim::DefaultSimParams();
-    job.params.iterations = 0;
-    job.mesh = sim::DefaultMeshDef();
+    job.Thesis().params = sim::DefaultSimParams();
+    job.Thesis().params.iterations = 0;
+    job.Thesis().mesh = sim::DefaultMeshDef();
     // glibc gives the top of the heap back after each call unless the trim threshold was raised, as
     // it is in a process that has freed a large block (the Python interpreter has; so has this
     // program after BM_EncodeResponse). Raised here, so the figure does not depend on which

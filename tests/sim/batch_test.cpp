@@ -10,7 +10,7 @@ std::vector<sim::EvalJob> AmplitudeSweep(int points) {
     std::vector<sim::EvalJob> jobs;
     for (int k = 0; k < points; ++k) {
         const double amplitude = 1.0 + 9.0 * k / (points - 1);
-        jobs.push_back({sim::SineShape{amplitude, 0.5, std::numbers::pi - 0.5}, sim::DefaultMeshDef(), sim::DefaultSimParams()});
+        jobs.push_back({sim::SineShape{amplitude, 0.5, std::numbers::pi - 0.5}, sim::ModelKind::Thesis, sim::ThesisDef{}});
     }
     return jobs;
 }
@@ -18,7 +18,7 @@ std::vector<sim::EvalJob> AmplitudeSweep(int points) {
 
 TEST(Batch, ResultsDoNotDependOnThreadCount) {
     auto jobs = AmplitudeSweep(6);
-    jobs.push_back({sim::AbsSineShape{4, 0, 4 * std::numbers::pi}, sim::DefaultMeshDef(), sim::DefaultSimParams()});
+    jobs.push_back({sim::AbsSineShape{4, 0, 4 * std::numbers::pi}, sim::ModelKind::Thesis, sim::ThesisDef{}});
     const auto one = sim::EvaluateBatch(jobs, 1);
     for (int threads : {2, 3, 8}) {
         const auto many = sim::EvaluateBatch(jobs, threads);

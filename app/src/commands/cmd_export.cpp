@@ -68,7 +68,7 @@ int RunExport(int argc, char** argv, int first) {
         cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         job = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
-        if (job.model != sim::ModelKind::Thesis) cli.CopyGivenFields(model.shell.geometry, job.shell.geometry);
+        if (job.model != sim::ModelKind::Thesis) cli.CopyGivenFields(model.shell.geometry, job.Shell().geometry);
         cli.RefuseIfGiven("--material", "does not go with --from: the material comes from the archive");
         cli.RefuseFields(model.materialFields, "does not go with --from: the material comes from the archive");
         RefuseOptionsWithoutEffect(cli, model, job, ModelUse::RestShape);
@@ -113,7 +113,7 @@ int RunExport(int argc, char** argv, int first) {
     }
     manifest["files"] = list;
     const double silicone = sim::MeshVolume(solids.actuator);
-    const sim::MaterialDef material = job.model == sim::ModelKind::Thesis ? sim::DefaultShellDef().material : job.shell.material;
+    const sim::MaterialDef material = job.model == sim::ModelKind::Thesis ? sim::DefaultShellDef().material : job.Shell().material;
     manifest["silicone"] = Json{{"volume_mm3", silicone},
                                 {"material", sim::Name(material.preset)},
                                 {"density_kg_per_m3", material.densityKgPerM3},

@@ -104,23 +104,23 @@ template <class Sequence>
 void WriteThesisTimelapse(const sim::EvalJob& job, const std::string& title, Colouring colouring, const PictureOptions& p, Sequence&& sequence) {
     std::vector<std::pair<int, sim::Positions>> snapshots;
     sim::SimObserver observer;
-    sim::SimParams watched = job.params;
+    sim::SimParams watched = job.Thesis().params;
     watched.load = sim::Load::Inflate;
     observer.interval = std::max(1, watched.iterations / (p.timelapse - 1));
     observer.onSnapshot = [&](int iteration, const sim::Positions& positions) {
         if (static_cast<int>(snapshots.size()) < p.timelapse - 1) snapshots.emplace_back(iteration, positions);
         return true;
     };
-    const sim::SimResult watchedResult = sim::Simulate(sim::BuildInitialPositions(job.shape, job.mesh), job.mesh, watched, &observer);
+    const sim::SimResult watchedResult = sim::Simulate(sim::BuildInitialPositions(job.shape, job.Thesis().mesh), job.Thesis().mesh, watched, &observer);
     snapshots.emplace_back(watchedResult.iterationsRun, watchedResult.final);
     std::vector<render::Scene> scenes;
     for (const auto& [iteration, positions] : snapshots) {
         sim::SimResult at = watchedResult;
         at.final = positions;
         render::Scene scene = TurntableScene(title + "  -  inflating", at, job, 0, colouring);
-        const double fitness = sim::Fitness(watchedResult.initial, positions, job.mesh);
+        const double fitness = sim::Fitness(watchedResult.initial, positions, job.Thesis().mesh);
         scene.lines = {fmt::format("iteration {} of {},  fitness {:.4f},  contraction {:.2f} %", iteration, watched.iterations, fitness,
-                                   100 * fitness / job.mesh.turns)};
+                                   100 * fitness / job.Thesis().mesh.turns)};
         scene.panels.front().caption = "iteration " + std::to_string(iteration);
         scenes.push_back(std::move(scene));
     }
@@ -239,15 +239,15 @@ int RunRender(int argc, char** argv, int first) {
     }
     const bool thesis = job.model == sim::ModelKind::Thesis;
     if (const std::string error = ColouringError(colouring, job); !error.empty()) throw UsageError("--color-by: " + error);
-    if (thesis && p.timelapse > std::max(1, job.params.iterations) + 1)
-        throw UsageError(fmt::format("--timelapse: {} frames but only {} iterations", p.timelapse, job.params.iterations));
+    if (thesis && p.timelapse > std::max(1, job.Thesis().params.iterations) + 1)
+        throw UsageError(fmt::format("--timelapse: {} frames but only {} iterations", p.timelapse, job.Thesis().params.iterations));
     if (!thesis && p.timelapse && !stored) {
         // One frame per load step: N sets the steps, unless --steps says otherwise.
-        if (cli.Given("--steps") && cli.Given("--timelapse") && !timelapse.empty() && p.timelapse != job.shell.load.steps)
+        if (cli.Given("--steps") && cli.Given("--timelapse") && !timelapse.empty() && p.timelapse != job.Shell().load.steps)
             throw UsageError(fmt::format("--timelapse {} and --steps {}: under --model {} the time-lapse has one frame per load step; give one of them",
-                                         p.timelapse, job.shell.load.steps, sim::Name(job.model)));
-        if (!cli.Given("--steps") && !timelapse.empty()) job.shell.load.steps = p.timelapse;
-        p.timelapse = job.shell.load.steps;
+                                         p.timelapse, job.Shell().load.steps, sim::Name(job.model)));
+        if (!cli.Given("--steps") && !timelapse.empty()) job.Shell().load.steps = p.timelapse;
+        p.timelapse = job.Shell().load.steps;
     }
     if (cli.Given("--solid")) {
         if (solid != "cutaway" && solid != "mold") throw UsageError("--solid: unknown value " + Quote(solid) + " (choose cutaway or mold)");
@@ -306,8 +306,8 @@ int RunRender(int argc, char** argv, int first) {
         inflated = stored->result;
     } else if (thesis) {
         sim::EvalJob inflate = job, stretch = job;
-        inflate.params.load = sim::Load::Inflate;
-        stretch.params.load = sim::Load::Stretch;
+        inflate.Thesis().params.load = sim::Load::Inflate;
+        stretch.Thesis().params.load = sim::Load::Stretch;
         auto results = MakeLocalEvaluator(2)->EvaluateAll({inflate, stretch});
         inflated = std::move(results[0]);
         stretched = std::move(results[1]);
@@ -322,7 +322,7 @@ int RunRender(int argc, char** argv, int first) {
     // frames once they are in place.
     OutputBatch batch;
     std::vector<std::pair<fs::path, fs::path>> videos;  // (frames, mp4)
-    const std::string loadName = thesis ? sim::Name(job.params.load) : sim::Name(job.shell.load.kind);
+    const std::string loadName = thesis ? sim::Name(job.Thesis().params.load) : sim::Name(job.Shell().load.kind);
     const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
                                                    ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", loadName)
                                      : JobTitle(job);

@@ -65,15 +65,15 @@ int RunSimulate(int argc, char** argv, int first) {
         // Thesis settings given on this command line override the stored ones.
         cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
         if (job.model == sim::ModelKind::Thesis) {
-            cli.CopyGivenFields(model.thesis, job.params);
-            if (cli.Given("--load")) job.params.load = ThesisLoad(model.load, "--load");
+            cli.CopyGivenFields(model.thesis, job.Thesis().params);
+            if (cli.Given("--load")) job.Thesis().params.load = ThesisLoad(model.load, "--load");
         } else {
-            cli.CopyGivenFields(model.shell.geometry, job.shell.geometry);
-            cli.CopyGivenFields(model.shell.load, job.shell.load);
-            cli.CopyGivenFields(model.shell.solver, job.shell.solver);
-            cli.CopyGivenFields(model.materialFields, job.shell.material);
-            cli.CopyGivenFields(model.shell.fibres, job.shell.fibres);
-            if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(model.load, "--load");
+            cli.CopyGivenFields(model.shell.geometry, job.Shell().geometry);
+            cli.CopyGivenFields(model.shell.load, job.Shell().load);
+            cli.CopyGivenFields(model.shell.solver, job.Shell().solver);
+            cli.CopyGivenFields(model.materialFields, job.Shell().material);
+            cli.CopyGivenFields(model.shell.fibres, job.Shell().fibres);
+            if (cli.Given("--load")) job.Shell().load.kind = ShellLoadOf(model.load, "--load");
         }
         RefuseOptionsWithoutEffect(cli, model, job, ModelUse::Simulate);
         if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
@@ -93,9 +93,9 @@ int RunSimulate(int argc, char** argv, int first) {
 
     const auto surface = sim::SurfaceOf(job);
     const std::string size = job.model == sim::ModelKind::Thesis
-                                 ? fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.mesh.resolution, job.mesh.turns)
-                                 : fmt::format("{} vertices per ring x {} rings and two cap centres, millimetres", job.shell.geometry.ringVertices,
-                                               sim::RingCount(job.shell.geometry));
+                                 ? fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.Thesis().mesh.resolution, job.Thesis().mesh.turns)
+                                 : fmt::format("{} vertices per ring x {} rings and two cap centres, millimetres", job.Shell().geometry.ringVertices,
+                                               sim::RingCount(job.Shell().geometry));
     OutputBatch batch;  // both meshes or neither
     if (cli.Given("--save-initial")) WriteFileAtomically(saveInitial, FormatObj(result.initial, surface, "actuator workbench initial mesh: " + size));
     if (cli.Given("--save-mesh")) WriteFileAtomically(saveMesh, FormatObj(result.final, surface, "actuator workbench final mesh: " + size));

@@ -1,9 +1,9 @@
 // Every evaluation an experiment makes goes through a Recorder: evaluated by the Evaluator, then, in
-// job order and under one evaluation id (its place in the archive), appended to
-// DIR/evaluations.capnp, logged as a row of DIR/evaluations.csv and pictured as
-// DIR/thumbnails/evaluation_NNNNNN.png. On --resume the recorder reads what the archive holds,
-// and RollBack() cuts archive, log and thumbnails back to the point the run resumes from, so that
-// the resumed run's outputs equal an uninterrupted run's.
+// job order and under one evaluation id (its place in the archive), handed to each record sink:
+// DIR/thumbnails/evaluation_NNNNNN.png, DIR/evaluations.capnp and a row of DIR/evaluations.csv (in
+// that order: an archived record has its picture, a logged one is archived). On --resume the
+// recorder reads what the archive holds, and RollBack() cuts every sink back to the point the run
+// resumes from, so that the resumed run's outputs equal an uninterrupted run's.
 #pragma once
 
 #include <filesystem>
@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "formats/archive.h"
-#include "formats/csv.h"
 #include "evaluation/evaluator.h"
-#include "pictures/figures.h"
+#include "formats/archive.h"
+#include "formats/evaluation_log.h"
+#include "formats/record_sink.h"
 
 namespace app {
 
@@ -28,10 +28,6 @@ struct EvaluationTag {
     int generation = -1;  // GA generation
     std::string label;
 };
-
-// A design as one line of text: a GA genome as its genes (splines ';'-separated, as --control-points
-// takes them; free-xy offsets as dx,dy,... as --offsets takes them), a sine by its parameters.
-std::string DesignText(const sim::Shape& shape);
 
 class Recorder {
 public:
@@ -51,8 +47,8 @@ public:
 
     // Resume: the records the archive held when opened (without meshes).
     const std::vector<ArchiveRecord>& Existing() const { return existing_; }
-    // Cuts archive, evaluations.csv and thumbnails back to the first `keep` records, then opens them
-    // for appending. Called once on resume, before any Evaluate.
+    // Cuts every sink back to the first `keep` records, then opens them for appending. Called once
+    // on resume, before any Evaluate.
     void RollBack(std::uint64_t keep);
 
     // Records with their meshes, read back from the archive in one pass: those with these ids (in
@@ -63,18 +59,14 @@ public:
     const std::filesystem::path& Dir() const { return dir_; }
 
 private:
-    void Open();
-    void Log(const ArchiveRecord& record);
-
     std::filesystem::path dir_;
     std::string experimentId_;
     Evaluator& evaluator_;
     ResultsFolder* folder_;
-    bool thumbnails_;
+    bool resuming_;
     std::vector<ArchiveRecord> existing_;
-    std::unique_ptr<ArchiveWriter> archive_;
-    CsvLog log_;
-    std::unique_ptr<ThumbnailWriter> thumbnailWriter_;
+    ArchiveSink* archive_ = nullptr;                    // one of the sinks: where ids come from
+    std::vector<std::unique_ptr<RecordSink>> sinks_;   // thumbnails, archive, log
     std::uint64_t count_ = 0;
     long long simulated_ = 0;
 };

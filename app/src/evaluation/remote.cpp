@@ -30,8 +30,8 @@ namespace {
 
 // Vertices of a job's meshes.
 std::uint64_t Vertices(const sim::EvalJob& job) {
-    if (job.model == sim::ModelKind::Thesis) return static_cast<std::uint64_t>(std::max(0, sim::VertexCount(job.mesh)));
-    const sim::GeometryDef& g = job.shell.geometry;
+    if (job.model == sim::ModelKind::Thesis) return static_cast<std::uint64_t>(std::max(0, sim::VertexCount(job.Thesis().mesh)));
+    const sim::GeometryDef& g = job.Shell().geometry;
     return static_cast<std::uint64_t>(std::max(0, g.ringVertices)) * static_cast<std::uint64_t>(std::max(0, sim::RingCount(g))) + 2;
 }
 
@@ -42,13 +42,13 @@ constexpr std::uint64_t kNewtonIterationWork = 10000;
 }  // namespace
 
 std::uint64_t ReplyWords(const sim::EvalJob& job) {
-    const std::uint64_t curve = job.model == sim::ModelKind::Thesis ? 0 : 3ull * static_cast<std::uint64_t>(std::max(0, job.shell.load.steps));
+    const std::uint64_t curve = job.model == sim::ModelKind::Thesis ? 0 : 3ull * static_cast<std::uint64_t>(std::max(0, job.Shell().load.steps));
     return 6ull * Vertices(job) + curve + 96;
 }
 std::uint64_t Work(const sim::EvalJob& job) {
-    if (job.model == sim::ModelKind::Thesis) return Vertices(job) * static_cast<std::uint64_t>(std::max(1, job.params.iterations));
-    const sim::LoadDef& l = job.shell.load;
-    const sim::SolverDef& s = job.shell.solver;
+    if (job.model == sim::ModelKind::Thesis) return Vertices(job) * static_cast<std::uint64_t>(std::max(1, job.Thesis().params.iterations));
+    const sim::LoadDef& l = job.Shell().load;
+    const sim::SolverDef& s = job.Shell().solver;
     return Vertices(job) * static_cast<std::uint64_t>(std::max(1, l.steps)) * static_cast<std::uint64_t>(std::max(1, s.maxIterations)) * kNewtonIterationWork;
 }
 
@@ -443,7 +443,7 @@ private:
         if (w.local) return RunLocally(w, std::move(chunk));
         const sim::EvalJob& first = (*jobs_)[chunk.front()];
         if (Vertices(first) > w.limits.maxVertices ||
-            (first.model == sim::ModelKind::Thesis && static_cast<std::uint64_t>(first.params.iterations) > w.limits.maxIterations) ||
+            (first.model == sim::ModelKind::Thesis && static_cast<std::uint64_t>(first.Thesis().params.iterations) > w.limits.maxIterations) ||
             Work(first) > w.limits.maxWork ||
             ReplyWords(first) > w.limits.maxReplyWords) {
             --running_;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "formats/csv.h"
+#include "formats/table.h"
 #include "support/errors.h"
 
 namespace app {
@@ -147,29 +148,29 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
 }
 
 std::string LogbookCsv(const sim::GaState& state) {
-    std::string csv = CsvRow({"generation", "evaluations", "best", "worst", "mean", "std", "q1", "median", "q3", "invalid", "stopped_by"});
+    Table table(std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "q1", "median", "q3", "invalid", "stopped_by"});
     for (size_t k = 0; k < state.logbook.size(); ++k) {
         const auto& r = state.logbook[k];
-        csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
-                       CsvNumber(r.stddev), CsvNumber(r.q1), CsvNumber(r.median), CsvNumber(r.q3), std::to_string(r.invalid), k + 1 == state.logbook.size() ? CsvField(state.stopReason) : ""});
+        table.AddRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
+                       CsvNumber(r.stddev), CsvNumber(r.q1), CsvNumber(r.median), CsvNumber(r.q3), std::to_string(r.invalid), k + 1 == state.logbook.size() ? state.stopReason : ""});
     }
-    return csv;
+    return table.Csv();
 }
 
 std::string BestPerGenerationCsv(const sim::GaState& state) {
-    std::string csv = CsvRow({"generation", "fitness", "status", "genome"});
+    Table table(std::vector<std::string>{"generation", "fitness", "status", "genome"});
     for (size_t g = 0; g < state.bestPerGeneration.size(); ++g) {
         const auto& b = state.bestPerGeneration[g];
-        csv += CsvRow({std::to_string(g), CsvNumber(b.Valid() ? b.fitness : NAN), sim::Name(b.status), CsvField(sim::GenomeText(b.genome))});
+        table.AddRow({std::to_string(g), CsvNumber(b.Valid() ? b.fitness : NAN), sim::Name(b.status), sim::GenomeText(b.genome)});
     }
-    return csv;
+    return table.Csv();
 }
 
 std::string HallOfFameCsv(const sim::GaState& state) {
-    std::string csv = CsvRow({"rank", "fitness", "genome"});
+    Table table(std::vector<std::string>{"rank", "fitness", "genome"});
     for (size_t k = 0; k < state.hallOfFame.size(); ++k)
-        csv += CsvRow({std::to_string(k + 1), CsvNumber(state.hallOfFame[k].fitness), CsvField(sim::GenomeText(state.hallOfFame[k].genome))});
-    return csv;
+        table.AddRow({std::to_string(k + 1), CsvNumber(state.hallOfFame[k].fitness), sim::GenomeText(state.hallOfFame[k].genome)});
+    return table.Csv();
 }
 
 namespace {

@@ -885,20 +885,21 @@ PlotContext PlotContextOf(const Experiment& e) {
 sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {
     sim::EvalJob job;
     job.shape = shape;
-    job.mesh = e.mesh;
-    job.params = e.params;
     job.model = e.model;
-    job.shell = e.shell;
+    if (e.model == sim::ModelKind::Thesis) job.def = sim::ThesisDef{e.mesh, e.params};
+    else job.def = e.shell;
     return job;
 }
 
 sim::EvalJob JobOfGenome(const Experiment& e, const sim::Genome& genome) {
     sim::EvalJob job = JobOf(e, sim::ShapeOfGenome(genome, e.ga.genome, DesignMesh(e)));
-    if (e.ga.genome.HasFibreGenes()) job.shell.fibres = sim::FibresOfGenome(genome, e.ga.genome, e.shell.fibres);
+    if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(genome, e.ga.genome, e.shell.fibres);
     return job;
 }
 
-sim::Genome GenomeOfJob(const Experiment& e, const sim::EvalJob& job) { return sim::GenomeOfDesign(job.shape, job.shell.fibres, e.ga.genome); }
+sim::Genome GenomeOfJob(const Experiment& e, const sim::EvalJob& job) {
+    return sim::GenomeOfDesign(job.shape, ModelOf(job).physical ? job.Shell().fibres : sim::FibreDef{}, e.ga.genome);
+}
 
 sim::MeshDef DesignMesh(const Experiment& e) {
     if (e.model == sim::ModelKind::Thesis) return e.mesh;

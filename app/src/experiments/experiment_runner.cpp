@@ -1,3 +1,4 @@
+#include "pictures/figures.h"
 #include "formats/json_out.h"
 #include "experiments/experiment_runner.h"
 
@@ -84,7 +85,7 @@ void WriteBestFigures(RunContext& c, const fs::path& folder, const sim::EvalJob&
     std::optional<sim::SimResult> stretched;
     if (job.model == sim::ModelKind::Thesis) {
         sim::EvalJob stretch = job;
-        stretch.params.load = sim::Load::Stretch;
+        stretch.Thesis().params.load = sim::Load::Stretch;
         stretched = c.recorder.EvaluateOne(stretch, {Role::Figure, 0, -1, "stretch test of: " + title});
     }
     auto renderer = MakeRenderer(1024, 768);

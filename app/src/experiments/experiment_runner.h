@@ -14,6 +14,7 @@
 #include "experiments/experiment.h"
 #include "formats/files.h"
 #include "evaluation/recorder.h"
+#include "pictures/figures.h"
 #include "formats/results_folder.h"
 
 namespace app {

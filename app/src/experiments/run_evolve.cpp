@@ -325,7 +325,7 @@ void RunEvolution(RunContext& c) {
     if (bestRun >= 0 && e.model == sim::ModelKind::Thesis) {
         const ArchiveRecord full = c.recorder.ReadBack({caches[bestRun]->IdOf(runs[bestRun].state.hallOfFame.front().genome)}).at(0);
         sim::EvalJob early = full.job;
-        early.params.iterations = std::min(100, full.job.params.iterations);
+        early.Thesis().params.iterations = std::min(100, full.job.Thesis().params.iterations);
         const sim::SimResult first = c.recorder.EvaluateOne(early, {Role::Figure, bestRun + 1, -1, "time lapse of the best"});
         WritePng((c.dir / "best_time_lapse.png").string(),
                  PairsImage(StagesScene(fmt::format("{}  -  best of run {}", ExperimentTitle(e), bestRun + 1), {"the same design after 100 and after the full run"},
@@ -357,7 +357,7 @@ void RunEvolution(RunContext& c) {
         const ArchiveRecord record = c.recorder.ReadBack({caches[bestRun]->IdOf(best.genome)}).at(0);
         std::string title = fmt::format("best of run {}: {}", bestRun + 1,
                                               e.ga.genome.kind == sim::GenomeKind::BSpline ? ShapeTitle(record.job.shape) : std::string("free-xy offsets"));
-        const std::string fibres = record.job.model == sim::ModelKind::Thesis ? "" : FibreTitle(record.job.shell.fibres);
+        const std::string fibres = record.job.model == sim::ModelKind::Thesis ? "" : FibreTitle(record.job.Shell().fibres);
         if (!fibres.empty()) title += ",  " + fibres;
         WriteBestFigures(c, c.dir, record.job, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
     }

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "formats/csv.h"
+#include "formats/table.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
 #include "support/progress.h"
@@ -33,13 +34,13 @@ void RunList(RunContext& c) {
     });
 
     // Table and figures from the archive: the same whether the run was resumed or not.
-    std::string csv = CsvRow({"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
+    Table table(std::vector<std::string>{"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
     std::unique_ptr<render::MeshRenderer> renderer;
     const std::string load = e.model == sim::ModelKind::Thesis ? sim::Name(e.params.load) : sim::Name(e.shell.load.kind);
     c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) {
         const LabelledShape& shape = e.shapes[r.id];
         const bool ok = r.result.status == sim::Status::Ok;
-        csv += CsvRow({std::to_string(r.id), CsvField(shape.label), ok ? CsvNumber(r.result.fitness) : "", ok ? CsvNumber(r.result.contractionPercent) : "",
+        table.AddRow({std::to_string(r.id), shape.label, ok ? CsvNumber(r.result.fitness) : "", ok ? CsvNumber(r.result.contractionPercent) : "",
                        sim::Name(r.result.status), std::to_string(r.result.iterationsRun), CsvNumber(shape.thesisFitness)});
         c.outcome.rows.push_back({shape.label, ok ? r.result.fitness : NAN, shape.thesisFitness});
         if (!e.render.figures) return;
@@ -48,7 +49,7 @@ void RunList(RunContext& c) {
         WritePng((c.dir / name).string(), renderer->Render(BeforeAfterScene(shape.label + "  -  " + load, r.result, r.job)), 6);
         c.outcome.figures.push_back(name);
     });
-    WriteFileAtomically((c.dir / "results.csv").string(), csv);
+    WriteFileAtomically((c.dir / "results.csv").string(), table.Csv());
 
     // The thesis draws conclusions from the order of its numbers (6.1: "the actuator with the smallest
     // radius outperforms the two larger ones"): how many pairs keep that order here.

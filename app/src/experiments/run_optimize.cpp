@@ -14,6 +14,7 @@
 
 #include "experiments/checkpoint.h"
 #include "formats/csv.h"
+#include "formats/table.h"
 #include "support/errors.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
@@ -28,14 +29,14 @@ namespace fs = std::filesystem;
 sim::EvalJob JobOfVector(const Experiment& e, const std::vector<double>& x) {
     const sim::VectorDesign d = sim::DesignOfVector(e.optimizer.genome, x, DesignMesh(e));
     sim::EvalJob job = JobOf(e, d.shape);
-    if (e.ga.genome.HasFibreGenes()) job.shell.fibres = sim::FibresOfGenome(d.genome, e.ga.genome, e.shell.fibres);
+    if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(d.genome, e.ga.genome, e.shell.fibres);
     return job;
 }
 
 // A design as text, fibre genes included: the key under which it is simulated once per run.
 std::string DesignKey(const Experiment& e, const sim::EvalJob& job) {
     std::string key = DesignText(job.shape);
-    if (e.ga.genome.HasFibreGenes()) key += " | fibres " + sim::GenomeText(sim::GenomeOfDesign(sim::CylinderShape{}, job.shell.fibres, e.ga.genome));
+    if (e.ga.genome.HasFibreGenes()) key += " | fibres " + sim::GenomeText(sim::GenomeOfDesign(sim::CylinderShape{}, job.Shell().fibres, e.ga.genome));
     return key;
 }
 
@@ -123,16 +124,16 @@ public:
 private:
     // The stretch test (thesis model), or the inflation to twice the target in as many steps again.
     sim::EvalJob SecondJob(sim::EvalJob job) const {
-        if (second_ == sim::SecondEvaluation::StretchTest) job.params.load = sim::Load::Stretch;
+        if (second_ == sim::SecondEvaluation::StretchTest) job.Thesis().params.load = sim::Load::Stretch;
         else {
-            job.shell.load.pressureKpa *= 2;
-            job.shell.load.steps *= 2;
+            job.Shell().load.pressureKpa *= 2;
+            job.Shell().load.steps *= 2;
         }
         return job;
     }
     bool IsSecond(const sim::EvalJob& job) const {
-        if (second_ == sim::SecondEvaluation::StretchTest) return job.model == sim::ModelKind::Thesis && job.params.load == sim::Load::Stretch;
-        return second_ == sim::SecondEvaluation::TwiceThePressure && job.shell.load.pressureKpa != c_.e.shell.load.pressureKpa;
+        if (second_ == sim::SecondEvaluation::StretchTest) return job.model == sim::ModelKind::Thesis && job.Thesis().params.load == sim::Load::Stretch;
+        return second_ == sim::SecondEvaluation::TwiceThePressure && job.Shell().load.pressureKpa != c_.e.shell.load.pressureKpa;
     }
 
     RunContext& c_;
@@ -158,15 +159,15 @@ std::vector<std::string> ObjectiveColumns(const Experiment& e) {
 }
 
 std::string LogbookText(const sim::OptimizerRun& run) {
-    std::string csv = CsvRow(
+    Table table(std::vector<std::string>
         {"generation", "evaluations", "best", "worst", "mean", "stddev", "q1", "median", "q3", "best_so_far", "invalid", "hypervolume", "front_size", "stopped_by"});
     for (size_t k = 0; k < run.logbook.size(); ++k) {
         const auto& r = run.logbook[k];
-        csv += CsvRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
+        table.AddRow({std::to_string(r.generation), std::to_string(r.evaluations), CsvNumber(r.best), CsvNumber(r.worst), CsvNumber(r.mean),
                        CsvNumber(r.stddev), CsvNumber(r.q1), CsvNumber(r.median), CsvNumber(r.q3), CsvNumber(r.bestSoFar), std::to_string(r.invalid), CsvNumber(r.hypervolume), std::to_string(r.frontSize),
-                       k + 1 == run.logbook.size() ? CsvField(run.stopReason) : ""});
+                       k + 1 == run.logbook.size() ? run.stopReason : ""});
     }
-    return csv;
+    return table.Csv();
 }
 
 // The hall of fame (one objective) or the Pareto front (several): evaluation id, objectives, genes.
@@ -176,16 +177,16 @@ std::string DesignsText(const Experiment& e, const sim::OptimizerRun& run, const
     for (const auto& column : ObjectiveColumns(e)) header.push_back(column);
     header.push_back("design");
     for (const auto& name : sim::VectorGeneNames(e.optimizer.genome, DesignMesh(e))) header.push_back("gene_" + name);
-    std::string csv = CsvRow(header);
+    Table table(header);
     for (size_t k = 0; k < designs.size(); ++k) {
         const sim::EvaluatedDesign& d = run.evaluated[designs[k]];
         std::vector<std::string> row{std::to_string(k + 1), std::to_string(cache.IdOf(d.x)), std::to_string(d.generation), sim::Name(d.score.status)};
         for (double v : d.score.values) row.push_back(CsvNumber(v));
-        row.push_back(CsvField(DesignKey(e, JobOfVector(e, d.x))));
+        row.push_back(DesignKey(e, JobOfVector(e, d.x)));
         for (double g : d.x) row.push_back(CsvNumber(g));
-        csv += CsvRow(row);
+        table.AddRow(row);
     }
-    return csv;
+    return table.Csv();
 }
 
 std::string SheetName(int generation) { return fmt::format("sheets/generation_{:03}.png", generation); }
@@ -386,7 +387,7 @@ void RunOptimization(RunContext& c) {
         const ArchiveRecord record = c.recorder.ReadBack({runs[bestRun].cache->IdOf(runs[bestRun].run.evaluated[bestIndex].x)}).at(0);
         std::string title = fmt::format("best {} of {} run {}: {}", sim::Name(def.objectives[0].kind), sim::Name(def.algorithm), bestRun + 1,
                                         def.genome.family == sim::VectorFamily::FreeXY ? std::string("free-xy offsets") : ShapeTitle(record.job.shape));
-        const std::string fibres = record.job.model == sim::ModelKind::Thesis ? "" : FibreTitle(record.job.shell.fibres);
+        const std::string fibres = record.job.model == sim::ModelKind::Thesis ? "" : FibreTitle(record.job.Shell().fibres);
         if (!fibres.empty()) title += ",  " + fibres;
         WriteBestFigures(c, c.dir, record.job, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
     }

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "formats/csv.h"
+#include "formats/table.h"
 #include "support/errors.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
@@ -29,8 +30,8 @@ std::string PointLabel(const sim::EvalJob& job, const std::vector<sim::SweepAxis
 std::string PointTitle(const sim::EvalJob& job, const std::vector<sim::SweepAxis>& axes) {
     std::string title = ShapeTitle(job.shape);
     for (const auto& axis : axes)
-        if (axis.parameter == sim::SweepParameter::PressureKpa) title += fmt::format(",  {:.4g} kPa", job.shell.load.pressureKpa);
-        else if (axis.parameter == sim::SweepParameter::FibreAngleDeg) title += fmt::format(",  fibres at {:.4g} deg", job.shell.fibres.angleDeg);
+        if (axis.parameter == sim::SweepParameter::PressureKpa) title += fmt::format(",  {:.4g} kPa", job.Shell().load.pressureKpa);
+        else if (axis.parameter == sim::SweepParameter::FibreAngleDeg) title += fmt::format(",  fibres at {:.4g} deg", job.Shell().fibres.angleDeg);
     return title;
 }
 
@@ -118,18 +119,18 @@ void RunSweep(RunContext& c) {
     std::vector<std::string> header{"evaluation"};
     for (const auto& axis : axes) header.push_back(sim::Name(axis.parameter));
     for (const char* h : {"fitness", "contraction_percent", "status", "iterations", "warning"}) header.push_back(h);
-    std::string csv = CsvRow(header);
+    Table table(header);
     int best = -1;
     for (size_t j = 0; j < n; ++j) {
         std::vector<std::string> row{std::to_string(j)};
         for (const auto& axis : axes) row.push_back(CsvNumber(sim::SweepValue(grid[j], axis.parameter)));
         const bool ok = status[j] == sim::Status::Ok;
         row.insert(row.end(), {ok ? CsvNumber(fitness[j]) : "", ok ? CsvNumber(contraction[j]) : "", sim::Name(status[j]), std::to_string(iterations[j]),
-                               CsvField(warning[j])});
-        csv += CsvRow(row);
+                               warning[j]});
+        table.AddRow(row);
         if (ok && (best < 0 || fitness[j] > fitness[static_cast<size_t>(best)])) best = static_cast<int>(j);
     }
-    WriteFileAtomically((c.dir / "results.csv").string(), csv);
+    WriteFileAtomically((c.dir / "results.csv").string(), table.Csv());
 
     std::string bestText = "no grid point evaluated successfully";
     if (best >= 0) {

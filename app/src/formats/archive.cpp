@@ -1,5 +1,10 @@
 #include "formats/archive.h"
 
+#include <filesystem>
+#include <stdexcept>
+
+#include "formats/record_sink.h"
+
 #include <capnp/message.h>
 #include <capnp/serialize-packed.h>
 #include <fcntl.h>
@@ -104,11 +109,10 @@ ArchiveWriter::~ArchiveWriter() {
     if (fd_ >= 0) ::close(fd_);
 }
 
-std::uint64_t ArchiveWriter::Append(ArchiveRecord& r) {
-    r.id = next_;
+std::uint64_t ArchiveWriter::Append(const ArchiveRecord& r) {
     capnp::MallocMessageBuilder message;
     auto e = message.initRoot<schema::Evaluation>();
-    e.setIndex(r.id);
+    e.setIndex(next_);
     e.setExperiment(r.experiment);
     e.setRun(static_cast<std::uint32_t>(r.run));
     e.setGeneration(r.generation);
@@ -282,6 +286,22 @@ void TruncateArchive(const std::string& path, std::uint64_t keep) {
     const std::uint64_t bytes = keep == 0 ? 0 : scan.goodBytes;  // an empty file gets its header from the writer
     if (::truncate(path.c_str(), static_cast<off_t>(bytes)) != 0)
         throw UsageError("cannot cut " + Quote(path) + " back to its checkpoint: " + std::strerror(errno));
+}
+
+ArchiveSink::ArchiveSink(std::string path, bool resume) : path_(std::move(path)) {
+    if (!resume) writer_ = std::make_unique<ArchiveWriter>(path_);
+}
+
+void ArchiveSink::Append(const ArchiveRecord& record) {
+    if (!writer_) throw std::logic_error("a resumed archive is opened by RollBack");
+    if (writer_->Append(record) != record.id) throw std::logic_error("an archive record out of id order");
+}
+
+void ArchiveSink::RollBack(std::uint64_t keep, const std::vector<ArchiveRecord>&) {
+    writer_.reset();
+    std::error_code ec;
+    if (std::filesystem::exists(path_, ec)) TruncateArchive(path_, keep);
+    writer_ = std::make_unique<ArchiveWriter>(path_);
 }
 
 }  // namespace app

@@ -49,8 +49,9 @@ public:
     ArchiveWriter(const ArchiveWriter&) = delete;
     ArchiveWriter& operator=(const ArchiveWriter&) = delete;
 
-    // Sets record.id and appends it. Throws UsageError on a write error.
-    std::uint64_t Append(ArchiveRecord& record);
+    // Appends the record under the next id (its place in the archive), which it returns; the
+    // record's own id field is not read. Throws OutputError or UsageError on a write error.
+    std::uint64_t Append(const ArchiveRecord& record);
     std::uint64_t Count() const { return next_; }
 
 private:
@@ -58,6 +59,10 @@ private:
     int fd_ = -1;
     std::uint64_t next_ = 0;
 };
+
+// The archive as a record sink (formats/record_sink.h): records appended under their ids; on resume
+// cut back to the first `keep` and opened after them.
+class ArchiveSink;
 
 struct ArchiveScan {
     int version = 2;

@@ -70,13 +70,13 @@ struct Writer {
 Json ModelJson(const sim::EvalJob& job) {
     Json j{{"name", sim::Name(job.model)}};
     if (job.model == sim::ModelKind::Thesis) {
-        VisitFields(job.params, Writer{j});
-        VisitFields(job.mesh, Writer{j});
-        j["vertices"] = sim::VertexCount(job.mesh);
-        j["springs"] = sim::SpringCount(job.mesh);
+        VisitFields(job.Thesis().params, Writer{j});
+        VisitFields(job.Thesis().mesh, Writer{j});
+        j["vertices"] = sim::VertexCount(job.Thesis().mesh);
+        j["springs"] = sim::SpringCount(job.Thesis().mesh);
         return j;
     }
-    const sim::ShellDef& s = job.shell;
+    const sim::ShellDef& s = job.Shell();
     VisitFields(s.geometry, Writer{j});
     j["rings_used"] = sim::RingCount(s.geometry);
     j["material"] = sim::Name(s.material.preset);
@@ -103,7 +103,7 @@ Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
            {"contraction_percent", NumberJson(ok ? r.contractionPercent : NAN)}};
     if (job.model == sim::ModelKind::Thesis) {
         j["iterations"] = r.iterationsRun;
-        j["iterations_requested"] = job.params.iterations;
+        j["iterations_requested"] = job.Thesis().params.iterations;
     } else {
         const sim::ShellOutputs& s = r.shell;
         j["pressure_kpa"] = NumberJson(s.targetPressureKpa);
@@ -117,7 +117,7 @@ Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
         j["stretch_limit"] = NumberJson(s.stretchLimit);
         j["max_stress_kpa"] = NumberJson(s.maxStressKpa);
         j["tensile_strength_kpa"] = NumberJson(s.tensileStrengthKpa);
-        if (job.shell.fibres.layout != sim::FibreLayout::None) {
+        if (job.Shell().fibres.layout != sim::FibreLayout::None) {
             j["max_fibre_strain"] = NumberJson(s.maxFibreStrain);
             j["mean_fibre_strain"] = NumberJson(s.meanFibreStrain);
             j["fibre_angle_deg"] = NumberJson(s.fibreAngleDeg);

@@ -53,13 +53,13 @@ void SetJob(Builder out, const sim::EvalJob& job) {
     SetShape(out.initShape(), job.shape);
     out.setModel(static_cast<schema::ModelKind>(static_cast<int>(job.model)));
     if (job.model != sim::ModelKind::Thesis) {
-        SetShellDef(out.initShell(), job.shell);
+        SetShellDef(out.initShell(), job.Shell());
         return;
     }
-    SetParams(out.initParams(), job.params);
+    SetParams(out.initParams(), job.Thesis().params);
     auto size = out.initMeshSize();
-    size.setResolution(static_cast<std::uint32_t>(job.mesh.resolution));
-    size.setTurns(static_cast<std::uint32_t>(job.mesh.turns));
+    size.setResolution(static_cast<std::uint32_t>(job.Thesis().mesh.resolution));
+    size.setTurns(static_cast<std::uint32_t>(job.Thesis().mesh.turns));
 }
 template <class Reader>
 sim::EvalJob GetJob(Reader in) {
@@ -69,11 +69,11 @@ sim::EvalJob GetJob(Reader in) {
     if (model > static_cast<int>(sim::ModelKind::Shell)) throw std::runtime_error("unknown model " + std::to_string(model) + " (written by a newer version?)");
     job.model = static_cast<sim::ModelKind>(model);
     if (job.model != sim::ModelKind::Thesis) {
-        job.shell = GetShellDef(in.getShell());
+        job.Shell() = GetShellDef(in.getShell());
         return job;
     }
-    job.params = GetParams(in.getParams());
-    job.mesh = sim::MeshDef{static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getResolution(), 1u << 30)),
+    job.Thesis().params = GetParams(in.getParams());
+    job.Thesis().mesh = sim::MeshDef{static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getResolution(), 1u << 30)),
                             static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getTurns(), 1u << 30))};
     return job;
 }

@@ -100,7 +100,7 @@ void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim
         }
         if (use == ModelUse::BothLoads) return;  // both loads are drawn: every constant has an effect
         for (const auto& key : GivenKeys(cli, o.thesis))
-            if (const sim::FieldUse u = ThesisFieldUse(job.params, key); !u.Applies())
+            if (const sim::FieldUse u = ThesisFieldUse(job.Thesis().params, key); !u.Applies())
                 throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) +
                                  " " + u.now);
         return;
@@ -121,7 +121,7 @@ void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim
                              GivenKeys(cli, o.shell.fibres)})
         keys.insert(keys.end(), part.begin(), part.end());
     for (const auto& key : keys)
-        if (const sim::FieldUse u = ShellFieldUse(job.shell, key); !u.Applies())
+        if (const sim::FieldUse u = ShellFieldUse(job.Shell(), key); !u.Applies())
             throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) + " " +
                              u.now);
 }
@@ -129,24 +129,24 @@ void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim
 void ApplyModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job, ModelUse use) {
     job.model = o.model;
     if (o.model == sim::ModelKind::Thesis) {
-        job.params = o.thesis;
-        if (cli.Given("--load")) job.params.load = ThesisLoad(o.load, "--load");
+        job.Thesis().params = o.thesis;
+        if (cli.Given("--load")) job.Thesis().params.load = ThesisLoad(o.load, "--load");
         RefuseOptionsWithoutEffect(cli, o, job, use);
         return;
     }
-    job.shell = o.shell;
-    job.shell.material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
-    if (cli.Given("--load")) job.shell.load.kind = ShellLoadOf(o.load, "--load");
-    if (cli.Given("--law") && !(sim::ShearModulusKpa(job.shell.material) > 0)) {
-        const sim::MaterialLaw law = job.shell.material.law;
+    job.Shell() = o.shell;
+    job.Shell().material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+    if (cli.Given("--load")) job.Shell().load.kind = ShellLoadOf(o.load, "--load");
+    if (cli.Given("--law") && !(sim::ShearModulusKpa(job.Shell().material) > 0)) {
+        const sim::MaterialLaw law = job.Shell().material.law;
         throw UsageError("--law " + std::string(sim::Name(law)) + " needs its constants: " +
                          (law == sim::MaterialLaw::NeoHookean     ? "--mu-kpa"
                           : law == sim::MaterialLaw::MooneyRivlin ? "--c10-kpa and --c01-kpa"
                                                                   : "--c10-kpa (and --c20-kpa, --c30-kpa)") +
-                         " (the preset " + sim::Name(job.shell.material.preset) + " has none for it)");
+                         " (the preset " + sim::Name(job.Shell().material.preset) + " has none for it)");
     }
     RefuseOptionsWithoutEffect(cli, o, job, use);
-    if (const std::string error = sim::ShellDefError(job.shell); !error.empty()) throw UsageError("--model " + std::string(sim::Name(o.model)) + ": " + error);
+    if (const std::string error = sim::ShellDefError(job.Shell()); !error.empty()) throw UsageError("--model " + std::string(sim::Name(o.model)) + ": " + error);
 }
 
 }  // namespace app

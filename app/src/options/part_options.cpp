@@ -39,17 +39,17 @@ sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob&
     sim::PartDef part = o.part;
     if (job.model == sim::ModelKind::Thesis) {
         part.radiusMm = o.unitMm;
-        part.lengthMm = o.unitMm * job.mesh.turns;
+        part.lengthMm = o.unitMm * job.Thesis().mesh.turns;
         part.thicknessMm = o.wallMm;
-        part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.mesh.turns;
-        part.angularSamples = 8 * ((job.mesh.resolution * o.sampling + 7) / 8);
-        part.axialSamples = job.mesh.turns * o.sampling + 1;
+        part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.Thesis().mesh.turns;
+        part.angularSamples = 8 * ((job.Thesis().mesh.resolution * o.sampling + 7) / 8);
+        part.axialSamples = job.Thesis().mesh.turns * o.sampling + 1;
         part.helixAngles = true;
         return part;
     }
     cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
     cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
-    const sim::GeometryDef& g = job.shell.geometry;
+    const sim::GeometryDef& g = job.Shell().geometry;
     const int rings = sim::RingCount(g);
     part.radiusMm = g.radiusMm;
     part.lengthMm = g.lengthMm;

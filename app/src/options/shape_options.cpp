@@ -186,15 +186,16 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o, const sim::Surface&
 sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shapeOptions, const ModelOptions& model, ModelUse use) {
     sim::EvalJob job;
     ApplyModelOptions(cli, model, job, use);
-    job.mesh = shapeOptions.mesh;
-    int vertices = sim::VertexCount(job.mesh);
+    int vertices = 0;  // of the wall (the shell models' cap centres aside): free-xy offsets and OBJ files count them
     if (job.model == sim::ModelKind::Thesis) {
-        if (static_cast<long long>(job.mesh.resolution) * job.mesh.turns > sim::kMaxVertices)
+        job.Thesis().mesh = shapeOptions.mesh;
+        vertices = sim::VertexCount(job.Thesis().mesh);
+        if (static_cast<long long>(job.Thesis().mesh.resolution) * job.Thesis().mesh.turns > sim::kMaxVertices)
             throw UsageError("--resolution x --turns: more than " + std::to_string(sim::kMaxVertices) + " vertices");
     } else {
         for (const char* option : {"--resolution", "--turns"})
             cli.RefuseIfGiven(option, std::string("is the thesis helix's; the ") + sim::Name(job.model) + " model's mesh is --ring-vertices and --rings");
-        vertices = job.shell.geometry.ringVertices * sim::RingCount(job.shell.geometry);
+        vertices = job.Shell().geometry.ringVertices * sim::RingCount(job.Shell().geometry);
     }
     job.shape = BuildShape(cli, shapeOptions, sim::SurfaceOf(job), vertices);
     if (const std::string error = sim::JobError(job); !error.empty()) {

@@ -56,7 +56,7 @@ std::string FibreTitle(const sim::FibreDef& f) {
 
 std::string JobTitle(const sim::EvalJob& job) {
     if (job.model == sim::ModelKind::Thesis) return ShapeTitle(job.shape);
-    const std::string fibres = FibreTitle(job.shell.fibres);
+    const std::string fibres = FibreTitle(job.Shell().fibres);
     return fmt::format("{}  -  {} model{}", ShapeTitle(job.shape), sim::Name(job.model), fibres.empty() ? "" : ",  " + fibres);
 }
 
@@ -64,14 +64,14 @@ std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
     if (job.model == sim::ModelKind::Thesis) {
         if (r.status == sim::Status::Ok) line += fmt::format("fitness {:.4f},  contraction {:.2f} %,  ", r.fitness, r.contractionPercent);
-        return line + fmt::format("{} iterations,  {} x {} mesh", r.iterationsRun, job.mesh.resolution, job.mesh.turns);
+        return line + fmt::format("{} iterations,  {} x {} mesh", r.iterationsRun, job.Thesis().mesh.resolution, job.Thesis().mesh.turns);
     }
     const sim::ShellOutputs& o = r.shell;
     if (std::isfinite(r.contractionPercent)) line += fmt::format("contraction {:.2f} % at {:.3g} kPa,  ", r.contractionPercent, o.targetPressureKpa);
     if (std::isfinite(o.limitPressureKpa)) line += fmt::format("limit point {:.3g} kPa,  ", o.limitPressureKpa);
     if (std::isfinite(o.maxStretch)) line += fmt::format("stretch {:.2f} (limit {:.2f}),  ", o.maxStretch, o.stretchLimit);
-    return line + fmt::format("{} Newton iterations,  {} x {} mesh,  {}", o.newtonIterations, job.shell.geometry.ringVertices,
-                              sim::RingCount(job.shell.geometry), sim::Name(job.shell.material.preset));
+    return line + fmt::format("{} Newton iterations,  {} x {} mesh,  {}", o.newtonIterations, job.Shell().geometry.ringVertices,
+                              sim::RingCount(job.Shell().geometry), sim::Name(job.Shell().material.preset));
 }
 
 std::string FitnessCaption(const sim::SimResult& r) { return r.status == sim::Status::Ok ? fmt::format("{:.3f}", r.fitness) : sim::Name(r.status); }
@@ -87,8 +87,8 @@ std::shared_ptr<const sim::Surface> SharedSurface(const sim::EvalJob& job) {
     static std::mutex mutex;
     static std::map<std::tuple<bool, int, int>, std::shared_ptr<const sim::Surface>> cache;
     const bool thesis = job.model == sim::ModelKind::Thesis;
-    const std::tuple<bool, int, int> key = thesis ? std::tuple{true, job.mesh.resolution, job.mesh.turns}
-                                                  : std::tuple{false, job.shell.geometry.ringVertices, sim::RingCount(job.shell.geometry)};
+    const std::tuple<bool, int, int> key = thesis ? std::tuple{true, job.Thesis().mesh.resolution, job.Thesis().mesh.turns}
+                                                  : std::tuple{false, job.Shell().geometry.ringVertices, sim::RingCount(job.Shell().geometry)};
     std::lock_guard lock(mutex);
     auto& surface = cache[key];
     if (!surface) surface = std::make_shared<const sim::Surface>(sim::SurfaceOf(job));
@@ -128,7 +128,7 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
         case Colouring::Stretch:
         case Colouring::Stress: {
             if (thesis) break;  // refused earlier (ColouringError)
-            const sim::ShellFields fields = sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed);
+            const sim::ShellFields fields = sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, deformed);
             AddFibres(panel, fields, colouring == Colouring::Stretch);
             const std::string fibreLine = "lines: the fibres, coloured by their stretch on the same scale";
             if (!fields.fibres.empty() && std::find(scene.lines.begin(), scene.lines.end(), fibreLine) == scene.lines.end())
@@ -137,15 +137,15 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             panel.values = stretch ? fields.stretch : fields.stressKpa;
             scene.colorBy = render::ColorBy::Values;
             scene.colorLabel = stretch ? "principal\nstretch" : "principal true\nstress (kPa)";
-            const double limit = stretch ? sim::StretchLimit(job.shell.material) : job.shell.material.tensileStrengthKpa;
+            const double limit = stretch ? sim::StretchLimit(job.Shell().material) : job.Shell().material.tensileStrengthKpa;
             if (limit > 0) scene.scaleMarks = {{limit, stretch ? "stretch limit" : "tensile strength"}};
             if (stretch) scene.colorMin = 1.0;
             break;
         }
     }
-    const bool fibres = !thesis && job.shell.fibres.layout != sim::FibreLayout::None;
+    const bool fibres = !thesis && job.Shell().fibres.layout != sim::FibreLayout::None;
     if (fibres && colouring != Colouring::Stretch && colouring != Colouring::Stress)
-        AddFibres(panel, sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, deformed), false);
+        AddFibres(panel, sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, deformed), false);
     return panel;
 }
 
@@ -162,8 +162,8 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     scene.title = title;
     scene.lines = {ResultLine(r, job)};
     scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
-    if (job.model != sim::ModelKind::Thesis && job.shell.fibres.layout != sim::FibreLayout::None)
-        AddFibres(scene.panels.front(), sim::ShellFieldValues(job.shell, job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
+    if (job.model != sim::ModelKind::Thesis && job.Shell().fibres.layout != sim::FibreLayout::None)
+        AddFibres(scene.panels.front(), sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
     scene.panels.push_back(ColouredPanel(scene, r.final, r, job, colouring, AfterCaption(r, job)));
     return scene;
 }
@@ -431,7 +431,7 @@ void WriteContactSheet(const fs::path& path, const std::string& title, const std
     WritePng(path.string(), renderer->Render(scene), 1);
 }
 
-ThumbnailWriter::ThumbnailWriter(fs::path folder) : folder_(std::move(folder)) {
+Thumbnails::Thumbnails(fs::path folder) : folder_(std::move(folder)) {
     std::error_code ec;
     fs::create_directories(folder_, ec);
     if (!fs::is_directory(folder_, ec)) throw UsageError("cannot create folder " + Quote(folder_.string()));
@@ -443,14 +443,22 @@ ThumbnailWriter::ThumbnailWriter(fs::path folder) : folder_(std::move(folder)) {
     renderer_ = MakeRenderer(def);
 }
 
-std::string ThumbnailWriter::Name(std::uint64_t id) { return fmt::format("evaluation_{:06}.png", id); }
+std::string Thumbnails::Name(std::uint64_t id) { return fmt::format("evaluation_{:06}.png", id); }
 
-void ThumbnailWriter::Write(std::uint64_t id, const sim::SimResult& result, const sim::EvalJob& job) {
+void Thumbnails::Append(const ArchiveRecord& record) {
     render::Scene scene;
-    scene.surface = SharedSurface(job);
-    scene.title = fmt::format("#{}  {}", id, FitnessCaption(result));  // which evaluation, and how it did
-    scene.panels = {{result.initial, {}, "", 0, {}, {}}, {result.final, result.initial, "", 0, {}, {}}};
-    WritePng((folder_ / Name(id)).string(), renderer_->Render(scene), 1);
+    scene.surface = SharedSurface(record.job);
+    scene.title = fmt::format("#{}  {}", record.id, FitnessCaption(record.result));  // which evaluation, and how it did
+    scene.panels = {{record.result.initial, {}, "", 0, {}, {}}, {record.result.final, record.result.initial, "", 0, {}, {}}};
+    WritePng((folder_ / Name(record.id)).string(), renderer_->Render(scene), 1);
+}
+
+void Thumbnails::RollBack(std::uint64_t keep, const std::vector<ArchiveRecord>&) {
+    std::error_code ec;
+    for (fs::directory_iterator it(folder_, ec), end; !ec && it != end; it.increment(ec)) {
+        unsigned long long id = 0;
+        if (std::sscanf(it->path().filename().string().c_str(), "evaluation_%llu.png", &id) == 1 && id >= keep) fs::remove(it->path(), ec);
+    }
 }
 
 }  // namespace app

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/record_sink.h"
 #include "render/image.h"
 #include "render/mesh_renderer.h"
 #include "sim/batch.h"
@@ -132,10 +133,12 @@ void WriteContactSheet(const std::filesystem::path& path, const std::string& tit
 std::string EscapeWarning(const sim::SimResult& result);
 
 // Small before/after pictures of single evaluations, named by evaluation id.
-class ThumbnailWriter {
+class Thumbnails final : public RecordSink {
 public:
-    explicit ThumbnailWriter(std::filesystem::path folder);
-    void Write(std::uint64_t id, const sim::SimResult& result, const sim::EvalJob& job);
+    explicit Thumbnails(std::filesystem::path folder);
+    void Append(const ArchiveRecord& record) override;
+    // Removes the thumbnails of the records past `keep`.
+    void RollBack(std::uint64_t keep, const std::vector<ArchiveRecord>& kept) override;
     static std::string Name(std::uint64_t id);  // "evaluation_000017.png"
     const std::filesystem::path& Folder() const { return folder_; }
 

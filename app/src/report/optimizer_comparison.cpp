@@ -12,6 +12,7 @@
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
+#include "pictures/figures.h"
 #include "pictures/plots.h"
 #include "formats/table.h"
 #include "render/plot.h"

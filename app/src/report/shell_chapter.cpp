@@ -7,6 +7,7 @@
 
 #include "formats/archive.h"
 #include "formats/csv.h"
+#include "formats/table.h"
 #include "support/errors.h"
 #include "pictures/figures.h"
 #include "formats/files.h"
@@ -48,8 +49,8 @@ std::string ChangeText(const MeshChange& c) {
 
 // The same design meshed twice as finely in both directions.
 sim::EvalJob Finer(sim::EvalJob job) {
-    job.shell.geometry.ringVertices *= 2;
-    if (job.shell.geometry.rings > 0) job.shell.geometry.rings = 2 * job.shell.geometry.rings - 1;  // every edge halved
+    job.Shell().geometry.ringVertices *= 2;
+    if (job.Shell().geometry.rings > 0) job.Shell().geometry.rings = 2 * job.Shell().geometry.rings - 1;  // every edge halved
     return job;
 }
 
@@ -136,7 +137,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         WritePng((dir / row.thesisBestFigure).string(), renderer->Render(BeforeAfterScene(title, row.thesisBestHere, jobs[k])), 6);
     });
 
-    std::string csv = CsvRow({"experiment", "compares", "evaluations", "statuses", "thesis_model_best_fitness", "thesis_best_status",
+    Table table(std::vector<std::string>{"experiment", "compares", "evaluations", "statuses", "thesis_model_best_fitness", "thesis_best_status",
                               "thesis_best_contraction_percent", "best_contraction_percent", "best_contraction_percent_at_2x_mesh",
                               "mesh_change_relative_percent"});
     for (const ChapterRow& row : chapter.rows) {
@@ -144,12 +145,12 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         const double fine = row.fineEvaluated && row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
         int evaluated = 0;
         for (const auto& [status, count] : row.statuses) evaluated += count;
-        csv += CsvRow({row.physical->experiment.id, row.physical->experiment.compare, std::to_string(evaluated), CsvField(StatusText(row.statuses)),
+        table.AddRow({row.physical->experiment.id, row.physical->experiment.compare, std::to_string(evaluated), StatusText(row.statuses),
                        row.thesis ? CsvNumber(row.thesis->outcome.bestFitness) : "", row.thesis ? sim::Name(row.thesisBestHere.status) : "",
                        CsvNumber(row.thesisBestHere.status == sim::Status::Ok ? row.thesisBestHere.contractionPercent : NAN), CsvNumber(best),
                        CsvNumber(fine), CsvNumber(ChangeOf(best, fine).relative)});
     }
-    WriteFileAtomically((dir / chapter.folder / "comparison.csv").string(), csv);
+    WriteFileAtomically((dir / chapter.folder / "comparison.csv").string(), table.Csv());
     chapter.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return chapter;
 }

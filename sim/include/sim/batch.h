@@ -5,28 +5,10 @@
 #include <functional>
 #include <vector>
 
+#include "sim/model.h"
 #include "sim/search.h"
-#include "sim/shell.h"
-#include "sim/solver.h"
 
 namespace sim {
-
-// One evaluation: a design under a model. The thesis model reads `mesh` and `params`; the membrane
-// and shell models read `shell`.
-struct EvalJob {
-    Shape shape;
-    MeshDef mesh;
-    SimParams params;
-    ModelKind model = ModelKind::Thesis;
-    ShellDef shell;
-};
-
-// The job's evaluation under its model.
-SimResult Evaluate(const EvalJob& job);
-// Empty when the job can be evaluated; otherwise what is wrong (shape, parameters, mesh).
-std::string JobError(const EvalJob& job);
-// The triangles and edges a job's meshes are drawn with.
-Surface SurfaceOf(const EvalJob& job);
 
 // Sweeps over jobs: a shape parameter lives in the job's shape, the pressure in its shell load.
 double SweepValue(const EvalJob& job, SweepParameter parameter);

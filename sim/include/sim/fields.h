@@ -280,14 +280,14 @@ inline std::string JobFieldsError(const sim::EvalJob& job) {
     std::string error;
     detail::RangeChecker check{error};
     if (job.model == sim::ModelKind::Thesis) {
-        VisitFields(job.mesh, check);
-        VisitFields(job.params, check);
+        VisitFields(job.Thesis().mesh, check);
+        VisitFields(job.Thesis().params, check);
     } else {
-        VisitFields(job.shell.geometry, check);
-        VisitFields(job.shell.material, check);
-        VisitFields(job.shell.load, check);
-        VisitFields(job.shell.solver, check);
-        VisitFields(job.shell.fibres, check);
+        VisitFields(job.Shell().geometry, check);
+        VisitFields(job.Shell().material, check);
+        VisitFields(job.Shell().load, check);
+        VisitFields(job.Shell().solver, check);
+        VisitFields(job.Shell().fibres, check);
     }
     return error;
 }

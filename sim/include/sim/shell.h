@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim/mesh.h"
+#include "sim/result.h"
 #include "sim/names.h"
 #include "sim/shape.h"
 #include "sim/status.h"
@@ -142,29 +143,7 @@ double EvaluationBytesEstimate(const ShellDef& def);
 // up front, before any allocation (ShellDefError).
 constexpr double kMaxEvaluationBytes = 8.0 * 1024 * 1024 * 1024;
 
-// What an evaluation of a shell model says beyond the common result fields (SHELL.md section 10).
-struct ShellOutputs {
-    std::vector<double> curvePressureKpa;          // the load steps' pressures
-    std::vector<double> curveContractionPercent;   // contraction at each (positive = shorter)
-    std::vector<double> curveVolumeMm3;            // enclosed volume at each
-    double targetPressureKpa = NAN;                // the pressure the contraction is reported at
-    double limitPressureKpa = NAN;                 // the pressure maximum, when met
-    double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
-    double axialStiffnessNPerMm = NAN;             // dF/du at the free equilibrium
-    double restVolumeMm3 = NAN, volumeMm3 = NAN;   // enclosed, caps included
-    double maxStretch = NAN;                       // largest principal stretch of the wall
-    double maxStressKpa = NAN;                     // largest principal true (Cauchy) stress
-    double stretchLimit = NAN, tensileStrengthKpa = NAN;  // the material's, to compare with
-    double displacementMm = NAN;                   // top clamp's axial displacement u
-    double maxFibreStrain = NAN, meanFibreStrain = NAN;  // fibre stretch - 1 at the target (fibres only)
-    double fibreAngleDeg = NAN;                    // the fibres' mean angle to the axis in the middle third
-    int newtonIterations = 0;
-    int factorizations = 0;
-    std::vector<Positions> steps;                  // positions at each load step (for pictures)
-};
-
 // A design evaluated under a shell model (bending on: `shell`; off: `membrane`). Pure and thread-safe.
-struct SimResult;
 SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending);
 
 // The wall's triangles (and caps) and edges for drawing, in the model's vertex order.

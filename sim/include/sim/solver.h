@@ -11,7 +11,7 @@
 #include "sim/mesh.h"
 #include "sim/names.h"
 #include "sim/shape.h"
-#include "sim/shell.h"
+#include "sim/result.h"
 #include "sim/status.h"
 
 namespace sim {
@@ -48,17 +48,6 @@ std::string SimParamsError(const SimParams& params);
 // The largest iteration count any command accepts: about 15 minutes of a 30x30 evaluation.
 constexpr int kMaxIterations = 100'000'000;
 
-struct SimResult {
-    Status status = Status::Ok;
-    double fitness = 0.0;             // mesh units; NaN unless status is Ok
-    double contractionPercent = 0.0;  // 100 * fitness / turns; NaN unless status is Ok
-    int iterationsRun = 0;            // thesis: where the run stopped (== params.iterations when Ok);
-                                      // membrane and shell: Newton iterations, all load steps
-    double elapsedMs = 0.0;           // wall time of the relaxation alone
-    Positions initial;                // the shaped rest mesh
-    Positions final;                  // positions after the last iteration run
-    ShellOutputs shell;               // membrane and shell models only
-};
 
 // Called every `interval` iterations (and with iteration 0 before the first) with the current
 // positions; used for time-lapse frames. Return false to stop the run early.

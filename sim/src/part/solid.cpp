@@ -105,12 +105,12 @@ double Degrees(int i, int nt) { return 360.0 * (i % nt) / nt; }
 RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error) {
     const double pi = std::numbers::pi;
     if (job.model == ModelKind::Thesis) {
-        if (std::string e = ShapeError(job.shape, job.mesh); !e.empty()) {
+        if (std::string e = ShapeError(job.shape, job.Thesis().mesh); !e.empty()) {
             *error = e;
             return {};
         }
-        const Positions p = BuildInitialPositions(job.shape, job.mesh);
-        const int r = job.mesh.resolution, n = VertexCount(job.mesh), turns = job.mesh.turns;
+        const Positions p = BuildInitialPositions(job.shape, job.Thesis().mesh);
+        const int r = job.Thesis().mesh.resolution, n = VertexCount(job.Thesis().mesh), turns = job.Thesis().mesh.turns;
         std::vector<double> rho(static_cast<size_t>(n));
         for (int i = 0; i < n; ++i) rho[i] = std::hypot(p.x[i], p.y[i]);
         // Vertex i lies at helix angle 2 pi i / R (x = sin, y = cos) and height (i + 1) / R turns.
@@ -128,9 +128,9 @@ RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error) {
             return (1 - w) * along(below) + w * along(below + r);
         };
     }
-    const ShellProblem problem = BuildTubeProblem(job.shell, job.shape, job.model == ModelKind::Shell, error);
+    const ShellProblem problem = BuildTubeProblem(job.Shell(), job.shape, job.model == ModelKind::Shell, error);
     if (!error->empty()) return {};
-    const GeometryDef& g = job.shell.geometry;
+    const GeometryDef& g = job.Shell().geometry;
     const int r = g.ringVertices, rings = RingCount(g);
     std::vector<double> rho(static_cast<size_t>(r) * rings);
     for (int v = 0; v < r * rings; ++v) rho[v] = std::hypot(problem.rest.x[v], problem.rest.y[v]) / g.radiusMm;

@@ -14,7 +14,7 @@ std::vector<sim::EvalJob> Jobs(int count) {
     for (int k = 0; k < count; ++k) {
         sim::SimParams params;
         params.iterations = 50 + 37 * (k % 5);  // uneven work, so jobs finish out of order
-        jobs.push_back({sim::SineShape{1 + 0.2 * k, 0.5, 2.6}, sim::MeshDef{12, 8}, params});
+        jobs.push_back({sim::SineShape{1 + 0.2 * k, 0.5, 2.6}, sim::ModelKind::Thesis, sim::ThesisDef{sim::MeshDef{12, 8}, params}});
     }
     return jobs;
 }

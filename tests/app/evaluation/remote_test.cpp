@@ -269,10 +269,10 @@ TEST_F(Remote, RequestsAreRangedBoundedQueuedAndDroppedWithTheirClient) {
     ASSERT_GT(server.Port(), 0);
     auto shellJob = [](auto edit) {
         sim::EvalJob job;
-        job.model = sim::ModelKind::Shell;
-        job.shell = sim::DefaultShellDef();
-        job.shell.geometry.ringVertices = 12;
-        job.shell.geometry.rings = 16;
+        job.SetModel(sim::ModelKind::Shell);
+        job.Shell() = sim::DefaultShellDef();
+        job.Shell().geometry.ringVertices = 12;
+        job.Shell().geometry.rings = 16;
         job.shape = sim::CylinderShape{};
         edit(job);
         return job;
@@ -289,14 +289,14 @@ TEST_F(Remote, RequestsAreRangedBoundedQueuedAndDroppedWithTheirClient) {
         }
         return "accepted";
     };
-    EXPECT_THAT(refusal({shellJob([](auto& j) { j.shell.solver.maxBisections = 31; })}), HasSubstr("max_bisections: 31 is out of range (0 to 30)"));
-    EXPECT_THAT(refusal({shellJob([](auto& j) { j.shell.geometry.lengthMm = 1e6; })}), HasSubstr("length_mm: 1e+06 is out of range"));
+    EXPECT_THAT(refusal({shellJob([](auto& j) { j.Shell().solver.maxBisections = 31; })}), HasSubstr("max_bisections: 31 is out of range (0 to 30)"));
+    EXPECT_THAT(refusal({shellJob([](auto& j) { j.Shell().geometry.lengthMm = 1e6; })}), HasSubstr("length_mm: 1e+06 is out of range"));
     // One shape alone, inside every field's range, but asking for more work than a call may.
     EXPECT_THAT(refusal({shellJob([](auto& j) {
-                    j.shell.geometry.ringVertices = 200;
-                    j.shell.geometry.rings = 200;
-                    j.shell.load.steps = 1000;
-                    j.shell.solver.maxIterations = 10000;
+                    j.Shell().geometry.ringVertices = 200;
+                    j.Shell().geometry.rings = 200;
+                    j.Shell().load.steps = 1000;
+                    j.Shell().solver.maxIterations = 10000;
                 })}),
                 HasSubstr("units of work, more than"));
 
@@ -309,7 +309,7 @@ TEST_F(Remote, RequestsAreRangedBoundedQueuedAndDroppedWithTheirClient) {
         for (unsigned k = 0; k < 40; ++k) {
             sim::EvalJob job;
             job.shape = sim::SineShape{1 + 0.01 * k, 0.5, 2.64};
-            job.params.iterations = 300000;
+            job.Thesis().params.iterations = 300000;
             app::SetJob(list[k], job);
         }
         auto pending = call.send();
@@ -329,7 +329,7 @@ TEST_F(Remote, RequestsAreRangedBoundedQueuedAndDroppedWithTheirClient) {
             auto call = client.getMain<app::schema::Evaluator>().evaluateRequest();
             sim::EvalJob job;
             job.shape = sim::SineShape{1.0 + c, 0.5, 2.64};
-            job.params.iterations = 3000;
+            job.Thesis().params.iterations = 3000;
             app::SetJob(call.initRequests(1)[0], job);
             fitness[c] = call.send().wait(client.getWaitScope()).getResponses()[0].getResult().getFitness();
         });
@@ -337,7 +337,7 @@ TEST_F(Remote, RequestsAreRangedBoundedQueuedAndDroppedWithTheirClient) {
     for (int c = 0; c < 3; ++c) {
         sim::EvalJob job;
         job.shape = sim::SineShape{1.0 + c, 0.5, 2.64};
-        job.params.iterations = 3000;
+        job.Thesis().params.iterations = 3000;
         EXPECT_EQ(fitness[c], sim::Evaluate(job).fitness) << "client " << c;
     }
     EXPECT_TRUE(server.Alive());

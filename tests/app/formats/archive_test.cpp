@@ -29,14 +29,14 @@ protected:
 
     static app::ArchiveRecord Sample(int k) {
         app::ArchiveRecord a;
-        a.job.mesh = sim::MeshDef{12, 6};
-        a.job.params = sim::DefaultSimParams();
-        a.job.params.iterations = 300 + k;
-        a.job.params.load = k % 2 ? sim::Load::Stretch : sim::Load::Inflate;
-        a.job.params.precision = k == 1 ? sim::Precision::Double : sim::Precision::Float;
+        a.job.Thesis().mesh = sim::MeshDef{12, 6};
+        a.job.Thesis().params = sim::DefaultSimParams();
+        a.job.Thesis().params.iterations = 300 + k;
+        a.job.Thesis().params.load = k % 2 ? sim::Load::Stretch : sim::Load::Inflate;
+        a.job.Thesis().params.precision = k == 1 ? sim::Precision::Double : sim::Precision::Float;
         const sim::Genome genome{{1.0 + k, 2, 3, 4, 5}, {8, 0, 4, 4}};
         a.job.shape = k == 2 ? sim::Shape(sim::SineShape{4.1, 0.5, std::numbers::pi - 0.5}) : sim::Shape(sim::BSplineShape{sim::SplineRegion::Middle, genome});
-        a.result = sim::Evaluate(a.job.shape, a.job.mesh, a.job.params);
+        a.result = sim::Evaluate(a.job.shape, a.job.Thesis().mesh, a.job.Thesis().params);
         a.experiment = "test";
         a.run = k;
         a.generation = 10 + k;
@@ -75,10 +75,10 @@ TEST_F(Archive, RoundTripKeepsEveryFieldAndMeshesExactly) {
         EXPECT_EQ(got.role, expected.role);
         EXPECT_EQ(got.label, expected.label);
         EXPECT_EQ(got.job.shape, expected.job.shape);
-        EXPECT_EQ(got.job.params.iterations, expected.job.params.iterations);
-        EXPECT_EQ(got.job.params.load, expected.job.params.load);
-        EXPECT_EQ(got.job.params.precision, expected.job.params.precision);
-        EXPECT_EQ(got.job.mesh.resolution, 12);
+        EXPECT_EQ(got.job.Thesis().params.iterations, expected.job.Thesis().params.iterations);
+        EXPECT_EQ(got.job.Thesis().params.load, expected.job.Thesis().params.load);
+        EXPECT_EQ(got.job.Thesis().params.precision, expected.job.Thesis().params.precision);
+        EXPECT_EQ(got.job.Thesis().mesh.resolution, 12);
         EXPECT_EQ(got.result.fitness, expected.result.fitness);  // doubles exactly
         EXPECT_EQ(got.result.status, expected.result.status);
         EXPECT_EQ(got.result.iterationsRun, expected.result.iterationsRun);

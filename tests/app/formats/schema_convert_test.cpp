@@ -28,20 +28,20 @@ TEST(SchemaConvert, EveryShapeAndSettingRoundTrips) {
     params.precision = sim::Precision::Double;
     for (const auto& shape : shapes) {
         capnp::MallocMessageBuilder message;
-        const sim::EvalJob job{shape, sim::MeshDef{12, 7}, params};
+        const sim::EvalJob job{shape, sim::ModelKind::Thesis, sim::ThesisDef{sim::MeshDef{12, 7}, params}};
         app::SetJob(message.initRoot<app::schema::EvalRequest>(), job);
         const sim::EvalJob back = app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader());
         EXPECT_EQ(back.shape, shape) << sim::ShapeName(shape);
-        EXPECT_EQ(back.mesh.resolution, 12);
-        EXPECT_EQ(back.mesh.turns, 7);
-        EXPECT_EQ(back.params.iterations, 1234);
-        EXPECT_EQ(back.params.load, sim::Load::None);
-        EXPECT_EQ(back.params.springConstant, 0.123);
-        EXPECT_EQ(back.params.pressureScale, 0.0042);
-        EXPECT_EQ(back.params.pullForce, 0.9);
-        EXPECT_EQ(back.params.stepScale, 0.06);
-        EXPECT_EQ(back.params.divergenceLimit, 55);
-        EXPECT_EQ(back.params.precision, sim::Precision::Double);
+        EXPECT_EQ(back.Thesis().mesh.resolution, 12);
+        EXPECT_EQ(back.Thesis().mesh.turns, 7);
+        EXPECT_EQ(back.Thesis().params.iterations, 1234);
+        EXPECT_EQ(back.Thesis().params.load, sim::Load::None);
+        EXPECT_EQ(back.Thesis().params.springConstant, 0.123);
+        EXPECT_EQ(back.Thesis().params.pressureScale, 0.0042);
+        EXPECT_EQ(back.Thesis().params.pullForce, 0.9);
+        EXPECT_EQ(back.Thesis().params.stepScale, 0.06);
+        EXPECT_EQ(back.Thesis().params.divergenceLimit, 55);
+        EXPECT_EQ(back.Thesis().params.precision, sim::Precision::Double);
     }
 }
 
@@ -67,8 +67,8 @@ TEST(SchemaConvert, ResultsAndStatusesRoundTrip) {
 TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     sim::EvalJob job;
     job.shape = sim::SineShape{1.3, 0.5, 2.5};
-    job.model = sim::ModelKind::Membrane;
-    sim::ShellDef& d = job.shell;
+    job.SetModel(sim::ModelKind::Membrane);
+    sim::ShellDef& d = job.Shell();
     d.geometry = {7.5, 90, 1.25, 24, 40, 3, sim::EndCondition::Sliding};
     d.material = sim::MaterialPresetDef(sim::MaterialPreset::DragonSkin10);
     d.material.law = sim::MaterialLaw::Yeoh;
@@ -84,7 +84,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     const sim::EvalJob back = app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader());
     EXPECT_EQ(back.model, sim::ModelKind::Membrane);
     EXPECT_EQ(back.shape, job.shape);
-    const sim::ShellDef& b = back.shell;
+    const sim::ShellDef& b = back.Shell();
     EXPECT_EQ(std::tie(b.geometry.radiusMm, b.geometry.lengthMm, b.geometry.thicknessMm, b.geometry.ringVertices, b.geometry.rings, b.geometry.clampRings,
                        b.geometry.ends),
               std::tie(d.geometry.radiusMm, d.geometry.lengthMm, d.geometry.thicknessMm, d.geometry.ringVertices, d.geometry.rings, d.geometry.clampRings,
@@ -136,7 +136,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
 TEST(SchemaConvert, AThesisRecordReadsAsTheThesisModel) {
     // Records written before the shell models have no model field: it reads as 0, thesis.
     capnp::MallocMessageBuilder message;
-    const sim::EvalJob job{sim::CylinderShape{}, sim::MeshDef{12, 7}, sim::DefaultSimParams()};
+    const sim::EvalJob job{sim::CylinderShape{}, sim::ModelKind::Thesis, sim::ThesisDef{sim::MeshDef{12, 7}, sim::DefaultSimParams()}};
     app::SetJob(message.initRoot<app::schema::Evaluation>(), job);
     EXPECT_EQ(message.getRoot<app::schema::Evaluation>().asReader().getModel(), app::schema::ModelKind::THESIS);
     EXPECT_FALSE(message.getRoot<app::schema::Evaluation>().asReader().hasShell());
@@ -146,7 +146,7 @@ TEST(SchemaConvert, AThesisRecordReadsAsTheThesisModel) {
 TEST(SchemaConvert, AnUnknownMaterialNameIsAnError) {
     capnp::MallocMessageBuilder message;
     sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
+    job.SetModel(sim::ModelKind::Shell);
     app::SetJob(message.initRoot<app::schema::EvalRequest>(), job);
     message.getRoot<app::schema::EvalRequest>().getShell().setPreset("unobtainium");
     EXPECT_THROW(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()), std::runtime_error);
@@ -162,14 +162,14 @@ TEST(SchemaConvert, AnUnknownEnumValueIsAnError) {
 TEST(SchemaConvert, JobsAndResultsAsBytesRoundTripExactlyAndGarbageIsRefused) {
     sim::EvalJob job;
     job.shape = sim::BSplineShape{sim::SplineRegion::Entire, {{1, 3, 5, 2, 0}, {8, 0, 4, 4, 4}}};
-    job.params = sim::DefaultSimParams();
-    job.params.iterations = 300;
-    job.mesh = sim::MeshDef{12, 9};
+    job.Thesis().params = sim::DefaultSimParams();
+    job.Thesis().params.iterations = 300;
+    job.Thesis().mesh = sim::MeshDef{12, 9};
     const sim::EvalJob back = app::JobFromBytes(app::JobBytes(job));
     EXPECT_EQ(app::JobBytes(back), app::JobBytes(job));
     EXPECT_EQ(std::get<sim::BSplineShape>(back.shape), std::get<sim::BSplineShape>(job.shape));
-    EXPECT_EQ(back.params.iterations, 300);
-    EXPECT_EQ(back.mesh.resolution, 12);
+    EXPECT_EQ(back.Thesis().params.iterations, 300);
+    EXPECT_EQ(back.Thesis().mesh.resolution, 12);
 
     const sim::SimResult result = sim::Evaluate(job);
     const sim::SimResult again = app::ResultFromBytes(app::ResultBytes(result, job.model));

@@ -99,9 +99,9 @@ TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
 
 TEST(FigureGoldens, ContactSheetOnTheSweepAxes) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Thesis;
-    job.params = sim::DefaultSimParams();
-    job.params.iterations = 1500;
+    job.SetModel(sim::ModelKind::Thesis);
+    job.Thesis().params = sim::DefaultSimParams();
+    job.Thesis().params.iterations = 1500;
     std::vector<sim::SimResult> results;
     const double amplitudes[] = {1, 2.5, 4};
     const int cycles[] = {2, 4};

@@ -12,11 +12,11 @@ namespace {
 // A small shell job (12 x 12, 1 kPa): the figures' code, not the mesh, is under test.
 sim::EvalJob SmallShellJob(const sim::Shape& shape) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
+    job.SetModel(sim::ModelKind::Shell);
     job.shape = shape;
-    job.shell.geometry.ringVertices = 12;
-    job.shell.geometry.rings = 12;
-    job.shell.load.pressureKpa = 1;
+    job.Shell().geometry.ringVertices = 12;
+    job.Shell().geometry.rings = 12;
+    job.Shell().load.pressureKpa = 1;
     return job;
 }
 
@@ -24,9 +24,9 @@ TEST(PairsScene, EachDesignIsColouredAndGivenFibresByItsOwnJob) {
     // A wavy design with one fibre family (a GA's fibre genes: the braid's +alpha off) and an isotropic
     // one of another shape, as the "best of each run" figure puts them side by side.
     sim::EvalJob fibre = SmallShellJob(sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5});
-    fibre.shell.fibres.layout = sim::FibreLayout::Braid;
-    fibre.shell.fibres.plus = false;
-    fibre.shell.fibres.angleDeg = 40;
+    fibre.Shell().fibres.layout = sim::FibreLayout::Braid;
+    fibre.Shell().fibres.plus = false;
+    fibre.Shell().fibres.angleDeg = 40;
     const sim::EvalJob plain = SmallShellJob(sim::SineShape{1.1, 0.3, std::numbers::pi - 0.3});
     const sim::SimResult fibreResult = sim::Evaluate(fibre), plainResult = sim::Evaluate(plain);
     ASSERT_EQ(fibreResult.status, sim::Status::Ok);
@@ -38,18 +38,18 @@ TEST(PairsScene, EachDesignIsColouredAndGivenFibresByItsOwnJob) {
     const render::Panel& fibreAfter = scene.panels[1];
     const render::Panel& plainAfter = scene.panels[3];
 
-    const sim::ShellFields fibreFields = sim::ShellFieldValues(fibre.shell, fibre.shape, true, fibreResult.final);
-    const sim::ShellFields plainFields = sim::ShellFieldValues(plain.shell, plain.shape, true, plainResult.final);
+    const sim::ShellFields fibreFields = sim::ShellFieldValues(fibre.Shell(), fibre.shape, true, fibreResult.final);
+    const sim::ShellFields plainFields = sim::ShellFieldValues(plain.Shell(), plain.shape, true, plainResult.final);
     EXPECT_EQ(fibreAfter.values, fibreFields.stretch) << "the fibre design's stretch, from its own rest shape";
     EXPECT_EQ(plainAfter.values, plainFields.stretch) << "the isotropic design's stretch, from its own rest shape";
     EXPECT_EQ(fibreAfter.segments.size(), fibreFields.fibres.size()) << "one family's dashes: one per wall triangle";
     sim::EvalJob braid = fibre;
-    braid.shell.fibres.plus = true;
-    EXPECT_EQ(2 * fibreAfter.segments.size(), sim::ShellFieldValues(braid.shell, braid.shape, true, fibreResult.final).fibres.size())
+    braid.Shell().fibres.plus = true;
+    EXPECT_EQ(2 * fibreAfter.segments.size(), sim::ShellFieldValues(braid.Shell(), braid.shape, true, fibreResult.final).fibres.size())
         << "one family drawn, not the braid's two";
     EXPECT_TRUE(plainAfter.segments.empty()) << "no fibres drawn on a design without them";
     // The test can tell: the other design's job gives other stretches.
-    EXPECT_NE(sim::ShellFieldValues(plain.shell, plain.shape, true, fibreResult.final).stretch, fibreFields.stretch);
+    EXPECT_NE(sim::ShellFieldValues(plain.Shell(), plain.shape, true, fibreResult.final).stretch, fibreFields.stretch);
     // The legend line about fibres appears once, however many panels have fibres (two here).
     int fibreLines = 0;
     for (const std::string& line : scene.lines) fibreLines += line.find("lines: the fibres") == 0;

@@ -329,15 +329,15 @@ TEST_F(ExportCli, RenderDrawsTheCutAwayAndTheMoldWithoutSimulating) {
 // the shell model (on its rings), measured from their rest meshes and checked like the others.
 TEST(Solid, PerVertexDesignsAreMeasuredOnTheirRestMesh) {
     sim::EvalJob thesis;
-    thesis.model = sim::ModelKind::Thesis;
-    thesis.params = sim::DefaultSimParams();
-    const int n = sim::VertexCount(thesis.mesh);
+    thesis.SetModel(sim::ModelKind::Thesis);
+    thesis.Thesis().params = sim::DefaultSimParams();
+    const int n = sim::VertexCount(thesis.Thesis().mesh);
     sim::FreeXYShape offsets;
     offsets.dx.assign(static_cast<size_t>(n), 0.0);
     offsets.dy.assign(static_cast<size_t>(n), 0.0);
     for (int i = 0; i < n; ++i) {  // a gentle bulge: the helix pushed outward about its middle, clamped turns unmoved
-        if (sim::IsClamped(thesis.mesh, i)) continue;
-        const double bulge = 0.3 * std::sin(kPi * i / n), angle = 2 * kPi * i / thesis.mesh.resolution;
+        if (sim::IsClamped(thesis.Thesis().mesh, i)) continue;
+        const double bulge = 0.3 * std::sin(kPi * i / n), angle = 2 * kPi * i / thesis.Thesis().mesh.resolution;
         offsets.dx[i] = bulge * std::sin(angle);
         offsets.dy[i] = bulge * std::cos(angle);
     }
@@ -360,8 +360,8 @@ TEST(Solid, PerVertexDesignsAreMeasuredOnTheirRestMesh) {
         EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty());
     // The shell model's rings, from an OBJ-like mesh shape: its rest mesh read back the same way.
     sim::EvalJob shell;
-    shell.model = sim::ModelKind::Shell;
-    shell.shell = sim::DefaultShellDef();
+    shell.SetModel(sim::ModelKind::Shell);
+    shell.Shell() = sim::DefaultShellDef();
     shell.shape = sim::SineShape{1.2, 0.5, kPi - 0.5};
     const sim::RadiusField rings = sim::MeasuredRadiusField(shell, &error);
     ASSERT_TRUE(rings) << error;

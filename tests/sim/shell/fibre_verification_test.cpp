@@ -24,45 +24,45 @@ double Sin(double degrees) { return std::sin(degrees * kPi / 180); }
 // against the pressure (P = p R / (mu h) = 50): an ideal McKibben muscle between its end clamps.
 sim::EvalJob McKibben(double angleDeg, double pressureKpa = 10, sim::ShellLoad load = sim::ShellLoad::Inflate) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Membrane;
+    job.SetModel(sim::ModelKind::Membrane);
     job.shape = sim::CylinderShape{};
-    sim::GeometryDef& g = job.shell.geometry;
+    sim::GeometryDef& g = job.Shell().geometry;
     g.radiusMm = 5;
     g.lengthMm = 100;
     g.thicknessMm = 1;
     g.ringVertices = 24;
     g.rings = 0;  // near-equilateral
-    job.shell.material = sim::MaterialDef{};
-    job.shell.material.muKpa = 1;
-    job.shell.material.elongationAtBreak = 100;  // the check is of the braid, not of the rubber's limits
-    job.shell.load.kind = load;
-    job.shell.load.pressureKpa = pressureKpa;
-    job.shell.load.steps = 8;
-    job.shell.solver.selfContact = false;
-    job.shell.fibres.layout = sim::FibreLayout::Braid;
-    job.shell.fibres.angleDeg = angleDeg;
-    job.shell.fibres.stiffnessNPerMm = 1e4 * 1e-3 * g.thicknessMm;  // 1e4 mu h
+    job.Shell().material = sim::MaterialDef{};
+    job.Shell().material.muKpa = 1;
+    job.Shell().material.elongationAtBreak = 100;  // the check is of the braid, not of the rubber's limits
+    job.Shell().load.kind = load;
+    job.Shell().load.pressureKpa = pressureKpa;
+    job.Shell().load.steps = 8;
+    job.Shell().solver.selfContact = false;
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
+    job.Shell().fibres.angleDeg = angleDeg;
+    job.Shell().fibres.stiffnessNPerMm = 1e4 * 1e-3 * g.thicknessMm;  // 1e4 mu h
     return job;
 }
 
 // Chou and Hannaford's blocked force at the initial length, N: p pi R0^2 (3 cos^2 a0 - 1) / sin^2 a0.
 double ChouHannafordForceN(const sim::EvalJob& job) {
-    const double angle = job.shell.fibres.angleDeg, R0 = job.shell.geometry.radiusMm;
-    return job.shell.load.pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
+    const double angle = job.Shell().fibres.angleDeg, R0 = job.Shell().geometry.radiusMm;
+    return job.Shell().load.pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
 }
 
 std::string Reproduce(const sim::EvalJob& job) {
-    const auto& f = job.shell.fibres;
+    const auto& f = job.Shell().fibres;
     return "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm 5 --length-mm 100 --thickness-mm 1 --material custom "
            "--mu-kpa 1 --elongation-at-break 100 --ring-vertices 24 --rings 0 --steps 8 --fibres " +
            std::string(sim::Name(f.layout)) + " --fibre-angle-deg " + std::to_string(f.angleDeg) + " --fibre-stiffness-n-per-mm " +
-           std::to_string(f.stiffnessNPerMm) + " --load " + sim::Name(job.shell.load.kind) + " --pressure-kpa " +
-           std::to_string(job.shell.load.pressureKpa);
+           std::to_string(f.stiffnessNPerMm) + " --load " + sim::Name(job.Shell().load.kind) + " --pressure-kpa " +
+           std::to_string(job.Shell().load.pressureKpa);
 }
 
 // The axial strain of the tube's middle third (rings H/3 to 2H/3), in percent, positive = shorter.
 double MiddleContraction(const sim::EvalJob& job, const sim::SimResult& r) {
-    const int R = job.shell.geometry.ringVertices, H = sim::RingCount(job.shell.geometry);
+    const int R = job.Shell().geometry.ringVertices, H = sim::RingCount(job.Shell().geometry);
     auto ringZ = [&](const sim::Positions& x, int j) {
         double sum = 0;
         for (int i = 0; i < R; ++i) sum += x.z[j * R + i];
@@ -127,15 +127,15 @@ TEST(FibreClosedForms, TheAxialStrainChangesSignAtTheMagicAngle) {
 // hoop fibres stop the bulge and it lengthens.
 TEST(FibreClosedForms, MeridianFibresShortenAndHoopFibresLengthenWithoutBulging) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Membrane;
+    job.SetModel(sim::ModelKind::Membrane);
     job.shape = sim::CylinderShape{};
-    job.shell.geometry.lengthMm = 60;
-    job.shell.geometry.ringVertices = 24;
-    job.shell.load.pressureKpa = 3;
+    job.Shell().geometry.lengthMm = 60;
+    job.Shell().geometry.ringVertices = 24;
+    job.Shell().load.pressureKpa = 3;
     const sim::SimResult plain = sim::Evaluate(job);
-    job.shell.fibres.layout = sim::FibreLayout::Meridian;
+    job.Shell().fibres.layout = sim::FibreLayout::Meridian;
     const sim::SimResult meridian = sim::Evaluate(job);
-    job.shell.fibres.layout = sim::FibreLayout::Hoop;
+    job.Shell().fibres.layout = sim::FibreLayout::Hoop;
     const sim::SimResult hoop = sim::Evaluate(job);
     ASSERT_EQ(plain.status, sim::Status::Ok);
     ASSERT_EQ(meridian.status, sim::Status::Ok);
@@ -144,12 +144,12 @@ TEST(FibreClosedForms, MeridianFibresShortenAndHoopFibresLengthenWithoutBulging)
     EXPECT_GT(meridian.contractionPercent, 0) << "meridian fibres: it shortens as it bulges";
     EXPECT_LT(hoop.contractionPercent, 0) << "hoop fibres: it lengthens";
     auto middleRadius = [&](const sim::SimResult& r) {
-        const int R = job.shell.geometry.ringVertices, j = sim::RingCount(job.shell.geometry) / 2;
+        const int R = job.Shell().geometry.ringVertices, j = sim::RingCount(job.Shell().geometry) / 2;
         double sum = 0;
         for (int i = 0; i < R; ++i) sum += std::hypot(r.final.x[j * R + i], r.final.y[j * R + i]);
         return sum / R;
     };
-    const double rest = job.shell.geometry.radiusMm;
+    const double rest = job.Shell().geometry.radiusMm;
     EXPECT_GT(middleRadius(meridian), 1.1 * rest) << "meridian: bulges";
     EXPECT_LT(middleRadius(hoop), 1.01 * rest) << "hoop: does not bulge";
     EXPECT_LT(hoop.shell.maxFibreStrain, 0.01);
@@ -158,17 +158,17 @@ TEST(FibreClosedForms, MeridianFibresShortenAndHoopFibresLengthenWithoutBulging)
 // Robust from no fibres to near-inextensible ones: every stiffness converges.
 TEST(FibreSolver, ConvergesFromSlackToNearInextensibleFibres) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
+    job.SetModel(sim::ModelKind::Shell);
     job.shape = sim::SineShape{1.3, 0.5, kPi - 0.5};
-    job.shell.geometry.ringVertices = 16;
-    job.shell.geometry.rings = 24;
-    job.shell.load.pressureKpa = 3;
-    job.shell.fibres.layout = sim::FibreLayout::Braid;
-    const double muH = sim::ShearModulusKpa(job.shell.material) * 1e-3 * job.shell.geometry.thicknessMm;
+    job.Shell().geometry.ringVertices = 16;
+    job.Shell().geometry.rings = 24;
+    job.Shell().load.pressureKpa = 3;
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
+    const double muH = sim::ShearModulusKpa(job.Shell().material) * 1e-3 * job.Shell().geometry.thicknessMm;
     for (double angle : {20.0, 54.7, 75.0})
         for (double ratio : {0.0, 1.0, 1e2, 1e4}) {
-            job.shell.fibres.angleDeg = angle;
-            job.shell.fibres.stiffnessNPerMm = ratio * muH;
+            job.Shell().fibres.angleDeg = angle;
+            job.Shell().fibres.stiffnessNPerMm = ratio * muH;
             const sim::SimResult r = sim::Evaluate(job);
             EXPECT_EQ(r.status, sim::Status::Ok) << "braid at " << angle << " deg, k_f = " << ratio << " mu h";
         }

@@ -453,11 +453,11 @@ namespace {
 // A design of reproduce part 2's GA runs: one B-spline over the middle of the tube, at 1 kPa.
 sim::EvalJob PartTwoDesign(std::vector<double> controlPoints) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
+    job.SetModel(sim::ModelKind::Shell);
     sim::BSplineShape shape;  // over the middle
     shape.splines = {std::move(controlPoints)};
     job.shape = shape;
-    job.shell.load.pressureKpa = 1;
+    job.Shell().load.pressureKpa = 1;
     return job;
 }
 
@@ -469,9 +469,9 @@ sim::EvalJob PartTwoDesign(std::vector<double> controlPoints) {
 // called the design a limit point, though its volume rises smoothly to the target.
 TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
     sim::EvalJob job = PartTwoDesign({7, 8, 1, 3, 5, 7});
-    job.shell.fibres.layout = sim::FibreLayout::Braid;
-    job.shell.fibres.minus = false;  // one family
-    job.shell.fibres.angleDeg = 43.6062675338317;
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
+    job.Shell().fibres.minus = false;  // one family
+    job.Shell().fibres.angleDeg = 43.6062675338317;
     const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 7,8,1,3,5,7 --model shell "
                             "--pressure-kpa 1 --fibres single --fibre-angle-deg 43.6062675338317";
     const sim::SimResult base = sim::Evaluate(job);
@@ -479,7 +479,7 @@ TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
     EXPECT_GT(base.contractionPercent, 3) << how;
     EXPECT_LT(base.contractionPercent, 3.65) << "the stable state, not the saddle; " << how;
     sim::EvalJob longer = job;
-    longer.shell.solver.maxIterations *= 2;
+    longer.Shell().solver.maxIterations *= 2;
     const sim::SimResult twice = sim::Evaluate(longer);
     EXPECT_EQ(twice.status, sim::Status::Ok) << how << " --max-iterations 400";
     EXPECT_EQ(sim::PositionsHash(twice.final), sim::PositionsHash(base.final)) << "twice the iteration cap; " << how;
@@ -493,16 +493,16 @@ TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
 // with twice the budget, which changes the path (a load step that runs out at 200 iterations is halved).
 TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) {
     sim::EvalJob job = PartTwoDesign({3, 4, 8, 3, 5, 6, 2, 2, 0, 7, 0, 0});
-    job.shell.fibres.layout = sim::FibreLayout::Braid;
-    job.shell.fibres.plus = false;  // one family, at -48.2 deg
-    job.shell.fibres.angleDeg = 48.20305967865278;
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
+    job.Shell().fibres.plus = false;  // one family, at -48.2 deg
+    job.Shell().fibres.angleDeg = 48.20305967865278;
     const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 3,4,8,3,5,6,2,2,0,7,0,0 "
                             "--model shell --pressure-kpa 1 --fibres single --fibre-angle-deg -48.20305967865278";
     const sim::SimResult base = sim::Evaluate(job);
     ASSERT_EQ(base.status, sim::Status::Ok) << how;  // ok: the exact Hessian is positive definite there
     EXPECT_NEAR(base.contractionPercent, -4.667, 0.01) << how;
     sim::EvalJob longer = job;
-    longer.shell.solver.maxIterations *= 2;
+    longer.Shell().solver.maxIterations *= 2;
     const sim::SimResult twice = sim::Evaluate(longer);
     ASSERT_EQ(twice.status, sim::Status::Ok) << how << " --max-iterations 400";
     EXPECT_NEAR(twice.contractionPercent, base.contractionPercent, 1e-6) << how << " --max-iterations 400";
@@ -520,7 +520,7 @@ TEST(ShellSolver, TheBlockingForceIsThatOfAStableHeldState) {
     ASSERT_EQ(base.status, sim::Status::Ok) << how;
     EXPECT_NEAR(base.shell.blockingForceN, -0.1767, 1e-3) << how;
     sim::EvalJob longer = job;
-    longer.shell.solver.maxIterations *= 2;
+    longer.Shell().solver.maxIterations *= 2;
     EXPECT_NEAR(sim::Evaluate(longer).shell.blockingForceN, base.shell.blockingForceN, 1e-6) << how << " --max-iterations 400";
 }
 
@@ -541,19 +541,19 @@ TEST(ShellSolver, ANegativePivotWithoutNegativeCurvatureIsNoInstability) {
 // The answer does not depend on the solver's budget, or on threads.
 TEST(ShellSolver, TheResultDoesNotDependOnTheBudgetOrTheThreads) {
     sim::EvalJob job;
-    job.model = sim::ModelKind::Shell;
+    job.SetModel(sim::ModelKind::Shell);
     job.shape = sim::SineShape{1.3, 0.5, kPi - 0.5};
-    job.shell.geometry.lengthMm = 60;
-    job.shell.geometry.ringVertices = 24;
-    job.shell.geometry.rings = 0;  // near-equilateral triangles
-    job.shell.load.pressureKpa = 4;
+    job.Shell().geometry.lengthMm = 60;
+    job.Shell().geometry.ringVertices = 24;
+    job.Shell().geometry.rings = 0;  // near-equilateral triangles
+    job.Shell().load.pressureKpa = 4;
     const sim::SimResult base = sim::Evaluate(job);
     ASSERT_EQ(base.status, sim::Status::Ok);
     sim::EvalJob tighter = job;
-    tighter.shell.solver.tolerance /= 100;
+    tighter.Shell().solver.tolerance /= 100;
     EXPECT_NEAR(sim::Evaluate(tighter).contractionPercent / base.contractionPercent, 1, 1e-6) << "tolerance 100 x tighter";
     sim::EvalJob longer = job;
-    longer.shell.solver.maxIterations *= 2;
+    longer.Shell().solver.maxIterations *= 2;
     EXPECT_EQ(sim::PositionsHash(sim::Evaluate(longer).final), sim::PositionsHash(base.final)) << "twice the iteration cap";
     const auto one = sim::EvaluateBatch({job, job}, 1), two = sim::EvaluateBatch({job, job}, 2);
     for (size_t k = 0; k < 2; ++k) {

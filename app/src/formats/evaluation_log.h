@@ -1,0 +1,32 @@
+// DIR/evaluations.csv: one row per evaluation (id, role, run, generation, label, shape, model,
+// status, fitness, contraction, iterations, thumbnail, design, and the physical models' outputs),
+// appended as each is recorded; a record sink.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "formats/csv.h"
+#include "formats/record_sink.h"
+#include "sim/shape.h"
+
+namespace app {
+
+// A design as one line of text: a GA genome as its genes (splines ';'-separated, as --control-points
+// takes them; free-xy offsets as dx,dy,... as --offsets takes them), a sine by its parameters.
+std::string DesignText(const sim::Shape& shape);
+
+class EvaluationLog final : public RecordSink {
+public:
+    // `thumbnails`: whether the run pictures each evaluation (the thumbnail column names its file).
+    EvaluationLog(std::filesystem::path path, bool thumbnails);
+    void Append(const ArchiveRecord& record) override;
+    void RollBack(std::uint64_t keep, const std::vector<ArchiveRecord>& kept) override;
+
+private:
+    std::filesystem::path path_;
+    bool thumbnails_;
+    CsvLog log_;
+};
+
+}  // namespace app

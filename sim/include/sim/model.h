@@ -1,0 +1,87 @@
+// A model is a row in one table. An evaluation job is a design and a model with its def; everything
+// a caller asks of a model (evaluate the job, check it, the surface its meshes are drawn on, an
+// estimate of its work, how its fitness is named) is asked of the model's row, never by testing the
+// kind. Adding a model: its folder in sim/src/, its def in the ModelDef variant, one row in
+// model.cpp, its fields (fields.h) and its outputs (result.h); docs/architecture.md walks through it.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include "sim/shape.h"
+#include "sim/shell.h"
+#include "sim/solver.h"
+#include "sim/surface.h"
+
+namespace sim {
+
+// The thesis model's def: its helix and its constants.
+struct ThesisDef {
+    MeshDef mesh = DefaultMeshDef();
+    SimParams params = DefaultSimParams();
+};
+
+// Each model's def; membrane and shell share ShellDef (bending on or off).
+using ModelDef = std::variant<ThesisDef, ShellDef>;
+
+// One evaluation: a design under a model. `def` holds the model's def (ThesisDef for the thesis
+// model, ShellDef for membrane and shell).
+struct EvalJob {
+    Shape shape;
+    ModelKind model = ModelKind::Thesis;
+    ModelDef def = ThesisDef{};
+
+    // Sets the model, with its default def unless the job already holds a def of that kind.
+    void SetModel(ModelKind kind) {
+        model = kind;
+        if (kind == ModelKind::Thesis) Thesis();
+        else Shell();
+    }
+
+    // The model's def. The const forms require the def to be the model's; the others make it so
+    // (a job being built: set `model`, then fill its def).
+    const ThesisDef& Thesis() const { return Get<ThesisDef>(); }
+    const ShellDef& Shell() const { return Get<ShellDef>(); }
+    ThesisDef& Thesis() { return Make<ThesisDef>(ThesisDef{}); }
+    ShellDef& Shell() { return Make<ShellDef>(DefaultShellDef()); }
+
+private:
+    template <class D>
+    const D& Get() const {
+        if (const D* d = std::get_if<D>(&def)) return *d;
+        throw std::logic_error("an evaluation job asked for a def its model does not have");
+    }
+    template <class D>
+    D& Make(D fresh) {
+        if (!std::holds_alternative<D>(def)) def = std::move(fresh);
+        return std::get<D>(def);
+    }
+};
+
+// A model's row: what it does and how its numbers are named.
+struct Model {
+    ModelKind kind;
+    const char* name;
+    SimResult (*evaluate)(const EvalJob& job);      // pure, thread-safe
+    std::string (*error)(const EvalJob& job);       // empty when the job can run; else why not
+    Surface (*surface)(const EvalJob& job);         // what its meshes are drawn on
+    int (*vertices)(const EvalJob& job);            // of its meshes
+    std::uint64_t (*work)(const EvalJob& job);      // an estimate of its cost (server limits): vertex-iterations
+    const char* fitnessLabel;                       // what its fitness is, with its unit
+    const char* lengthUnit;                         // of its positions: "mesh units" or "mm"
+    bool physical;                                  // silicone in mm, kPa and N at equilibrium (not the thesis's snapshot)
+};
+
+const Model& ModelOf(ModelKind kind);
+inline const Model& ModelOf(const EvalJob& job) { return ModelOf(job.model); }
+
+// The job's evaluation under its model.
+inline SimResult Evaluate(const EvalJob& job) { return ModelOf(job).evaluate(job); }
+// Empty when the job can be evaluated; otherwise what is wrong (shape, parameters, mesh).
+std::string JobError(const EvalJob& job);
+// The triangles and edges a job's meshes are drawn with.
+inline Surface SurfaceOf(const EvalJob& job) { return ModelOf(job).surface(job); }
+
+}  // namespace sim

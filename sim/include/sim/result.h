@@ -1,0 +1,47 @@
+// What every model returns from an evaluation: a status (never an exception), the fitness and
+// contraction every search compares, the meshes before and after, and the physical models' outputs.
+// The outputs are listed by name and unit once, in model.h (VisitOutputs).
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "sim/mesh.h"
+#include "sim/status.h"
+
+namespace sim {
+
+// What an evaluation of a shell model says beyond the common result fields (docs/models/shell.md section 10).
+struct ShellOutputs {
+    std::vector<double> curvePressureKpa;          // the load steps' pressures
+    std::vector<double> curveContractionPercent;   // contraction at each (positive = shorter)
+    std::vector<double> curveVolumeMm3;            // enclosed volume at each
+    double targetPressureKpa = NAN;                // the pressure the contraction is reported at
+    double limitPressureKpa = NAN;                 // the pressure maximum, when met
+    double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
+    double axialStiffnessNPerMm = NAN;             // dF/du at the free equilibrium
+    double restVolumeMm3 = NAN, volumeMm3 = NAN;   // enclosed, caps included
+    double maxStretch = NAN;                       // largest principal stretch of the wall
+    double maxStressKpa = NAN;                     // largest principal true (Cauchy) stress
+    double stretchLimit = NAN, tensileStrengthKpa = NAN;  // the material's, to compare with
+    double displacementMm = NAN;                   // top clamp's axial displacement u
+    double maxFibreStrain = NAN, meanFibreStrain = NAN;  // fibre stretch - 1 at the target (fibres only)
+    double fibreAngleDeg = NAN;                    // the fibres' mean angle to the axis in the middle third
+    int newtonIterations = 0;
+    int factorizations = 0;
+    std::vector<Positions> steps;                  // positions at each load step (for pictures)
+};
+
+struct SimResult {
+    Status status = Status::Ok;
+    double fitness = 0.0;             // mesh units; NaN unless status is Ok
+    double contractionPercent = 0.0;  // 100 * fitness / turns; NaN unless status is Ok
+    int iterationsRun = 0;            // thesis: where the run stopped (== params.iterations when Ok);
+                                      // membrane and shell: Newton iterations, all load steps
+    double elapsedMs = 0.0;           // wall time of the relaxation alone
+    Positions initial;                // the shaped rest mesh
+    Positions final;                  // positions after the last iteration run
+    ShellOutputs shell;               // membrane and shell models only
+};
+
+}  // namespace sim

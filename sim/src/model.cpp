@@ -1,0 +1,90 @@
+// The model table: one row per model. A new model is a row here (and its folder, def and outputs).
+#include "sim/model.h"
+
+#include <algorithm>
+
+namespace sim {
+namespace {
+
+// [SECTION] thesis: the 2019 mass-spring model (docs/models/thesis.md)
+
+SimResult ThesisEvaluate(const EvalJob& job) { return Evaluate(job.shape, job.Thesis().mesh, job.Thesis().params); }
+
+std::string ThesisError(const EvalJob& job) {
+    if (std::string error = SimParamsError(job.Thesis().params); !error.empty()) return error;
+    return ShapeError(job.shape, job.Thesis().mesh);
+}
+
+Surface ThesisSurface(const EvalJob& job) { return HelixSurface(job.Thesis().mesh); }
+int ThesisVertices(const EvalJob& job) { return std::max(0, VertexCount(job.Thesis().mesh)); }
+
+// A relaxation step per vertex.
+std::uint64_t ThesisWork(const EvalJob& job) {
+    return static_cast<std::uint64_t>(ThesisVertices(job)) * static_cast<std::uint64_t>(std::max(1, job.Thesis().params.iterations));
+}
+
+// [SECTION] membrane and shell: silicone at equilibrium (docs/models/shell.md)
+
+SimResult MembraneEvaluate(const EvalJob& job) { return EvaluateShell(job.shape, job.Shell(), false); }
+SimResult ShellEvaluate(const EvalJob& job) { return EvaluateShell(job.shape, job.Shell(), true); }
+
+std::string ShellError(const EvalJob& job) {
+    if (std::string error = ShellDefError(job.Shell()); !error.empty()) return error;
+    // Shapes are checked as the thesis defines them; sizes that depend on the ring mesh (free-xy,
+    // mesh) are checked when the tube is built, and a design that cannot be built is the status
+    // invalid-geometry, not an input error.
+    const GeometryDef& g = job.Shell().geometry;
+    const MeshDef ringMesh{g.ringVertices, RingCount(g)};
+    if (std::holds_alternative<FreeXYShape>(job.shape) || std::holds_alternative<MeshShape>(job.shape)) {
+        const size_t n = static_cast<size_t>(ringMesh.resolution) * ringMesh.turns;
+        const size_t got = std::holds_alternative<FreeXYShape>(job.shape) ? std::get<FreeXYShape>(job.shape).dx.size()
+                                                                         : static_cast<size_t>(std::get<MeshShape>(job.shape).positions.Size());
+        if (got != n)
+            return std::string(ShapeName(job.shape)) + " needs one entry per vertex of the " + std::to_string(g.ringVertices) + " x " +
+                   std::to_string(ringMesh.turns) + " ring mesh: " + std::to_string(n) + ", got " + std::to_string(got);
+        return "";
+    }
+    return ShapeError(job.shape, DefaultMeshDef());
+}
+
+Surface ShellModelSurface(const EvalJob& job) { return ShellSurface(job.Shell().geometry); }
+
+int ShellVertices(const EvalJob& job) {
+    const GeometryDef& g = job.Shell().geometry;
+    return std::max(0, g.ringVertices) * std::max(0, RingCount(g)) + 2;
+}
+
+// A Newton iteration (assembly and a sparse factorisation) costs about as much per vertex as ten
+// thousand relaxation steps of the thesis model (measured at 30 x 30); the estimate counts the
+// whole budget, every load step's Newton iterations.
+constexpr std::uint64_t kNewtonIterationWork = 10000;
+std::uint64_t ShellWork(const EvalJob& job) {
+    const ShellDef& d = job.Shell();
+    return static_cast<std::uint64_t>(ShellVertices(job)) * static_cast<std::uint64_t>(std::max(1, d.load.steps)) *
+           static_cast<std::uint64_t>(std::max(1, d.solver.maxIterations)) * kNewtonIterationWork;
+}
+
+const char* kThesisFitness = "the thesis's contraction measure, mesh units";
+const char* kContraction = "contraction at the target pressure, % (positive = shorter)";
+
+const Model kModels[] = {
+    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, kThesisFitness, "mesh units", false},
+    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, kContraction, "mm", true},
+    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, kContraction, "mm", true},
+};
+
+}  // namespace
+
+const Model& ModelOf(ModelKind kind) {
+    for (const Model& m : kModels)
+        if (m.kind == kind) return m;
+    throw std::logic_error("a model kind without a row");
+}
+
+std::string JobError(const EvalJob& job) {
+    const bool thesisDef = std::holds_alternative<ThesisDef>(job.def);
+    if (thesisDef != (job.model == ModelKind::Thesis)) return std::string("the job's settings are not the ") + Name(job.model) + " model's";
+    return ModelOf(job).error(job);
+}
+
+}  // namespace sim
