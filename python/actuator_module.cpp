@@ -269,31 +269,23 @@ py::array_t<std::uint8_t> ImageArray(render::Image&& image) {
     return py::array_t<std::uint8_t>({image.height, image.width, 4}, owned->data(), free);
 }
 
-py::dict ShellOutputs(const Evaluated& e) {
-    const sim::ShellOutputs& o = e.result.shell;
-    py::dict d;
-    if (e.job.model == sim::ModelKind::Thesis) return d;
-    auto array = [](const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); };
-    d["curve_pressure_kpa"] = array(o.curvePressureKpa);
-    d["curve_contraction_percent"] = array(o.curveContractionPercent);
-    d["curve_volume_mm3"] = array(o.curveVolumeMm3);
-    d["pressure_kpa"] = o.targetPressureKpa;  // the names of `actuator simulate`'s JSON
-    d["limit_pressure_kpa"] = o.limitPressureKpa;
-    d["blocking_force_n"] = o.blockingForceN;
-    d["axial_stiffness_n_per_mm"] = o.axialStiffnessNPerMm;
-    d["rest_volume_mm3"] = o.restVolumeMm3;
-    d["volume_mm3"] = o.volumeMm3;
-    d["max_stretch"] = o.maxStretch;
-    d["max_stress_kpa"] = o.maxStressKpa;
-    d["stretch_limit"] = o.stretchLimit;
-    d["tensile_strength_kpa"] = o.tensileStrengthKpa;
-    d["displacement_mm"] = o.displacementMm;
-    d["max_fibre_strain"] = o.maxFibreStrain;
-    d["mean_fibre_strain"] = o.meanFibreStrain;
-    d["fibre_angle_deg"] = o.fibreAngleDeg;
-    d["newton_iterations"] = o.newtonIterations;
-    d["factorizations"] = o.factorizations;
-    return d;
+// The model's own outputs as `actuator simulate`'s JSON names them (the same visit writes both);
+// curves as NumPy arrays. Fitness, contraction and time are the Result's own attributes.
+py::dict ModelOutputs(const Evaluated& e) {
+    struct Dict final : sim::OutputVisitor {
+        py::dict d;
+        static bool Common(const std::string& name) { return name == "fitness" || name == "contraction_percent" || name == "elapsed_ms"; }
+        void Number(const char* name, const char*, double value) override {
+            if (!Common(name)) d[name] = value;
+        }
+        void Count(const char* name, long long value) override { d[name] = value; }
+        void Curve(const char* name, const char*, const std::vector<double>& v) override {
+            d[name] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+        }
+    } dict;
+    if (!sim::ModelOf(e.job).physical) return dict.d;
+    sim::VisitOutputs(e.result, e.job, dict);
+    return dict.d;
 }
 
 }  // namespace
@@ -359,7 +351,7 @@ PYBIND11_MODULE(actuator, m) {
         py::arg("dx"),
         py::arg("dy"), "The plain tube with an (dx, dy) offset per vertex of the model's mesh (thesis 5.5).");
 
-    BindDef<sim::SimParams>(m, "ThesisParams", "The thesis model's constants (shared/MODEL.md).", sim::DefaultSimParams());
+    BindDef<sim::SimParams>(m, "ThesisParams", "The thesis model's constants (docs/models/thesis.md).", sim::DefaultSimParams());
     BindDef<sim::MeshDef>(m, "Mesh", "The thesis model's helix.", sim::DefaultMeshDef());
     const sim::ShellDef shell = sim::DefaultShellDef();
     BindDef<sim::GeometryDef>(m, "Geometry", "The membrane and shell models' tube, in mm.", shell.geometry);
@@ -376,7 +368,7 @@ PYBIND11_MODULE(actuator, m) {
                                "the preset the constants started from (figures and JSON name it)");
     BindDef<sim::LoadDef>(m, "Load", "The membrane and shell models' load.", shell.load);
     BindDef<sim::SolverDef>(m, "Solver", "The membrane and shell models' Newton solver.", shell.solver);
-    BindDef<sim::FibreDef>(m, "Fibres", "Fibres on the membrane or shell wall (SHELL.md section 7).", shell.fibres);
+    BindDef<sim::FibreDef>(m, "Fibres", "Fibres on the membrane or shell wall (docs/models/shell.md section 7).", shell.fibres);
 
     py::class_<Evaluated>(m, "Result", "One evaluation: numbers, status, the meshes before and after, and the job that made it.")
         .def_property_readonly("status", [](const Evaluated& e) { return std::string(sim::Name(e.result.status)); },
@@ -391,7 +383,7 @@ PYBIND11_MODULE(actuator, m) {
         .def_property_readonly("shape", [](const Evaluated& e) { return Design{e.job.shape}; })
         .def_property_readonly("initial", [](const Evaluated& e) { return Rows(e.result.initial); }, "(N, 3) rest positions")
         .def_property_readonly("final", [](const Evaluated& e) { return Rows(e.result.final); }, "(N, 3) positions after the load")
-        .def_property_readonly("shell", &ShellOutputs,
+        .def_property_readonly("shell", &ModelOutputs,
                                "membrane and shell models: the pressure-contraction-volume curve (NumPy arrays) and the numbers at the "
                                "target pressure, named as in `actuator simulate`'s JSON, units in the names; {} for the thesis model")
         .def("__repr__", [](const Evaluated& e) {

@@ -2,6 +2,7 @@
 #include "sim/model.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sim {
 namespace {
@@ -21,6 +22,11 @@ int ThesisVertices(const EvalJob& job) { return std::max(0, VertexCount(job.Thes
 // A relaxation step per vertex.
 std::uint64_t ThesisWork(const EvalJob& job) {
     return static_cast<std::uint64_t>(ThesisVertices(job)) * static_cast<std::uint64_t>(std::max(1, job.Thesis().params.iterations));
+}
+
+void ThesisOutputs(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
+    v.Count("iterations", r.iterationsRun);
+    v.Count("iterations_requested", job.Thesis().params.iterations);
 }
 
 // [SECTION] membrane and shell: silicone at equilibrium (docs/models/shell.md)
@@ -47,6 +53,31 @@ std::string ShellError(const EvalJob& job) {
     return ShapeError(job.shape, DefaultMeshDef());
 }
 
+void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
+    const ShellOutputs& s = r.shell;
+    v.Number("pressure_kpa", "kPa", s.targetPressureKpa);
+    v.Number("limit_pressure_kpa", "kPa", s.limitPressureKpa);
+    v.Number("blocking_force_n", "N", s.blockingForceN);
+    v.Number("axial_stiffness_n_per_mm", "N/mm", s.axialStiffnessNPerMm);
+    v.Number("displacement_mm", "mm", s.displacementMm);
+    v.Number("rest_volume_mm3", "mm^3", s.restVolumeMm3);
+    v.Number("volume_mm3", "mm^3", s.volumeMm3);
+    v.Number("max_stretch", "", s.maxStretch);
+    v.Number("stretch_limit", "", s.stretchLimit);
+    v.Number("max_stress_kpa", "kPa", s.maxStressKpa);
+    v.Number("tensile_strength_kpa", "kPa", s.tensileStrengthKpa);
+    if (job.Shell().fibres.layout != FibreLayout::None) {
+        v.Number("max_fibre_strain", "", s.maxFibreStrain);
+        v.Number("mean_fibre_strain", "", s.meanFibreStrain);
+        v.Number("fibre_angle_deg", "deg", s.fibreAngleDeg);
+    }
+    v.Count("newton_iterations", s.newtonIterations);
+    v.Count("factorizations", s.factorizations);
+    v.Curve("curve_pressure_kpa", "kPa", s.curvePressureKpa);
+    v.Curve("curve_contraction_percent", "%", s.curveContractionPercent);
+    v.Curve("curve_volume_mm3", "mm^3", s.curveVolumeMm3);
+}
+
 Surface ShellModelSurface(const EvalJob& job) { return ShellSurface(job.Shell().geometry); }
 
 int ShellVertices(const EvalJob& job) {
@@ -68,9 +99,11 @@ const char* kThesisFitness = "the thesis's contraction measure, mesh units";
 const char* kContraction = "contraction at the target pressure, % (positive = shorter)";
 
 const Model kModels[] = {
-    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, kThesisFitness, "mesh units", false},
-    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, kContraction, "mm", true},
-    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, kContraction, "mm", true},
+    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, ThesisOutputs, kThesisFitness, "mesh units",
+     false},
+    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellOutputList, kContraction, "mm",
+     true},
+    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellOutputList, kContraction, "mm", true},
 };
 
 }  // namespace
@@ -79,6 +112,37 @@ const Model& ModelOf(ModelKind kind) {
     for (const Model& m : kModels)
         if (m.kind == kind) return m;
     throw std::logic_error("a model kind without a row");
+}
+
+void VisitOutputs(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
+    const bool ok = r.status == Status::Ok;
+    const Model& model = ModelOf(job);
+    v.Number("fitness", model.physical ? "%" : "mesh units", ok ? r.fitness : NAN);
+    v.Number("contraction_percent", "%", ok ? r.contractionPercent : NAN);
+    model.outputs(r, job, v);
+    v.Number("elapsed_ms", "ms", r.elapsedMs);
+}
+
+std::vector<std::string> OutputNames(bool withTime) {
+    struct Names final : OutputVisitor {
+        std::vector<std::string> names;
+        bool withTime = false;
+        void Add(const char* name) {
+            if (!withTime && std::string(name) == "elapsed_ms") return;
+            if (std::find(names.begin(), names.end(), name) == names.end()) names.emplace_back(name);
+        }
+        void Number(const char* name, const char*, double) override { Add(name); }
+        void Count(const char* name, long long) override { Add(name); }
+        void Curve(const char*, const char*, const std::vector<double>&) override {}
+    } names;
+    names.withTime = withTime;
+    for (const Model& model : kModels) {
+        EvalJob job;
+        job.SetModel(model.kind);
+        if (auto* shell = std::get_if<ShellDef>(&job.def)) shell->fibres.layout = FibreLayout::Braid;  // every output a shell job can have
+        VisitOutputs(SimResult{}, job, names);
+    }
+    return names.names;
 }
 
 std::string JobError(const EvalJob& job) {

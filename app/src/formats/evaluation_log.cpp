@@ -1,8 +1,10 @@
 #include "formats/evaluation_log.h"
 
 #include <cmath>
+#include <map>
 #include <fmt/format.h>
 
+#include "sim/model.h"
 #include "sim/search.h"
 
 namespace app {
@@ -10,12 +12,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The membrane and shell models' outputs follow the common columns; empty under the thesis model.
-const std::vector<std::string> kLogHeader{"evaluation",       "role",         "run",         "generation",         "label",
-                                          "shape",            "model",        "status",      "fitness",            "contraction_percent",
-                                          "iterations",       "thumbnail",    "design",      "pressure_kpa",       "limit_pressure_kpa",
-                                          "blocking_force_n", "axial_stiffness_n_per_mm", "volume_mm3", "max_stretch", "max_stress_kpa",
-                                          "fibres",           "max_fibre_strain", "fibre_angle_deg"};
+// Who and what, every model's outputs by name (empty where a row's model has none), the fibre
+// layout, the picture and the design.
+std::vector<std::string> LogHeader() {
+    std::vector<std::string> header{"evaluation", "role", "run", "generation", "label", "shape", "model", "status"};
+    for (std::string& name : sim::OutputNames(false)) header.push_back(std::move(name));
+    header.push_back("fibres");  // the layout each design was evaluated with (a GA's genes may switch families)
+    header.push_back("thumbnail");
+    header.push_back("design");
+    return header;
+}
 
 std::string Optional(double value) { return std::isfinite(value) ? CsvNumber(value) : ""; }
 
@@ -31,25 +37,29 @@ std::string DesignText(const sim::Shape& shape) {
     return "";
 }
 
-EvaluationLog::EvaluationLog(fs::path path, bool thumbnails) : path_(std::move(path)), thumbnails_(thumbnails), log_(path_.string(), kLogHeader) {}
+EvaluationLog::EvaluationLog(fs::path path, bool thumbnails) : path_(std::move(path)), thumbnails_(thumbnails), header_(LogHeader()), log_(path_.string(), header_) {}
 
 void EvaluationLog::Append(const ArchiveRecord& r) {
-    const bool ok = r.result.status == sim::Status::Ok;
-    const bool thesis = r.job.model == sim::ModelKind::Thesis;
-    const sim::ShellOutputs& o = r.result.shell;
-    // Iterations: relaxation steps (thesis) or Newton iterations over all load steps.
-    std::vector<std::string> row{std::to_string(r.id), sim::Name(r.role), std::to_string(r.run), std::to_string(r.generation), CsvField(r.label),
-                                 sim::ShapeName(r.job.shape), sim::Name(r.job.model), sim::Name(r.result.status), ok ? CsvNumber(r.result.fitness) : "",
-                                 ok ? CsvNumber(r.result.contractionPercent) : "", std::to_string(thesis ? r.result.iterationsRun : o.newtonIterations),
-                                 thumbnails_ ? ThumbnailName(r.id) : "", CsvField(DesignText(r.job.shape))};
-    if (thesis) row.resize(kLogHeader.size());
-    else {
-        for (double v : {r.job.Shell().load.pressureKpa, o.limitPressureKpa, o.blockingForceN, o.axialStiffnessNPerMm, o.volumeMm3, o.maxStretch, o.maxStressKpa})
-            row.push_back(Optional(v));
-        row.push_back(sim::Name(r.job.Shell().fibres.layout));
-        row.push_back(Optional(o.maxFibreStrain));
-        row.push_back(Optional(o.fibreAngleDeg));
-    }
+    struct Cells final : sim::OutputVisitor {
+        std::map<std::string, std::string> cells;
+        void Number(const char* name, const char*, double value) override { cells[name] = Optional(value); }
+        void Count(const char* name, long long value) override { cells[name] = std::to_string(value); }
+        void Curve(const char*, const char*, const std::vector<double>&) override {}
+    } outputs;
+    sim::VisitOutputs(r.result, r.job, outputs);
+    outputs.cells["evaluation"] = std::to_string(r.id);
+    outputs.cells["role"] = sim::Name(r.role);
+    outputs.cells["run"] = std::to_string(r.run);
+    outputs.cells["generation"] = std::to_string(r.generation);
+    outputs.cells["label"] = CsvField(r.label);
+    outputs.cells["shape"] = sim::ShapeName(r.job.shape);
+    outputs.cells["model"] = sim::Name(r.job.model);
+    outputs.cells["status"] = sim::Name(r.result.status);
+    if (const auto* shell = std::get_if<sim::ShellDef>(&r.job.def)) outputs.cells["fibres"] = sim::Name(shell->fibres.layout);
+    outputs.cells["thumbnail"] = thumbnails_ ? ThumbnailName(r.id) : "";
+    outputs.cells["design"] = CsvField(DesignText(r.job.shape));
+    std::vector<std::string> row;
+    for (const std::string& column : header_) row.push_back(outputs.cells[column]);
     log_.Append(row);
 }
 
@@ -59,7 +69,7 @@ void EvaluationLog::RollBack(std::uint64_t, const std::vector<ArchiveRecord>& ke
     log_ = CsvLog();
     std::error_code ec;
     fs::remove(path_, ec);
-    log_ = CsvLog(path_.string(), kLogHeader);
+    log_ = CsvLog(path_.string(), header_);
     for (const ArchiveRecord& r : kept) Append(r);
 }
 

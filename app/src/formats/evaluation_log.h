@@ -1,10 +1,11 @@
 // DIR/evaluations.csv: one row per evaluation (id, role, run, generation, label, shape, model,
-// status, fitness, contraction, iterations, thumbnail, design, and the physical models' outputs),
+// status, every model's outputs by the names `actuator simulate` gives them, thumbnail, design),
 // appended as each is recorded; a record sink.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "formats/csv.h"
 #include "formats/record_sink.h"
@@ -26,6 +27,7 @@ public:
 private:
     std::filesystem::path path_;
     bool thumbnails_;
+    std::vector<std::string> header_;
     CsvLog log_;
 };
 

@@ -97,42 +97,37 @@ Json ModelJson(const sim::EvalJob& job) {
 }
 
 Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
-    const bool ok = r.status == sim::Status::Ok;
-    Json j{{"status", sim::Name(r.status)},
-           {"fitness", NumberJson(ok ? r.fitness : NAN)},
-           {"contraction_percent", NumberJson(ok ? r.contractionPercent : NAN)}};
-    if (job.model == sim::ModelKind::Thesis) {
-        j["iterations"] = r.iterationsRun;
-        j["iterations_requested"] = job.Thesis().params.iterations;
-    } else {
-        const sim::ShellOutputs& s = r.shell;
-        j["pressure_kpa"] = NumberJson(s.targetPressureKpa);
-        j["limit_pressure_kpa"] = NumberJson(s.limitPressureKpa);
-        j["blocking_force_n"] = NumberJson(s.blockingForceN);
-        j["axial_stiffness_n_per_mm"] = NumberJson(s.axialStiffnessNPerMm);
-        j["displacement_mm"] = NumberJson(s.displacementMm);
-        j["rest_volume_mm3"] = NumberJson(s.restVolumeMm3);
-        j["volume_mm3"] = NumberJson(s.volumeMm3);
-        j["max_stretch"] = NumberJson(s.maxStretch);
-        j["stretch_limit"] = NumberJson(s.stretchLimit);
-        j["max_stress_kpa"] = NumberJson(s.maxStressKpa);
-        j["tensile_strength_kpa"] = NumberJson(s.tensileStrengthKpa);
-        if (job.Shell().fibres.layout != sim::FibreLayout::None) {
-            j["max_fibre_strain"] = NumberJson(s.maxFibreStrain);
-            j["mean_fibre_strain"] = NumberJson(s.meanFibreStrain);
-            j["fibre_angle_deg"] = NumberJson(s.fibreAngleDeg);
+    // The outputs as they are visited; the load steps' curves as one list of points, before the time.
+    struct Writer final : sim::OutputVisitor {
+        Json j;
+        std::vector<std::pair<std::string, const std::vector<double>*>> curves;
+        void Flush() {
+            if (curves.empty()) return;
+            Json curve = Json::array();
+            for (size_t k = 0; k < curves.front().second->size(); ++k) {
+                Json point = Json::object();
+                for (const auto& [name, values] : curves) point[name] = NumberJson(k < values->size() ? (*values)[k] : NAN);
+                curve.push_back(point);
+            }
+            j["curve"] = curve;
+            curves.clear();
         }
-        j["newton_iterations"] = s.newtonIterations;
-        j["factorizations"] = s.factorizations;
-        Json curve = Json::array();
-        for (size_t k = 0; k < s.curvePressureKpa.size(); ++k)
-            curve.push_back(Json{{"pressure_kpa", s.curvePressureKpa[k]},
-                                 {"contraction_percent", NumberJson(s.curveContractionPercent[k])},
-                                 {"volume_mm3", NumberJson(s.curveVolumeMm3[k])}});
-        j["curve"] = curve;
-    }
-    j["elapsed_ms"] = r.elapsedMs;
-    return j;
+        void Number(const char* name, const char*, double value) override {
+            if (std::string(name) == "elapsed_ms") {
+                Flush();
+                j[name] = value;
+                return;
+            }
+            j[name] = NumberJson(value);
+        }
+        void Count(const char* name, long long value) override { j[name] = value; }
+        void Curve(const char* name, const char*, const std::vector<double>& values) override {
+            curves.push_back({std::string(name).substr(std::string("curve_").size()), &values});
+        }
+    } writer;
+    writer.j = Json{{"status", sim::Name(r.status)}};
+    sim::VisitOutputs(r, job, writer);
+    return writer.j;
 }
 
 }  // namespace app

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "sim/shape.h"
 #include "sim/shell.h"
@@ -60,6 +61,16 @@ private:
     }
 };
 
+// What a result says, visited by name with its unit: JSON, the evaluation table, Python and the
+// report are all written from this one list (VisitOutputs), so a name means one thing everywhere.
+class OutputVisitor {
+public:
+    virtual ~OutputVisitor() = default;
+    virtual void Number(const char* name, const char* unit, double value) = 0;  // NaN: the evaluation has none
+    virtual void Count(const char* name, long long value) = 0;
+    virtual void Curve(const char* name, const char* unit, const std::vector<double>& values) = 0;  // one per load step
+};
+
 // A model's row: what it does and how its numbers are named.
 struct Model {
     ModelKind kind;
@@ -69,6 +80,8 @@ struct Model {
     Surface (*surface)(const EvalJob& job);         // what its meshes are drawn on
     int (*vertices)(const EvalJob& job);            // of its meshes
     std::uint64_t (*work)(const EvalJob& job);      // an estimate of its cost (server limits): vertex-iterations
+    // Its own outputs (beside fitness, contraction and time, which every model has), in order.
+    void (*outputs)(const SimResult& result, const EvalJob& job, OutputVisitor& visitor);
     const char* fitnessLabel;                       // what its fitness is, with its unit
     const char* lengthUnit;                         // of its positions: "mesh units" or "mm"
     bool physical;                                  // silicone in mm, kPa and N at equilibrium (not the thesis's snapshot)
@@ -76,6 +89,14 @@ struct Model {
 
 const Model& ModelOf(ModelKind kind);
 inline const Model& ModelOf(const EvalJob& job) { return ModelOf(job.model); }
+
+// Every output of a result: status aside, "fitness" and "contraction_percent" (NaN unless ok), the
+// model's own, then "elapsed_ms".
+void VisitOutputs(const SimResult& result, const EvalJob& job, OutputVisitor& visitor);
+// Every model's output names that are one number each (no curves), in table order, each once: the
+// columns a table of evaluations of any model has. Timings are left out (`withTime` false) where a
+// table must read the same on every run.
+std::vector<std::string> OutputNames(bool withTime);
 
 // The job's evaluation under its model.
 inline SimResult Evaluate(const EvalJob& job) { return ModelOf(job).evaluate(job); }
