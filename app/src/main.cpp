@@ -8,36 +8,17 @@
 #include <new>
 
 #include "options/cli.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "support/errors.h"
 #include "formats/files.h"
 
 namespace {
 
-struct Command {
-    const char* name;
-    const char* summary;
-    int (*run)(int argc, char** argv, int first);  // argv[first] is the first argument after the name
-};
-
-const Command kCommands[] = {
-    {"simulate", "evaluate one design and print its result as JSON", app::RunSimulate},
-    {"render", "pictures of one design: before/after, stretch, turntable, time-lapse", app::RunRender},
-    {"sweep", "evaluate an experiment's grid of sine shapes or its list of shapes; landscape figure", app::RunSweepCommand},
-    {"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", app::RunEvolveCommand},
-    {"reproduce", "run every thesis experiment and write report.md with figures", app::RunReproduce},
-    {"export", "a design as solids to print and cast: the actuator's wall, a mold's core and two shells (STL, OBJ, PLY)", app::RunExport},
-    {"compare", "optimizers side by side: same seeds, same budget, best so far against evaluations", app::RunCompare},
-    {"inspect", "list, filter, sort and export the evaluations in an archive", app::RunInspect},
-    {"serve", "run an evaluation server for --workers (Cap'n Proto RPC)", app::RunServe},
-    {"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", app::RunImgDiff},
-};
-
 std::string MainHelp() {
     std::string text = std::string("actuator ") + app::Version() +
                        "\n\nusage: actuator COMMAND [options]\n\n"
                        "Actuator Workbench: generative design of thin-walled soft pneumatic actuators (see README.md).\n\nCommands:\n";
-    for (const auto& c : kCommands) text += "  " + std::string(c.name) + std::string(12 - std::strlen(c.name), ' ') + c.summary + "\n";
+    for (const app::Command& c : app::Commands()) text += "  " + std::string(c.name) + std::string(12 - std::strlen(c.name), ' ') + c.summary + "\n";
     text += "\nRun 'actuator COMMAND --help' for a command's options and their defaults.\n"
             "Exit codes: 0 success, 2 bad input (one line on stderr says what and where), 3 every evaluation\n"
             "server (--workers) is gone, 70 an internal error (a bug: please report it), 74 the output could not\n"
@@ -74,10 +55,9 @@ int main(int argc, char** argv) {
         std::cout << "actuator " << app::Version() << "\n";
         return Finish(0, "");
     }
-    for (const auto& command : kCommands) {
-        if (name != command.name) continue;
+    if (const app::Command* command = app::FindCommand(name)) {
         try {
-            return Finish(command.run(argc, argv, 2), name);
+            return Finish(command->run(argc, argv, 2), name);
         } catch (const app::WorkersGone& error) {
             std::cerr << "actuator " << name << ": stopped: " << error.what() << "; continue later with --resume\n";
             return Finish(3, name);

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "formats/json_out.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "support/errors.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
@@ -15,7 +15,7 @@
 
 namespace app {
 
-int RunCompare(int argc, char** argv, int first) {
+static int RunCompare(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
     Cli cli("compare", "Runs two or more 'evolve' or 'optimizer' experiments on one problem with the same seeds (1 to --seeds) to the same "
                        "evaluation budget, each run into DIR/<id>/seed_<k>/, and draws the best so far against evaluations: the median "
@@ -69,5 +69,7 @@ int RunCompare(int argc, char** argv, int first) {
     std::cout << summary.dump() << "\n";
     return 0;
 }
+
+static const RegisterCommand kCompareCommand{{"compare", "optimizers side by side: same seeds, same budget, best so far against evaluations", 70, RunCompare}};
 
 }  // namespace app

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
 #include "report/report.h"
@@ -34,7 +34,7 @@ int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
                               "('evaluate'), and draws the fitness landscape.");
     std::string file;
     RunCommandOptions o;
-    cli.App().add_option("experiment", file, "experiment file (assets/experiments/ holds the thesis's)")->type_name("EXPERIMENT.json");
+    cli.App().add_option("experiment", file, "experiment file, or the name of a shipped one (4.1_amplitude_sweep, SF1_fibre_angle_sweep: found in share/actuator/experiments)")->type_name("EXPERIMENT.json");
     AddRunOptions(cli, o);
     cli.App().footer(evolve ? "Writes, per run, DIR/run_K/{logbook.csv, best_per_generation.csv, halloffame.csv, checkpoint.json} and\n"
                               "DIR/run_K/sheets/generation_NNN.png after every generation; then DIR/evolution.png, DIR/best_inflation.png,\n"
@@ -72,7 +72,10 @@ int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
 
 }  // namespace
 
-int RunSweepCommand(int argc, char** argv, int first) { return RunExperimentCommand(argc, argv, first, false); }
-int RunEvolveCommand(int argc, char** argv, int first) { return RunExperimentCommand(argc, argv, first, true); }
+static int RunSweepCommand(int argc, char** argv, int first) { return RunExperimentCommand(argc, argv, first, false); }
+static int RunEvolveCommand(int argc, char** argv, int first) { return RunExperimentCommand(argc, argv, first, true); }
+
+static const RegisterCommand kSweepCommand{{"sweep", "evaluate an experiment's grid of sine shapes or its list of shapes; landscape figure", 30, RunSweepCommand}};
+static const RegisterCommand kEvolveCommand{{"evolve", "run an experiment's genetic algorithm; logbooks, checkpoints, figures", 40, RunEvolveCommand}};
 
 }  // namespace app

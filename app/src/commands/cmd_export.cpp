@@ -11,7 +11,7 @@
 
 #include "formats/archive.h"
 #include "options/cli.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "pictures/figures.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
@@ -24,7 +24,7 @@
 
 namespace app {
 
-int RunExport(int argc, char** argv, int first) {
+static int RunExport(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
     Cli cli("export", "Writes a design as solids to print and cast, into --out DIR (new or empty): actuator.stl (the wall as a closed solid of "
                       "the given thickness around the rest surface, ends closed by flat annuli), mold_core.stl (the inner cavity with a "
@@ -140,5 +140,7 @@ int RunExport(int argc, char** argv, int first) {
     std::cout << Json{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}}.dump() << "\n";
     return 0;
 }
+
+static const RegisterCommand kExportCommand{{"export", "a design as solids to print and cast: the actuator's wall, a mold's core and two shells (STL, OBJ, PLY)", 60, RunExport}};
 
 }  // namespace app

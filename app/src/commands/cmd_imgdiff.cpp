@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "options/cli.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "formats/files.h"
 #include "pictures/figures.h"
 #include "render/image.h"
@@ -20,7 +20,7 @@ render::Image ReadPng(const std::string& path) {
 
 }  // namespace
 
-int RunImgDiff(int argc, char** argv, int first) {
+static int RunImgDiff(int argc, char** argv, int first) {
     Cli cli("imgdiff", "Compares two images pixel by pixel with a tolerance. Prints one line with the share of differing pixels and the largest "
                        "and mean channel differences. Exit code 0 when they match, 1 when they differ (or differ in size), 2 on bad input.");
     std::string expectedPath, actualPath, diffPath;
@@ -42,5 +42,7 @@ int RunImgDiff(int argc, char** argv, int first) {
     std::cout << (comparison.matches ? "match: " : "differ: ") << comparison.Summary() << "\n";
     return comparison.matches ? 0 : 1;
 }
+
+static const RegisterCommand kImgdiffCommand{{"imgdiff", "compare two PNG images with a tolerance (exit 0 match, 1 differ)", 100, RunImgDiff}};
 
 }  // namespace app

@@ -8,7 +8,7 @@
 
 #include "formats/archive.h"
 #include "options/cli.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
 #include "formats/obj_io.h"
@@ -29,7 +29,7 @@ struct sim::EnumNames<app::SortKey> {
 
 namespace app {
 
-int RunInspect(int argc, char** argv, int first) {
+static int RunInspect(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
     Cli cli("inspect", "Lists the evaluations an experiment archived (DIR/evaluations.capnp): id, role, run, generation, status, fitness, "
                        "contraction and design. A cut-off archive is read up to its last complete evaluation (a note on stderr says so).");
@@ -139,5 +139,7 @@ int RunInspect(int argc, char** argv, int first) {
         std::cerr << "note: " << contents.scan.problem << "; the " << contents.records.size() << " evaluations before it are shown\n";
     return 0;
 }
+
+static const RegisterCommand kInspectCommand{{"inspect", "list, filter, sort and export the evaluations in an archive", 80, RunInspect}};
 
 }  // namespace app

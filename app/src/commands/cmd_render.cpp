@@ -14,7 +14,7 @@
 
 #include "formats/archive.h"
 #include "options/cli.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "evaluation/evaluator.h"
 #include "pictures/figures.h"
 #include "formats/files.h"
@@ -130,7 +130,7 @@ void WriteThesisTimelapse(const sim::EvalJob& job, const std::string& title, Col
 
 }  // namespace
 
-int RunRender(int argc, char** argv, int first) {
+static int RunRender(int argc, char** argv, int first) {
     Cli cli("render", "Pictures of one design. Under --model thesis: evaluated under inflation and under the stretch load, written as "
                       "DIR/inflation.png and DIR/stretch.png (before and after, side by side, one camera and scale). Under --model membrane or "
                       "shell: DIR/inflation.png at the target pressure, coloured by principal stretch (or stress) with the material's limit "
@@ -387,5 +387,7 @@ int RunRender(int argc, char** argv, int first) {
     std::cout << summary.dump() << "\n";
     return 0;
 }
+
+static const RegisterCommand kRenderCommand{{"render", "pictures of one design: before/after, stretch, turntable, time-lapse", 20, RunRender}};
 
 }  // namespace app

@@ -9,7 +9,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "commands/commands.h"
+#include "commands/registry.h"
+#include "experiments/experiment_library.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
 #include "report/optimizer_comparison.h"
@@ -19,7 +20,7 @@
 
 namespace app {
 
-int RunReproduce(int argc, char** argv, int first) {
+static int RunReproduce(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
     Cli cli("reproduce", "Runs every experiment file of a folder (by default the thesis's chapters 4 to 6 in assets/experiments/) into DIR/<name>/, "
                          "then part 2: the files of its shell/ subfolder, the thesis's experiments re-run under the shell model, into "
@@ -45,9 +46,9 @@ int RunReproduce(int argc, char** argv, int first) {
     const FolderMode mode = ResultsMode(cli, o);
 
     // The thesis's files: the source tree this was built from, else where `cmake --install` put them.
-    fs::path folder = cli.Given("--experiments") ? fs::path(experiments) : fs::path(ACTUATOR_ASSETS_DIR) / "experiments";
+    const std::vector<fs::path> shipped = ExperimentFolders();
+    fs::path folder = cli.Given("--experiments") || shipped.empty() ? fs::path(experiments) : shipped.front();
     std::error_code ec;
-    if (!cli.Given("--experiments") && !fs::is_directory(folder, ec)) folder = fs::path(ACTUATOR_INSTALLED_ASSETS_DIR) / "experiments";
     // What the reproduction was started with: a resume continues that one (its folder of experiments,
     // its part, --quick and --set) and refuses to mix another into it.
     const fs::path recordPath = fs::path(dir) / "reproduce.json";
@@ -145,5 +146,7 @@ int RunReproduce(int argc, char** argv, int first) {
               << "\n";
     return 0;
 }
+
+static const RegisterCommand kReproduceCommand{{"reproduce", "run every thesis experiment and write report.md with figures", 50, RunReproduce}};
 
 }  // namespace app

@@ -3,13 +3,13 @@
 
 #include <iostream>
 
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "options/cli.h"
 #include "evaluation/remote.h"
 
 namespace app {
 
-int RunServe(int argc, char** argv, int first) {
+static int RunServe(int argc, char** argv, int first) {
     Cli cli("serve", "Runs an evaluation server: Cap'n Proto RPC, interface Evaluator in app/schema/actuator.capnp (see README). It takes batches of "
                      "designs with settings and returns results and meshes, evaluating on all its cores, until it is killed. Bad or hostile "
                      "requests get an error reply or a closed connection; the server keeps serving. Use it from sweep, evolve or reproduce with "
@@ -26,5 +26,7 @@ int RunServe(int argc, char** argv, int first) {
     }
     return 0;
 }
+
+static const RegisterCommand kServeCommand{{"serve", "run an evaluation server for --workers (Cap'n Proto RPC)", 90, RunServe}};
 
 }  // namespace app

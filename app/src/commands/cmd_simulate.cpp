@@ -6,7 +6,7 @@
 
 #include "formats/archive.h"
 #include "options/cli.h"
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "evaluation/evaluator.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
@@ -26,7 +26,7 @@ void CheckObjPath(const Cli& cli, const std::string& option, const std::string& 
 
 }  // namespace
 
-int RunSimulate(int argc, char** argv, int first) {
+static int RunSimulate(int argc, char** argv, int first) {
     Cli cli("simulate", "Evaluates one actuator design and prints one JSON object: status, fitness, contraction_percent (positive = shorter), "
                         "the model's outputs, the design and the model's settings. --model thesis is the 2019 mass-spring model (fitness in mesh "
                         "units); membrane and shell are silicone at equilibrium in mm, kPa and N (fitness = contraction in percent at the "
@@ -108,5 +108,7 @@ int RunSimulate(int argc, char** argv, int first) {
     std::cout << out.dump() << "\n";
     return 0;
 }
+
+static const RegisterCommand kSimulateCommand{{"simulate", "evaluate one design and print its result as JSON", 10, RunSimulate}};
 
 }  // namespace app

@@ -18,7 +18,7 @@
 #include <set>
 #include <sstream>
 
-#include "commands/commands.h"
+#include "commands/registry.h"
 #include "support/errors.h"
 #include "process.h"
 #include "temp_folder.h"
@@ -94,6 +94,13 @@ std::string Digest(const fs::path& folder) {
 }
 
 using Command = int (*)(int, char**, int);
+
+// A command as main() finds it: through the registry.
+Command Registered(const char* name) {
+    const app::Command* command = app::FindCommand(name);
+    if (command == nullptr) throw std::logic_error(std::string("no registered command ") + name);
+    return command->run;
+}
 
 // Runs `command args` in this process, as main() would, into a fresh `out` folder.
 Outcome RunHere(Command command, const std::vector<std::string>& args, const fs::path& out) {
@@ -262,20 +269,20 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
     const std::set<std::string> thesisMode{"--iterations", "--model", "--load", "--shape"};
     std::vector<Mode> modes;
     for (const std::string load : {"inflate", "stretch", "none"})
-        modes.push_back({"thesis " + load, app::RunSimulate, {"--model", "thesis", "--load", load, "--iterations", "200"}, thesisMode});
+        modes.push_back({"thesis " + load, Registered("simulate"), {"--model", "thesis", "--load", load, "--iterations", "200"}, thesisMode});
     for (const std::string shape : {"sine", "bspline"})
-        modes.push_back({"thesis " + shape, app::RunSimulate,
+        modes.push_back({"thesis " + shape, Registered("simulate"),
                          {"--shape", shape, "--iterations", "200", shape == "sine" ? "--amplitude" : "--control-points", shape == "sine" ? "2" : "1,2,1,2,1"},
                          {"--iterations", "--shape"}});
     for (const std::string load : {"inflate", "gas", "volume", "force", "blocked"})
-        modes.push_back({"shell " + load, app::RunSimulate,
+        modes.push_back({"shell " + load, Registered("simulate"),
                          Joined({"--model", "shell", "--load", load},
                                 load == "force"    ? std::vector<std::string>{"--ring-vertices", "12", "--rings", "16", "--steps", "1", "--force-n", "0.5"}
                                 : load == "volume" ? std::vector<std::string>{"--ring-vertices", "12", "--rings", "16", "--steps", "1"}
                                                    : kSmallShell),
                          {"--model", "--load"}});
-    modes.push_back({"membrane braid", app::RunSimulate, Joined({"--model", "membrane", "--fibres", "braid"}, kSmallShell), {"--model"}});
-    modes.push_back({"from an archive", app::RunSimulate, {"--from", archive, "--index", "0"}, {"--from", "--index"}});
+    modes.push_back({"membrane braid", Registered("simulate"), Joined({"--model", "membrane", "--fibres", "braid"}, kSmallShell), {"--model"}});
+    modes.push_back({"from an archive", Registered("simulate"), {"--from", archive, "--index", "0"}, {"--from", "--index"}});
     // Newton's bisections of a failed load step: they bind when a step fails, here for want of iterations.
     Check("simulate", modes, given, {}, false, {{"--max-bisections", {"--max-iterations", "1"}}});
 }
@@ -305,18 +312,18 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {
     const std::vector<std::string> small{"--size", "64x64", "--supersample", "1"};
     const std::vector<std::string> sine{"--shape", "sine", "--amplitude", "1.3", "--phase", "0.5,pi-0.5"};
     std::vector<Mode> render{
-        {"thesis", app::RunRender, Joined(Joined(sine, small), {"--iterations", "200"}), {"--shape", "--iterations", "--solid"}},
-        {"shell", app::RunRender, Joined(Joined(Joined(sine, small), {"--model", "shell"}), kSmallShell), {"--shape", "--model", "--solid"}},
-        {"solid cutaway", app::RunRender, Joined(Joined(sine, small), {"--solid", "cutaway", "--sampling", "1"}), {"--shape", "--solid"}},
-        {"solid mold", app::RunRender, Joined(Joined(sine, small), {"--solid", "mold", "--sampling", "1"}), {"--shape", "--solid"}},
-        {"from an archive", app::RunRender, Joined({"--from", archive, "--index", "0"}, small), {"--from", "--index", "--solid"}},
+        {"thesis", Registered("render"), Joined(Joined(sine, small), {"--iterations", "200"}), {"--shape", "--iterations", "--solid"}},
+        {"shell", Registered("render"), Joined(Joined(Joined(sine, small), {"--model", "shell"}), kSmallShell), {"--shape", "--model", "--solid"}},
+        {"solid cutaway", Registered("render"), Joined(Joined(sine, small), {"--solid", "cutaway", "--sampling", "1"}), {"--shape", "--solid"}},
+        {"solid mold", Registered("render"), Joined(Joined(sine, small), {"--solid", "mold", "--sampling", "1"}), {"--shape", "--solid"}},
+        {"from an archive", Registered("render"), Joined({"--from", archive, "--index", "0"}, small), {"--from", "--index", "--solid"}},
     };
     Check("render", render, given, exempt, true, {{"--max-bisections", {"--max-iterations", "1"}}, {"--port-mm", {"--fittings"}}});
     given.erase("--solid");
     std::vector<Mode> exports{
-        {"thesis", app::RunExport, Joined(sine, {"--sampling", "1"}), {"--shape"}},
-        {"shell", app::RunExport, Joined(sine, {"--model", "shell", "--sampling", "1", "--ring-vertices", "16", "--rings", "24"}), {"--shape", "--model"}},
-        {"from an archive", app::RunExport, {"--from", archive, "--index", "0", "--sampling", "1"}, {"--from", "--index"}},
+        {"thesis", Registered("export"), Joined(sine, {"--sampling", "1"}), {"--shape"}},
+        {"shell", Registered("export"), Joined(sine, {"--model", "shell", "--sampling", "1", "--ring-vertices", "16", "--rings", "24"}), {"--shape", "--model"}},
+        {"from an archive", Registered("export"), {"--from", archive, "--index", "0", "--sampling", "1"}, {"--from", "--index"}},
     };
     Check("export", exports, given, {}, true, {{"--port-mm", {"--fittings"}}});
 }
