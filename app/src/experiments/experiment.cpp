@@ -5,6 +5,7 @@
 #include "formats/json_out.h"
 #include "pictures/plots.h"
 #include "experiments/experiment.h"
+#include "experiments/experiment_library.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -817,7 +818,8 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
     return e;
 }
 
-Experiment LoadExperiment(const std::string& path, const std::vector<Override>& overrides) {
+Experiment LoadExperiment(const std::string& given, const std::vector<Override>& overrides) {
+    const std::string path = FindExperimentFile(given).string();
     return ParseExperiment(ReadInputFile(path, 64ull << 20), path, overrides);
 }
 
