@@ -129,10 +129,18 @@ TEST_F(Remote, AServerKilledMidRunLosesNothing) {
     ASSERT_GT(a.Port(), 0);
     ASSERT_GT(b.Port(), 0);
     ASSERT_EQ(Run("sweep " + Sweep(30, 10000) + " --out " + Path("local")).exitCode, 0);
-    // Kill server a while its first batch runs: half the grid on one thread is about 0.8 s of work,
-    // three times the delay, so the kill lands mid-batch even on a much faster machine.
+    // Kill server a while the batch runs: once the first results are recorded, every worker has
+    // calls in flight (a batch goes out as several calls per worker), whatever the machine's load.
     std::thread killer([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        testing_support::WaitUntil(
+            [&] {
+                std::ifstream in(dir_ / "remote" / "evaluations.csv");
+                std::string line;
+                int lines = 0;
+                while (std::getline(in, line)) ++lines;
+                return lines >= 3;
+            },
+            30);
         a.Kill();
     });
     const Result remote = Run("sweep " + Sweep(30, 10000) + " --out " + Path("remote") + " --workers " + a.Address() + "," + b.Address());
