@@ -5,7 +5,7 @@ contracts.
 A plain silicone tube (Ecoflex 00-30, R = 5 mm, L = 150 mm, wall 1 mm) lengthens when inflated.
 Braided fibres change that: like a McKibben muscle, a braid closer to the axis than the "magic
 angle" arctan(sqrt 2) = 54.7 deg shortens the tube, and one further from it lengthens it. Each curve is
-one evaluation of the shell model (SHELL.md): equilibrium at every load step, up to 3 kPa.
+one evaluation of the shell model (docs/models/shell.md): equilibrium at every load step, up to 3 kPa.
 
     /usr/bin/python3 examples/contraction_pressure.py [--out contraction_pressure.png] [--threads 2]
 """

@@ -2,7 +2,7 @@
 """DEAP's own eaSimple over actuator.evaluate, on the thesis's problem 4.1.
 
 The problem: a sine radius (phase 0.5 to pi-0.5) whose amplitude A, 1 to 10 mesh units, is the one
-gene; fitness is the thesis model's contraction after 10,000 iterations of inflation (shared/MODEL.md).
+gene; fitness is the thesis model's contraction after 10,000 iterations of inflation (docs/models/thesis.md).
 The workbench's 30-point sweep (assets/experiments/4.1_amplitude_sweep.json) is best at its grid
 point A = 3.48 (fitness 0.597); the C++ genetic algorithm (pagmo's sga, assets/experiments/
 optimizers/O4.1_ga_thesis.json) finds A = 3.64 (0.5983) between grid points, and so does this

@@ -8,7 +8,7 @@ way. Its bending angle theta is the signed angle between the two triangles' norm
     theta = atan2(((nA x nB) . e) / |e|, nA . nB).
 The gradient over the 12 coordinates (p0, p1, q, r) is the exact derivative of this formula, taken
 by sympy and shared through common-subexpression elimination, so that the discrete shell bending
-energy of SHELL.md section 4 has exact forces. Its Hessian is written by hand in closed form
+energy of docs/models/shell.md section 4 has exact forces. Its Hessian is written by hand in closed form
 (HingeAngleHessian in sim/src/shell_elements.cpp): sympy's, which this script also generated once,
 took 0.55 us a hinge against the closed form's 0.20 us, and the two agreed to 7e-15. The tests
 compare both gradient and Hessian with central differences.

@@ -1,4 +1,4 @@
-// A deliberately plain implementation of MODEL.md, written independently of sim/src/solver.cpp:
+// A deliberately plain implementation of docs/models/thesis.md, written independently of sim/src/solver.cpp:
 // an edge list in doubles, one vertex struct per vertex, forces scattered per spring. It is the
 // "straightforward" baseline the benchmark compares against and the oracle the solver test checks.
 #pragma once

@@ -37,7 +37,7 @@ sim::ShellLoad ShellLoadOf(const std::string& name, const std::string& what) {
 
 void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Group("Model");
-    cli.Enum("--model", o.model, "thesis: the 2019 mass-spring model (MODEL.md); membrane and shell: silicone in mm and kPa at equilibrium (SHELL.md)");
+    cli.Enum("--model", o.model, "thesis: the 2019 mass-spring model (docs/models/thesis.md); membrane and shell: silicone in mm and kPa at equilibrium (docs/models/shell.md)");
     cli.Text("--load", o.load, "thesis: " + sim::ChoicesBar<sim::Load>() + "; membrane and shell: " + sim::ChoicesBar<sim::ShellLoad>())
         ->type_name("NAME")
         ->default_str("inflate");
@@ -48,7 +48,7 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Group("Membrane and shell models: geometry");
     cli.Fields(o.shell.geometry);
     cli.Group("Membrane and shell models: material");
-    cli.Enum("--material", o.material, "silicone preset (suppliers' data; see README)");
+    cli.Enum("--material", o.material, "silicone preset (suppliers' data; docs/guide/physical-models.md)");
     cli.Fields(o.materialFields);
     cli.Group("Membrane and shell models: load and solver");
     cli.Fields(o.shell.load);

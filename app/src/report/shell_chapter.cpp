@@ -27,7 +27,7 @@ std::string Outcome(const sim::SimResult& r) {
     return text;
 }
 
-// How far a contraction moves when the mesh is refined, against SHELL.md's 5 %: relative, except
+// How far a contraction moves when the mesh is refined, against docs/models/shell.md's 5 %: relative, except
 // that contractions under 1 % are compared in absolute terms (0.05 percentage points), where a
 // relative figure of two near-zero numbers says nothing.
 struct MeshChange {
@@ -162,7 +162,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     std::string md = fmt::format("<a id=\"physical-chapter\"></a>\n\n# Part 2: the thesis's experiments under the `{}` model\n\n", model);
     md += "Model: " + ModelDescription(first) + ". The thesis's shapes map onto the tube with one radius unit = " +
           fmt::format("{:g} mm", first.shell.geometry.radiusMm) +
-          " (SHELL.md section 1); a design whose radius reaches zero or that intersects itself is `invalid-geometry`, one past its pressure "
+          " (docs/models/shell.md section 1); a design whose radius reaches zero or that intersects itself is `invalid-geometry`, one past its pressure "
           "maximum `limit-point`, one stretched beyond the material's limit `over-stretched`: none of them has a fitness. The GA runs are "
           "shorter than the thesis's (see each section's settings).\n\n";
     if (quick) md += "**Quick run**: grids and GA runs are shrunk; the numbers check that everything runs.\n\n";
@@ -225,7 +225,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
               "contracting actuator, is not borne out in a model with equilibrium and units: shaped tubes of one isotropic silicone balloon "
               "and lengthen. These runs are samples, not a proof: a search aimed at contraction alone (`actuator evolve "
               "assets/experiments/optimizers/O5.2_cmaes_shell.json`, CMA-ES) finds thin-necked spindles that shorten by about a tenth of a "
-              "percent, the same at twice and three times the mesh. Useful contraction needs what SHELL.md names: stiff fibres (McKibben and "
+              "percent, the same at twice and three times the mesh. Useful contraction needs what docs/models/shell.md names: stiff fibres (McKibben and "
               "pleated muscles) or vacuum.";
     else
         md += fmt::format("; {} of them contracted, the best by {:.2f} % (experiment {}).", contracting, bestOverall, bestWhere);
@@ -237,7 +237,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
         md += " Part 1's results (the thesis model's runs) are not in this folder, so its best designs were not re-evaluated here: "
               "run `actuator reproduce` with `--part both` (the default) for that comparison.";
     if (meshChecked > 0)
-        md += fmt::format(" Mesh convergence (SHELL.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
+        md += fmt::format(" Mesh convergence (docs/models/shell.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
                           "under 1 % contraction, within 0.05 percentage points): {} of {} best designs pass{}.",
                           meshWithin, meshChecked, meshWithin == meshChecked ? "" : "; the others (marked **) need a finer mesh than the default to be trusted");
     if (fibreEvaluated > 0) {

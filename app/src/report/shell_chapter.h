@@ -2,7 +2,7 @@
 // (experiment files with "compare": "<thesis id>"), set beside the thesis model's results. For each
 // pair: how the designs fared (statuses), the thesis model's best design evaluated under the
 // physical model, the physical model's own best, and that best meshed twice as finely in both
-// directions (the mesh-convergence study of SHELL.md section 2). The finding is stated from the
+// directions (the mesh-convergence study of docs/models/shell.md section 2). The finding is stated from the
 // numbers, whatever they are.
 #pragma once
 

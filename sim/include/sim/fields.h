@@ -35,7 +35,7 @@ void VisitFields(Def& mesh, Visitor&& v) requires std::is_same_v<std::remove_con
     v.Integer("turns", mesh.turns, "turns of the helix (two clamped at each end)", sim::kMinTurns, 4096);
 }
 
-// The `thesis` model's constants (MODEL.md, "One iteration").
+// The `thesis` model's constants (docs/models/thesis.md, "One iteration").
 template <class Def, class Visitor>
 void VisitFields(Def& p, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::SimParams> {
     v.Integer("iterations", p.iterations, "relaxation steps; the fitness is read after the last", 0, sim::kMaxIterations);
@@ -48,7 +48,7 @@ void VisitFields(Def& p, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Enum("precision", p.precision, "solver arithmetic; float is about twice as fast and within 0.005 of double in fitness");
 }
 
-// The membrane and shell models (SHELL.md). Option names: --radius-mm, --length-mm, ...
+// The membrane and shell models (docs/models/shell.md). Option names: --radius-mm, --length-mm, ...
 template <class Def, class Visitor>
 void VisitFields(Def& g, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::GeometryDef> {
     v.Number("radius_mm", g.radiusMm, "base radius, mm: one thesis radius unit", 1e-3, 1e4);
@@ -117,7 +117,7 @@ struct MaterialSetter {
 };
 }  // namespace detail
 
-// Fibres on the wall (SHELL.md section 7). Bands and sectors of angles are experiment-file lists
+// Fibres on the wall (docs/models/shell.md section 7). Bands and sectors of angles are experiment-file lists
 // (fibre_bands, fibre_sectors_deg), not fields.
 template <class Def, class Visitor>
 void VisitFields(Def& f, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::FibreDef> {

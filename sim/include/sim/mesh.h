@@ -1,4 +1,4 @@
-// The helical mesh of the `thesis` model (shared/MODEL.md, "Mesh"): R vertices per turn, H turns,
+// The helical mesh of the `thesis` model (docs/models/thesis.md, "Mesh"): R vertices per turn, H turns,
 // vertex i at angle 2*pi*i/R and height (i+1)/R, springs at four fixed index offsets.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Shapes: radius profiles and offsets that turn the bare helix into an actuator (MODEL.md, "Shapes").
+// Shapes: radius profiles and offsets that turn the bare helix into an actuator (docs/models/thesis.md, "Shapes").
 // Each is a small value type; `Shape` is their variant. BuildInitialPositions() makes the mesh.
 #pragma once
 
@@ -72,7 +72,7 @@ const char* ShapeName(const Shape& shape);
 // Checks finiteness, control-point counts, sector counts and array sizes.
 std::string ShapeError(const Shape& shape, const MeshDef& def);
 
-// Uniform cubic B-spline through control points at parameter t in [0, 1] (MODEL.md formula).
+// Uniform cubic B-spline through control points at parameter t in [0, 1] (docs/models/thesis.md formula).
 double EvaluateBSpline(const std::vector<double>& controlPoints, double t);
 
 // A design's radius (in units of the base radius) at height fraction t (0..1) along the tube and at

@@ -1,4 +1,4 @@
-// The models of record (shared/SHELL.md): `membrane`, an incompressible hyperelastic thin sheet, and
+// The models of record (docs/models/shell.md): `membrane`, an incompressible hyperelastic thin sheet, and
 // `shell`, the membrane plus discrete-shell bending; a tube of silicone in millimetres, newtons and
 // megapascals (N/mm^2), closed by end caps, held by rigid clamps, loaded by pressure (or a sealed gas,
 // a prescribed volume, an axial force), solved to static equilibrium by Newton's method on Eigen's
@@ -21,14 +21,14 @@
 namespace sim {
 
 enum class ModelKind {
-    Thesis,    // the 2019 thesis's mass-spring model (MODEL.md), kept exact for reproduction
+    Thesis,    // the 2019 thesis's mass-spring model (docs/models/thesis.md), kept exact for reproduction
     Membrane,  // hyperelastic membrane, no bending: verification and speed
     Shell,     // membrane plus discrete-shell bending: the default for new studies
 };
 
 enum class MaterialLaw { NeoHookean, MooneyRivlin, Yeoh };
 
-// Silicones with their suppliers' data (SHELL.md section 3). `Custom` keeps the constants given.
+// Silicones with their suppliers' data (docs/models/shell.md section 3). `Custom` keeps the constants given.
 enum class MaterialPreset { Ecoflex0030, Ecoflex0050, DragonSkin10, DragonSkin20, DragonSkin30, Elastosil4601, Custom };
 
 // How the actuator is loaded.
@@ -86,7 +86,7 @@ struct LoadDef {
     int steps = 4;             // load steps: the contraction-pressure curve's points
 };
 
-// Stiff threads on the wall (SHELL.md section 7): fibre families as directions in the rest tangent
+// Stiff threads on the wall (docs/models/shell.md section 7): fibre families as directions in the rest tangent
 // plane at an angle to the meridian, tension only, energy (k/4)(I4 - 1)^2 per rest area.
 enum class FibreLayout {
     None,

@@ -1,5 +1,5 @@
 // Evaluation of one shape: build the mesh, relax it under a load for a number of iterations
-// (MODEL.md, "One iteration"), and measure the contraction (MODEL.md, "Fitness").
+// (docs/models/thesis.md, "One iteration"), and measure the contraction (docs/models/thesis.md, "Fitness").
 //
 // Evaluate() and Simulate() are pure functions of their arguments: safe to call from many threads.
 #pragma once

@@ -1,5 +1,5 @@
 // The L D L^T factorisation of a sparse symmetric matrix in 3 x 3 blocks, for the shell models'
-// Newton solves (SHELL.md sections 6 and 11). Their Hessians couple vertices, three coordinates
+// Newton solves (docs/models/shell.md sections 6 and 11). Their Hessians couple vertices, three coordinates
 // each: working on a vertex's block at a time does 27 multiply-adds per index read where a scalar
 // factorisation does one, and stores a ninth of the indices. No pivoting, as Eigen's
 // SimplicialLDLT: D is block diagonal, each 3 x 3 block factorised L D L^T in turn, so the pivots

@@ -1,4 +1,4 @@
-// Fibre-reinforced walls (SHELL.md section 7): each wall triangle's fibre directions from the fibre
+// Fibre-reinforced walls (docs/models/shell.md section 7): each wall triangle's fibre directions from the fibre
 // def, the tension-only fibre energy, and the fibres' state in a deformed wall.
 #include <cmath>
 #include <numbers>

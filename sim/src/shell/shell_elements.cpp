@@ -1,4 +1,4 @@
-// The shell models' elements: the incompressible hyperelastic membrane triangle (SHELL.md section 3)
+// The shell models' elements: the incompressible hyperelastic membrane triangle (docs/models/shell.md section 3)
 // and the bending hinge (section 4).
 //
 // The membrane's energy per rest area is Psi(I1, I2) with, for an incompressible sheet,

@@ -41,7 +41,7 @@ constexpr int kFree = -3;  // marks a free coordinate before numbering
 }  // namespace
 
 void TubeTriangles(int R, int H, std::vector<std::array<int, 3>>& wall, std::vector<std::array<int, 3>>& caps) {
-    // Per strip: (j,i) (j,i+1) (j+1,i) and (j,i+1) (j+1,i+1) (j+1,i), outward (SHELL.md section 2).
+    // Per strip: (j,i) (j,i+1) (j+1,i) and (j,i+1) (j+1,i+1) (j+1,i), outward (docs/models/shell.md section 2).
     for (int j = 0; j + 1 < H; ++j)
         for (int i = 0; i < R; ++i) {
             const int a = j * R + i, b = j * R + (i + 1) % R, c = (j + 1) * R + i, d = (j + 1) * R + (i + 1) % R;
@@ -95,7 +95,7 @@ void SetHingeRest(ShellProblem& p) {
         const Eigen::Vector3d e = At(p.rest, h[1]) - At(p.rest, h[0]);
         const double a1 = 0.5 * e.cross(At(p.rest, h[2]) - At(p.rest, h[0])).norm();
         const double a2 = 0.5 * e.cross(At(p.rest, h[3]) - At(p.rest, h[0])).norm();
-        // SHELL.md writes k_e = (D/2) 3 |e|^2 / (A1 + A2); on a regular mesh bent onto a cylinder that
+        // docs/models/shell.md writes k_e = (D/2) 3 |e|^2 / (A1 + A2); on a regular mesh bent onto a cylinder that
         // stores 2.95 x (D/2) A / r^2 (tests/sim/shell_verification_test.cpp, BendingCalibration).
         // The calibration it also asks for holds without the 3: Sum theta^2 |e|^2 / (A1 + A2) tends
         // to A / r^2 for either bending direction.

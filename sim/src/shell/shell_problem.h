@@ -1,5 +1,5 @@
 // A shell model's discretisation, ready to solve: a triangle mesh with its rest shape, per-element
-// rest data, and which coordinates are unknowns. Energies, gradients and Hessians of SHELL.md
+// rest data, and which coordinates are unknowns. Energies, gradients and Hessians of docs/models/shell.md
 // sections 3-5 are assembled here, exactly and (for Newton's steps) projected to positive
 // semi-definite per element. Exposed for the solver and for the verification tests, which check
 // every gradient and Hessian against central differences.
@@ -117,7 +117,7 @@ struct ShellProblem {
     int vertexCount() const { return rest.Size(); }
 };
 
-// The tube of the `membrane` and `shell` models for a design: staggered rings (SHELL.md section 2),
+// The tube of the `membrane` and `shell` models for a design: staggered rings (docs/models/shell.md section 2),
 // caps, clamps; the shape's radius profile in millimetres. Empty error string when it can be built;
 // otherwise why not (the status is invalid-geometry).
 ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bending, std::string* error);
@@ -134,7 +134,7 @@ void TubeTriangles(int R, int H, std::vector<std::array<int, 3>>& wall, std::vec
 
 // Hinges from triangles: every edge shared by two of them.
 std::vector<std::array<int, 4>> HingesOf(const std::vector<std::array<int, 3>>& triangles);
-// Rest angles and stiffnesses k_e = (D/2) |e|^2 / (A1 + A2), D = mu h^3 / 3: SHELL.md section 4's
+// Rest angles and stiffnesses k_e = (D/2) |e|^2 / (A1 + A2), D = mu h^3 / 3: docs/models/shell.md section 4's
 // hinge energy, with the factor that passes its own cylinder calibration (see shell_problem.cpp).
 void SetHingeRest(ShellProblem& problem);
 
@@ -191,7 +191,7 @@ struct EnergyResult {
 EnergyResult AssembleEnergy(const ShellProblem& problem, const Eigen::VectorXd& q, const LoadTerms& load, const EnergyTerms& terms,
                             bool gradient, HessianPattern* hessian, HessianKind kind);
 
-// Minimises the total energy at `load` from q (in place) by Newton's method (SHELL.md section 6).
+// Minimises the total energy at `load` from q (in place) by Newton's method (docs/models/shell.md section 6).
 // With holdAxial, u stays where q has it. Returns Ok, NotConverged or NonFinite; counts its work.
 Status SolveStatic(const ShellProblem& problem, const LoadTerms& load, const SolverDef& solver, Eigen::VectorXd& q, bool holdAxial = false,
                    int* iterations = nullptr);
@@ -204,7 +204,7 @@ Status SolveVolume(const ShellProblem& problem, const SolverDef& solver, double 
 // Enclosed volume of positions x (caps included), summed compensated.
 double EnclosedVolume(const ShellProblem& problem, const Positions& x);
 
-// Sets a problem's fibre families from a fibre def (SHELL.md section 7): each wall triangle's
+// Sets a problem's fibre families from a fibre def (docs/models/shell.md section 7): each wall triangle's
 // directions at its angle (by band or sector of its rest centroid) to the rest meridian, the tangent
 // of the surface along the axis. Empty error when the def is usable.
 void SetFibres(ShellProblem& problem, const FibreDef& fibres, double lengthMm, std::string* error);
@@ -216,7 +216,7 @@ struct FibreState {
 };
 FibreState FibreStates(const ShellProblem& problem, const Positions& x);
 
-// Whether two non-adjacent wall or cap triangles intersect (SHELL.md section 8).
+// Whether two non-adjacent wall or cap triangles intersect (docs/models/shell.md section 8).
 bool SelfIntersects(const ShellProblem& problem, const Positions& x);
 
 // The wall's per-triangle deformation gradient at positions x.

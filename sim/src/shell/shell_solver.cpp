@@ -1,4 +1,4 @@
-// Static equilibrium of the shell models (SHELL.md section 6) and what an evaluation reports
+// Static equilibrium of the shell models (docs/models/shell.md section 6) and what an evaluation reports
 // (section 10).
 //
 // [SECTION] Factorisation: 3 x 3 vertex blocks; pattern and analysis kept per thread and topology
@@ -71,7 +71,7 @@ enum class NewtonEnd {
 // What a solve needs that depends on the mesh's topology alone: the Hessian's pattern and the
 // factors' symbolic analysis. Building and ordering the pattern costs about as much as a
 // factorisation, and the evaluations a thread runs one after another (a sweep, a population) nearly
-// always share one mesh, so each thread keeps the last one (SHELL.md section 11). Results do not
+// always share one mesh, so each thread keeps the last one (docs/models/shell.md section 11). Results do not
 // depend on it: every factor is computed afresh before it is read.
 struct Workspace {
     // The topology: what the pattern is built from.

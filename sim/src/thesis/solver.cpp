@@ -1,4 +1,4 @@
-// The `thesis` model's relaxation loop (MODEL.md, "One iteration").
+// The `thesis` model's relaxation loop (docs/models/thesis.md, "One iteration").
 //
 // [SECTION] World: the solver's state as structure-of-arrays
 // [SECTION] Stages of one iteration: springs, then free and clamped vertices gather and move

@@ -1,4 +1,4 @@
-// Fibre-reinforced walls against closed forms (SHELL.md section 7, issue 11): the ideal McKibben
+// Fibre-reinforced walls against closed forms (docs/models/shell.md section 7, issue 11): the ideal McKibben
 // muscle, the magic angle, the pleated (meridian) and hoop limits, and the fibre energy's derivatives
 // on both sides of its tension-only switch. Label `verification`.
 #include <gtest/gtest.h>

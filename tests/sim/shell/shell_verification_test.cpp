@@ -1,4 +1,4 @@
-// The shell models against closed forms (SHELL.md section 9): physics before pixels. Label
+// The shell models against closed forms (docs/models/shell.md section 9): physics before pixels. Label
 // `verification`. Every failure message says how to reproduce the case.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -133,7 +133,7 @@ TEST(ShellDerivatives, TheHingeAngleMatchesCentralDifferences) {
     }
 }
 
-// Nominal force per unit rest width of a homogeneously stretched sheet (SHELL.md section 9).
+// Nominal force per unit rest width of a homogeneously stretched sheet (docs/models/shell.md section 9).
 TEST(ShellClosedForms, MembraneForcesPerUnitRestWidth) {
     const auto m = NeoHookean(0.05, 1.5);
     const double muh = m.mu * m.thicknessMm;

@@ -6,8 +6,8 @@
 #include <numbers>
 
 TEST(Mesh, ThirtyByThirtyHasOneSpringPerNeighbourPair) {
-    // MODEL.md's rule, (i, i+1), (i, i+R), (i, i+R-1), (i, i+R+1) for every pair inside the mesh, gives
-    // 899 + 870 + 871 + 869 = 3509. (MODEL.md's prose says 3508; its rule and its known values hold.)
+    // docs/models/thesis.md's rule, (i, i+1), (i, i+R), (i, i+R-1), (i, i+R+1) for every pair inside the mesh, gives
+    // 899 + 870 + 871 + 869 = 3509. (docs/models/thesis.md's prose says 3508; its rule and its known values hold.)
     EXPECT_EQ(sim::SpringCount(sim::DefaultMeshDef()), 899 + 870 + 871 + 869);
     EXPECT_EQ(sim::VertexCount(sim::DefaultMeshDef()), 900);
 }

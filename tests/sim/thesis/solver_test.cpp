@@ -45,7 +45,7 @@ std::vector<std::pair<std::string, sim::Shape>> EveryShape() {
 
 }  // namespace
 
-// ---- Known answers (shared/MODEL.md, "Known values") ------------------------------------------
+// ---- Known answers (docs/models/thesis.md, "Known values") ------------------------------------------
 
 TEST(ThesisValues, AbsSineAmplitude4OverFourPiContracts0964) {
     // Thesis Table 4.4, mesh 1: 0.97. This model: 0.964.
@@ -69,7 +69,7 @@ TEST(ThesisValues, SineAmplitude41StretchedGivesMinus1718) {
 }
 
 TEST(ThesisValues, SineAmplitude41InflatedGives058) {
-    // MODEL.md, weaknesses: 0.58 at 10,000 iterations and 0.25 at 5,000 (a transient, not equilibrium).
+    // docs/models/thesis.md, weaknesses: 0.58 at 10,000 iterations and 0.25 at 5,000 (a transient, not equilibrium).
     const sim::SineShape shape{4.1, 0.5, kPi - 0.5};
     EXPECT_NEAR(sim::Evaluate(shape, sim::DefaultMeshDef(), Params(sim::Load::Inflate)).fitness, 0.58, 0.005);
     EXPECT_NEAR(sim::Evaluate(shape, sim::DefaultMeshDef(), Params(sim::Load::Inflate, sim::Precision::Float, 5000)).fitness, 0.25, 0.005);
@@ -172,7 +172,7 @@ TEST(Determinism, FinalPositionsHashIsFixed) {
 // ---- Numerical failure ----------------------------------------------------------------------------
 
 TEST(NumericalFailure, LongRunsEndWithAStatusNotACrash) {
-    // MODEL.md: the A=4.1 sine's positions are NaN by 40,000 iterations; the run stops at the first check.
+    // docs/models/thesis.md: the A=4.1 sine's positions are NaN by 40,000 iterations; the run stops at the first check.
     const sim::SineShape shape{4.1, 0.5, kPi - 0.5};
     const auto r = sim::Evaluate(shape, sim::DefaultMeshDef(), Params(sim::Load::Inflate, sim::Precision::Double, 40000));
     EXPECT_NE(r.status, sim::Status::Ok);
