@@ -33,7 +33,7 @@ PARAMS = actuator.ThesisParams(iterations=10000)
 def fitness(individual):
     """The thesis model's fitness of the sine with amplitude individual[0] (mesh units); a failed
     simulation (a status, never an exception) scores below every design."""
-    result = actuator.evaluate(actuator.sine(individual[0], PHASE), params=PARAMS)
+    result = actuator.evaluate(actuator.sine(individual[0], PHASE), model="thesis", params=PARAMS)
     return (result.fitness if result.status == "ok" else -1e9,)
 
 

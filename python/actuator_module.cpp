@@ -408,10 +408,10 @@ PYBIND11_MODULE(actuator, m) {
             e.result = sim::Evaluate(e.job);
             return e;
         },
-        py::arg("shape"), py::arg("model") = std::string(sim::Name(sim::ModelKind::Thesis)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
+        py::arg("shape"), py::arg("model") = std::string(sim::Name(sim::kDefaultModel)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
         py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(), py::arg("solver") = py::none(),
         py::arg("fibres") = py::none(),
-        "Evaluates one design under a model: 'thesis' (params, mesh) or 'membrane'/'shell' (geometry, material, load, solver, fibres).");
+        "Evaluates one design under a model: 'shell' (the default) or 'membrane' (geometry, material, load, solver, fibres), or 'thesis' (params, mesh).");
     m.def(
         "evaluate_many",
         [](const std::vector<Design>& designs, int threads, const py::object& map, const py::object& workers, size_t batch, const std::string& model,
@@ -429,7 +429,7 @@ PYBIND11_MODULE(actuator, m) {
             return out;
         },
         py::arg("shapes"), py::arg("threads") = 0, py::arg("map") = py::none(), py::arg("workers") = py::none(), py::arg("batch") = pybinding::kDefaultMapBatch,
-        py::arg("model") = std::string(sim::Name(sim::ModelKind::Thesis)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
+        py::arg("model") = std::string(sim::Name(sim::kDefaultModel)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
         py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(), py::arg("solver") = py::none(),
         py::arg("fibres") = py::none(),
         "Evaluates many designs, results in the order given, identical wherever they run: on this machine's threads (0: one per core; "

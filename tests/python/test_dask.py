@@ -16,7 +16,7 @@ import actuator
 
 distributed = pytest.importorskip("distributed")  # python3-distributed, in scripts/install-deps.sh
 
-GA = {"id": "dask", "seed": 11, "sim": {"iterations": 10000},
+GA = {"id": "dask", "seed": 11, "model": {"name": "thesis"}, "sim": {"iterations": 10000},
       "evolve": {"runs": 1, "population": 16, "generations": 6, "genome": {"kind": "bspline", "length": [5, 8]}},
       "render": {"figures": False, "thumbnails": False}}
 COMPARED = ("run_1/logbook.csv", "run_1/halloffame.csv", "run_1/checkpoint.json")
@@ -89,6 +89,6 @@ def test_evaluate_many_through_a_dask_client_is_bit_for_bit(cluster):
     import math
     shapes = [actuator.sine(a, (0.5, math.pi - 0.5)) for a in (1.0, 2.0, 3.0, 4.1)]
     params = actuator.ThesisParams(iterations=3000)
-    local = [(r.fitness.hex(), r.final.tobytes()) for r in actuator.evaluate_many(shapes, threads=1, params=params)]
-    remote = [(r.fitness.hex(), r.final.tobytes()) for r in actuator.evaluate_many(shapes, map=client, params=params)]
+    local = [(r.fitness.hex(), r.final.tobytes()) for r in actuator.evaluate_many(shapes, threads=1, params=params, model="thesis")]
+    remote = [(r.fitness.hex(), r.final.tobytes()) for r in actuator.evaluate_many(shapes, map=client, params=params, model="thesis")]
     assert remote == local

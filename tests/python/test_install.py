@@ -21,7 +21,7 @@ def test_the_installed_module_imports_evaluates_and_renders(tmp_path):
     assert f"/usr/local/lib/{version}/dist-packages" in sys.path
     script = (
         "import actuator, math\n"
-        "r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=actuator.ThesisParams(iterations=500))\n"
+        "r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=actuator.ThesisParams(iterations=500), model='thesis')\n"
         "image = actuator.render(r, width=64, height=48)\n"
         "maps = open('/proc/self/maps').read()\n"
         "print(actuator.__file__)\n"

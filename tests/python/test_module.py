@@ -22,8 +22,8 @@ def simulate(*args):
 
 
 def test_evaluate_matches_the_command_line_bit_for_bit():
-    ours = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)))
-    cli = simulate("--shape", "sine", "--amplitude", "4.1", "--phase", "0.5,pi-0.5")
+    ours = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), model="thesis")
+    cli = simulate("--model", "thesis", "--shape", "sine", "--amplitude", "4.1", "--phase", "0.5,pi-0.5")
     assert ours.status == "ok"
     assert ours.fitness.hex() == float(cli["fitness"]).hex()
     assert ours.contraction_percent.hex() == float(cli["contraction_percent"]).hex()
@@ -42,14 +42,14 @@ def test_defaults_are_the_cpp_structs():
 def test_evaluate_many_keeps_order_and_equals_one_at_a_time_whatever_the_threads():
     shapes = [actuator.sine(a, (0.5, math.pi - 0.5)) for a in (1.0, 2.5, 4.1, 6.0)]
     params = actuator.ThesisParams(iterations=3000)
-    one = [actuator.evaluate(s, params=params).fitness for s in shapes]
+    one = [actuator.evaluate(s, params=params, model="thesis").fitness for s in shapes]
     for threads in (1, 2):
-        many = [r.fitness for r in actuator.evaluate_many(shapes, threads=threads, params=params)]
+        many = [r.fitness for r in actuator.evaluate_many(shapes, threads=threads, params=params, model="thesis")]
         assert [f.hex() for f in many] == [f.hex() for f in one]
 
 
 def test_positions_are_n_by_3_arrays():
-    r = actuator.evaluate(actuator.cylinder(), params=actuator.ThesisParams(iterations=100))
+    r = actuator.evaluate(actuator.cylinder(), params=actuator.ThesisParams(iterations=100), model="thesis")
     assert isinstance(r.final, np.ndarray)
     assert r.final.shape == (900, 3) and r.initial.shape == (900, 3)
     assert np.allclose(np.hypot(r.initial[:, 0], r.initial[:, 1]), 1.0)
@@ -88,19 +88,19 @@ def test_bad_input_raises_value_error_with_the_message():
     with pytest.raises(ValueError, match="choose"):
         actuator.evaluate(actuator.cylinder(), model="fem")
     with pytest.raises(ValueError, match="control points"):
-        actuator.evaluate(actuator.bspline([[1, 2]]))
+        actuator.evaluate(actuator.bspline([[1, 2]]), model="thesis")
     with pytest.raises(ValueError, match="thesis model's"):
         actuator.evaluate(actuator.cylinder(), model="shell", params=actuator.ThesisParams())
 
 
 def test_numerical_failure_is_a_status_not_an_exception():
     params = actuator.ThesisParams(step_scale=50.0, iterations=2000)
-    r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=params)
+    r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=params, model="thesis")
     assert r.status != "ok"
 
 
 SWEEP = {
-    "id": "py", "title": "python sweep", "sim": {"iterations": 2000},
+    "id": "py", "title": "python sweep", "model": {"name": "thesis"}, "sim": {"iterations": 2000},
     "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
               "axes": [{"parameter": "amplitude", "from": 1, "to": 4, "points": 3}]},
     "render": {"figures": False, "thumbnails": False},
@@ -111,13 +111,13 @@ def test_a_sweep_returns_its_table_and_equals_evaluate(tmp_path):
     out = actuator.sweep(SWEEP, str(tmp_path / "s"), threads=2)
     results = out["tables"]["results"]
     assert list(results["amplitude"]) == [1.0, 2.5, 4.0]
-    one = actuator.evaluate(actuator.sine(2.5, (0.5, math.pi - 0.5)), params=actuator.ThesisParams(iterations=2000))
+    one = actuator.evaluate(actuator.sine(2.5, (0.5, math.pi - 0.5)), params=actuator.ThesisParams(iterations=2000), model="thesis")
     assert float(results["fitness"][1]).hex() == one.fitness.hex()
     assert out["summary"]["simulations"] == 3
 
 
 def test_a_small_ga_logs_every_generation(tmp_path):
-    ga = {"id": "g", "seed": 3, "sim": {"iterations": 1500},
+    ga = {"id": "g", "seed": 3, "model": {"name": "thesis"}, "sim": {"iterations": 1500},
           "evolve": {"runs": 1, "population": 6, "generations": 2, "genome": {"kind": "bspline", "length": [4, 6]}},
           "render": {"figures": False, "thumbnails": False}}
     out = actuator.evolve(ga, str(tmp_path / "g"))
@@ -128,7 +128,7 @@ def test_a_small_ga_logs_every_generation(tmp_path):
 
 def test_bad_experiments_raise_value_error(tmp_path):
     with pytest.raises(ValueError, match="sim.iteration"):
-        actuator.run({"id": "x", "sim": {"iteration": 5}, "sweep": SWEEP["sweep"]}, str(tmp_path / "x"))
+        actuator.run({"id": "x", "model": {"name": "thesis"}, "sim": {"iteration": 5}, "sweep": SWEEP["sweep"]}, str(tmp_path / "x"))
     with pytest.raises(ValueError, match="is a 'sweep' one"):
         actuator.evolve(SWEEP, str(tmp_path / "y"))
     (tmp_path / "full").mkdir()
@@ -149,14 +149,14 @@ def hexes(results):
 
 
 def test_any_map_gives_the_local_results_bit_for_bit():
-    local = hexes(actuator.evaluate_many(SHAPES, threads=2, params=SHORT))
-    assert hexes(actuator.evaluate_many(SHAPES, map=map, params=SHORT)) == local
+    local = hexes(actuator.evaluate_many(SHAPES, threads=2, params=SHORT, model="thesis"))
+    assert hexes(actuator.evaluate_many(SHAPES, map=map, params=SHORT, model="thesis")) == local
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
-        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT, batch=2)) == local
+        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT, batch=2, model="thesis")) == local
     with concurrent.futures.ProcessPoolExecutor(2) as pool:
-        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT)) == local
+        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT, model="thesis")) == local
     with multiprocessing.get_context("spawn").Pool(2) as pool:
-        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT)) == local
+        assert hexes(actuator.evaluate_many(SHAPES, map=pool.map, params=SHORT, model="thesis")) == local
 
 
 def test_shell_results_through_a_map_keep_their_curves():
@@ -171,19 +171,19 @@ def test_shell_results_through_a_map_keep_their_curves():
 
 def test_a_map_that_misbehaves_is_a_value_error():
     with pytest.raises(ValueError, match="neither callable"):
-        actuator.evaluate_many(SHAPES, map=42)
+        actuator.evaluate_many(SHAPES, map=42, model="thesis")
     with pytest.raises(ValueError, match="gave back 4 results for 5 jobs"):
-        actuator.evaluate_many(SHAPES, map=lambda f, xs: [f(x) for x in list(xs)[:4]], params=SHORT)
+        actuator.evaluate_many(SHAPES, map=lambda f, xs: [f(x) for x in list(xs)[:4]], params=SHORT, model="thesis")
     with pytest.raises(ValueError, match="where actuator._evaluate_job's bytes were expected"):
-        actuator.evaluate_many(SHAPES, map=lambda f, xs: [0 for _ in xs], params=SHORT)
+        actuator.evaluate_many(SHAPES, map=lambda f, xs: [0 for _ in xs], params=SHORT, model="thesis")
     with pytest.raises(ValueError, match="give one of them"):
-        actuator.evaluate_many(SHAPES, map=map, workers=["local"])
+        actuator.evaluate_many(SHAPES, map=map, workers=["local"], model="thesis")
     with pytest.raises(ValueError, match="not a job message"):
         actuator._evaluate_job(b"not capnp")
 
 
 def test_an_experiment_through_a_map_equals_the_local_run(tmp_path):
-    ga = {"id": "m", "seed": 5, "sim": {"iterations": 1500},
+    ga = {"id": "m", "seed": 5, "model": {"name": "thesis"}, "sim": {"iterations": 1500},
           "evolve": {"runs": 1, "population": 8, "generations": 3, "genome": {"kind": "bspline", "length": [4, 6]}},
           "render": {"figures": False, "thumbnails": False}}
     actuator.evolve(ga, str(tmp_path / "local"), threads=2)
@@ -199,9 +199,9 @@ def test_evaluation_servers_give_the_local_results(tmp_path):
         line = server.stdout.readline()
         assert line.startswith("listening on "), line
         address = line.split()[2]  # "listening on ADDRESS:PORT (1 worker threads)"
-        local = hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT))
-        assert hexes(actuator.evaluate_many(SHAPES, workers=[address], params=SHORT)) == local
-        assert hexes(actuator.evaluate_many(SHAPES, workers=address + ",local", threads=1, params=SHORT)) == local
+        local = hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT, model="thesis"))
+        assert hexes(actuator.evaluate_many(SHAPES, workers=[address], params=SHORT, model="thesis")) == local
+        assert hexes(actuator.evaluate_many(SHAPES, workers=address + ",local", threads=1, params=SHORT, model="thesis")) == local
     finally:
         server.kill()
         server.wait()
@@ -219,7 +219,7 @@ def test_tables_are_dataframes_with_pandas_and_structured_arrays_without(tmp_pat
 
 
 def test_render_returns_rgba_pixels_and_writes_a_png_once(tmp_path):
-    r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=SHORT)
+    r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=SHORT, model="thesis")
     image = actuator.render(r, width=320, height=240)
     assert image.shape == (240, 320, 4) and image.dtype == np.uint8
     assert (image[..., 3] == 255).all()
@@ -252,7 +252,7 @@ def test_an_archive_reads_as_records_in_order(tmp_path):
     assert {r.role for r in records} == {"grid"}
     assert [r.result.fitness.hex() for r in records] == [float(f).hex() for f in out["tables"]["results"]["fitness"]]
     assert records[7].result.final.shape == (900, 3)
-    again = actuator.evaluate(records[7].result.shape, params=actuator.ThesisParams(iterations=50))
+    again = actuator.evaluate(records[7].result.shape, params=actuator.ThesisParams(iterations=50), model="thesis")
     assert again.fitness.hex() == records[7].result.fitness.hex()
     quick = list(actuator.open_archive(archive, meshes=False))
     assert len(quick) == 300 and quick[0].result.final.shape == (0, 3)
@@ -276,7 +276,7 @@ def test_a_torn_archive_tail_ends_the_records_and_damage_is_an_error(tmp_path):
 
 
 def test_resume_from_python_ends_as_an_uninterrupted_run(tmp_path):
-    ga = {"id": "r", "seed": 9, "sim": {"iterations": 6000},
+    ga = {"id": "r", "seed": 9, "model": {"name": "thesis"}, "sim": {"iterations": 6000},
           "evolve": {"runs": 1, "population": 12, "generations": 5, "genome": {"kind": "bspline", "length": [4, 6]}},
           "render": {"figures": False, "thumbnails": False}}
     whole = tmp_path / "whole"
@@ -300,7 +300,7 @@ def test_resume_from_python_ends_as_an_uninterrupted_run(tmp_path):
 
 
 def test_a_map_that_fails_mid_run_loses_nothing_and_the_run_resumes(tmp_path):
-    ga = {"id": "f", "seed": 4, "sim": {"iterations": 1500},
+    ga = {"id": "f", "seed": 4, "model": {"name": "thesis"}, "sim": {"iterations": 1500},
           "evolve": {"runs": 1, "population": 8, "generations": 4, "genome": {"kind": "bspline", "length": [4, 6]}},
           "render": {"figures": False, "thumbnails": False}}
     actuator.evolve(ga, str(tmp_path / "whole"), threads=2)
@@ -329,13 +329,13 @@ def test_shapes_defs_and_results_pickle_exactly_for_process_pools():
     material.mu_kpa = 123.0
     back = pickle.loads(pickle.dumps(material))
     assert repr(back) == repr(material) and back.preset == "dragon-skin-10"
-    r = actuator.evaluate(actuator.sine(2.0), params=SHORT)
+    r = actuator.evaluate(actuator.sine(2.0), params=SHORT, model="thesis")
     again = pickle.loads(pickle.dumps(r))
     assert (again.fitness.hex(), again.final.tobytes(), again.model) == (r.fitness.hex(), r.final.tobytes(), r.model)
     # actuator.evaluate itself in a process pool, shapes and params sent by pickle.
     with concurrent.futures.ProcessPoolExecutor(2) as pool:
-        far = list(pool.map(functools.partial(actuator.evaluate, params=actuator.ThesisParams(iterations=2000)), SHAPES))
-    assert hexes(far) == hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT))
+        far = list(pool.map(functools.partial(actuator.evaluate, model="thesis", params=actuator.ThesisParams(iterations=2000)), SHAPES))
+    assert hexes(far) == hexes(actuator.evaluate_many(SHAPES, threads=1, params=SHORT, model="thesis"))
     with pytest.raises(ValueError, match="choose"):
         actuator.Material.from_preset("rubber")
 
@@ -347,7 +347,7 @@ def test_ctrl_c_stops_a_long_local_run_and_it_resumes(tmp_path):
     threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
     started = time.time()
     with pytest.raises(KeyboardInterrupt):
-        actuator.evaluate_many(shapes, threads=2)
+        actuator.evaluate_many(shapes, threads=2, model="thesis")
     assert time.time() - started < 2.5
     # An experiment stopped so keeps what it recorded, and resumes to the uninterrupted end.
     sweep = json.loads(json.dumps(SWEEP))
@@ -365,7 +365,7 @@ def test_ctrl_c_stops_a_long_local_run_and_it_resumes(tmp_path):
 
 def test_paths_are_taken_as_python_takes_them_and_wrong_types_are_type_errors(tmp_path):
     import pathlib
-    r = actuator.evaluate(actuator.sine(4.1), params=actuator.ThesisParams(iterations=200))
+    r = actuator.evaluate(actuator.sine(4.1), params=actuator.ThesisParams(iterations=200), model="thesis")
     # bytes and os.PathLike name the file they name (not "b'x.png'").
     actuator.render(r, os.fsencode(str(tmp_path / "bytes.png")), width=64, height=48)
     actuator.render(r, tmp_path / "pathlike.png", width=64, height=48)
@@ -374,7 +374,7 @@ def test_paths_are_taken_as_python_takes_them_and_wrong_types_are_type_errors(tm
     with pytest.raises(TypeError, match="path: expected a path"):
         actuator.render(r, 42)
     experiment = tmp_path / "s.json"
-    experiment.write_text(json.dumps({"id": "s", "sim": {"iterations": 100}, "render": {"figures": False, "thumbnails": False},
+    experiment.write_text(json.dumps({"id": "s", "model": {"name": "thesis"}, "sim": {"iterations": 100}, "render": {"figures": False, "thumbnails": False},
                                       "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}}))
     out = actuator.sweep(pathlib.Path(experiment), pathlib.Path(tmp_path / "run"))
     assert len(out["tables"]["results"]) == 2

@@ -53,8 +53,8 @@ static int RunExport(int argc, char** argv, int first) {
     cli.Enum("--format", format, "file format: binary STL (default), OBJ or binary PLY");
     cli.Flag("--ascii", ascii, "ASCII STL instead of binary");
     cli.Examples(
-        "  actuator export --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
-        "  actuator export --model shell --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
+        "  actuator export --model thesis --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
+        "  actuator export --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
         "  actuator export --from runs/5.2/evaluations.capnp --index 17 --out part/ --wall outward\n"
         "  actuator export --shape cylinder --out part/ --format obj\n");
     if (!cli.Parse(argc, argv, first)) return 0;

@@ -185,11 +185,11 @@ static int RunRender(int argc, char** argv, int first) {
     cli.Integer("--png-level", p.pngLevel, "zlib compression level of the PNG files (frame sequences use 1 unless given)", 0, 9);
     cli.Text("--gl-backend", p.backend, "OpenGL backend module: osmesa or egl (default: $ACTUATOR_GL_BACKEND, else osmesa)")->type_name("NAME");
     cli.Examples(
-        "  actuator render --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n"
-        "  actuator render --model shell --shape sine --amplitude 1.3 --pressure-kpa 4 --timelapse 8 --out figures/shell\n"
-        "  actuator render --model shell --shape cylinder --color-by stress --out figures/tube\n"
+        "  actuator render --model thesis --shape sine --amplitude 4.1 --out figures/sine --turntable 60 --video\n"
+        "  actuator render --shape sine --amplitude 1.3 --pressure-kpa 4 --timelapse 8 --out figures/shell\n"
+        "  actuator render --shape cylinder --fibres braid --fibre-angle-deg 30 --color-by stress --out figures/braid\n"
         "  actuator render --from runs/5.2/evaluations.capnp --index 17 --out figures/ --turntable 36   (no simulation)\n"
-        "  actuator render --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --solid cutaway --wall-mm 1.5 --out figures/\n");
+        "  actuator render --model thesis --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --solid cutaway --wall-mm 1.5 --out figures/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     if (cli.Given("--turntable")) p.turntable = static_cast<int>(ParseInteger(turntable.empty() ? "60" : turntable, "--turntable", 1, 100000));
     if (cli.Given("--timelapse")) p.timelapse = static_cast<int>(ParseInteger(timelapse.empty() ? "30" : timelapse, "--timelapse", 2, 100000));

@@ -45,11 +45,11 @@ static int RunSimulate(int argc, char** argv, int first) {
     cli.Text("--save-mesh", saveMesh, "write the final positions as OBJ (full precision; reads back with --mesh)")->type_name("FILE.obj");
     cli.Text("--save-initial", saveInitial, "write the initial (shaped) mesh as OBJ")->type_name("FILE.obj");
     cli.Examples(
-        "  actuator simulate --shape sine --amplitude 4.1 --phase 0.5,pi-0.5\n"
-        "  actuator simulate --shape abs-sine --amplitude 4 --phase 0,4pi\n"
-        "  actuator simulate --shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"\n"
-        "  actuator simulate --shape sine --load stretch --save-mesh stretched.obj\n"
-        "  actuator simulate --mesh stretched.obj --iterations 5000\n"
+        "  actuator simulate --model thesis --shape sine --amplitude 4.1 --phase 0.5,pi-0.5\n"
+        "  actuator simulate --model thesis --shape abs-sine --amplitude 4 --phase 0,4pi\n"
+        "  actuator simulate --model thesis --shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"\n"
+        "  actuator simulate --model thesis --shape sine --load stretch --save-mesh stretched.obj\n"
+        "  actuator simulate --model thesis --mesh stretched.obj --iterations 5000\n"
         "  actuator simulate --from runs/5.2/evaluations.capnp --index 17 --iterations 20000\n"
         "  actuator simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 \\\n"
         "                    --ring-vertices 30 --rings 30 --pressure-kpa 1.8\n"

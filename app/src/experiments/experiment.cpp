@@ -743,7 +743,10 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
     const bool thesisModel = e.model == sim::ModelKind::Thesis;
     for (const char* thesisOnly : {"sim", "mesh"})
         if (!thesisModel && top.Has(thesisOnly))
-            top.Fail(std::string("applies to the thesis model only; the ") + sim::Name(e.model) + " model's settings go in the 'model' block", thesisOnly);
+            top.Fail(top.Has("model") ? std::string("applies to the thesis model only; the ") + sim::Name(e.model) + " model's settings go in the 'model' block"
+                                      : std::string("applies to the thesis model only: name it with \"model\": {\"name\": \"thesis\"} (without a 'model' block "
+                                                    "an experiment is under the ") + sim::Name(e.model) + " model)",
+                     thesisOnly);
     if (top.Has("sim")) {
         ObjectReader sim = top.Object("sim");
         sim.Fields(e.params);

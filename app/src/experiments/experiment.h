@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim/batch.h"
+#include "sim/model.h"
 #include "sim/optimize.h"
 #include "sim/search.h"
 #include "sim/solver.h"
@@ -93,7 +94,7 @@ struct Experiment {
     std::string compare;      // the id of the thesis-model experiment this one re-runs under another model
     ThesisResult thesisResult;
     std::vector<ThesisItem> thesisItems;  // the thesis tables and figures this experiment reproduces
-    sim::ModelKind model = sim::ModelKind::Thesis;  // the "model" block's name
+    sim::ModelKind model = sim::kDefaultModel;  // the "model" block's name
     sim::MeshDef mesh;                              // thesis model: the "mesh" block
     sim::SimParams params;                          // thesis model: the "sim" block
     sim::ShellDef shell = sim::DefaultShellDef();   // membrane and shell models: the "model" block

@@ -6,13 +6,14 @@
 #include <string>
 
 #include "options/cli.h"
-#include "sim/fields.h"
 #include "sim/batch.h"
+#include "sim/fields.h"
+#include "sim/model.h"
 
 namespace app {
 
 struct ModelOptions {
-    sim::ModelKind model = sim::ModelKind::Thesis;
+    sim::ModelKind model = sim::kDefaultModel;
     std::string load;                       // thesis: inflate|stretch|none; shell: inflate|gas|volume|force|blocked
     sim::SimParams thesis = sim::DefaultSimParams();
     sim::ShellDef shell = sim::DefaultShellDef();

@@ -21,7 +21,7 @@ namespace {
 std::string Cell(double value) { return std::isfinite(value) ? fmt::format("{:.4g}", value) : "-"; }
 
 const char* kThesisModel =
-    "the `thesis` model of docs/models/thesis.md (helical 30 x 30 mass-spring mesh, cross-product inflation, clamped ends; fitness in mesh units)";
+    "the `thesis` model of `docs/models/thesis.md` (helical 30 x 30 mass-spring mesh, cross-product inflation, clamped ends; fitness in mesh units)";
 
 }  // namespace
 
@@ -29,7 +29,7 @@ std::string ModelDescription(const Experiment& e) {
     if (e.model == sim::ModelKind::Thesis) return kThesisModel;
     const sim::ShellDef& s = e.shell;
     const sim::GeometryDef& g = s.geometry;
-    return fmt::format("the `{}` model of docs/models/shell.md ({} at equilibrium): a tube of R = {:g} mm, L = {:g} mm, wall {:g} mm, {} ({}, "
+    return fmt::format("the `{}` model of `docs/models/shell.md` ({} at equilibrium): a tube of R = {:g} mm, L = {:g} mm, wall {:g} mm, {} ({}, "
                        "shear modulus {:.3g} kPa), {} x {} ring mesh, {} to {:g} kPa in {} steps; fitness = contraction in percent at that pressure",
                        sim::Name(e.model), e.model == sim::ModelKind::Shell ? "membrane and bending" : "membrane only", g.radiusMm, g.lengthMm,
                        g.thicknessMm, sim::Name(s.material.preset), sim::Name(s.material.law), sim::ShearModulusKpa(s.material), g.ringVertices,

@@ -24,6 +24,10 @@ struct ThesisDef {
     SimParams params = DefaultSimParams();
 };
 
+// The model a new study gets when it names none: the command line's --model, experiment files
+// without a "model" block, Python's model=. The thesis's own files and examples name `thesis`.
+constexpr ModelKind kDefaultModel = ModelKind::Shell;
+
 // Each model's def; membrane and shell share ShellDef (bending on or off).
 using ModelDef = std::variant<ThesisDef, ShellDef>;
 

@@ -20,7 +20,7 @@ namespace {
 class Hardening : public CliTest {
 protected:
     std::string Ga(int generations = 3) const {
-        Write("ga.json", R"({"id": "h", "seed": 3, "sim": {"iterations": 2000}, "render": {"figures": true},
+        Write("ga.json", R"({"model": {"name": "thesis"}, "id": "h", "seed": 3, "sim": {"iterations": 2000}, "render": {"figures": true},
             "evolve": {"runs": 1, "population": 8, "generations": )" + std::to_string(generations) +
                              R"(, "genome": {"kind": "bspline", "splines": 1, "length": [5, 7]}}})");
         return Path("ga.json");
@@ -46,10 +46,10 @@ protected:
 
 TEST_F(Hardening, DeepExpressionsAreRefusedWhereverNumbersAreRead) {
     const std::string signs(70000, '-');
-    ExpectRefused("simulate --shape sine --amplitude " + signs + "1", "nests deeper than");
+    ExpectRefused("simulate --model thesis --shape sine --amplitude " + signs + "1", "nests deeper than");
     Write("deep.obj", "v " + signs + "1 0 0\n");
-    ExpectRefused("simulate --mesh " + Path("deep.obj"), "nests deeper than");
-    Write("deep.json", R"({"sweep": {"shape": {"family": "sine", "amplitude": ")" + std::string(300000, '(') + "1" + std::string(300000, ')') +
+    ExpectRefused("simulate --model thesis --mesh " + Path("deep.obj"), "nests deeper than");
+    Write("deep.json", R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine", "amplitude": ")" + std::string(300000, '(') + "1" + std::string(300000, ')') +
                            R"("}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
     ExpectRefused("sweep " + Path("deep.json") + " --out " + Path("o"), "is not a number");
     EXPECT_FALSE(fs::exists(Path("o")));
@@ -113,7 +113,7 @@ TEST_F(Hardening, ATornArchiveTailIsCutBeforeAResumeAppends) {
 }
 
 TEST_F(Hardening, TwoRunsIntoOneFolderAreRefusedNamingTheHolder) {
-    Write("slow.json", R"({"sim": {"iterations": 3000000}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})");
+    Write("slow.json", R"({"model": {"name": "thesis"}, "sim": {"iterations": 3000000}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})");
     Child first({ACTUATOR_BIN, "sweep", Path("slow.json"), "--out", Path("busy")});
     ASSERT_TRUE(WaitUntil([&] { return fs::exists(Path("busy/run.json")); }, 30));
     ExpectRefused("sweep " + Path("slow.json") + " --out " + Path("busy") + " --resume", "is in use by pid " + std::to_string(first.Pid()));
@@ -123,7 +123,7 @@ TEST_F(Hardening, TwoRunsIntoOneFolderAreRefusedNamingTheHolder) {
 
 TEST_F(Hardening, OutputThatCouldNotBeWrittenIsNeverASuccess) {
     ASSERT_EQ(Run("evolve " + Ga(1) + " --out " + Path("a")).exitCode, 0);
-    for (const std::string& command : std::vector<std::string>{"simulate --iterations 10", "inspect " + Path("a/evaluations.capnp"), "--help", "simulate --help"}) {
+    for (const std::string& command : std::vector<std::string>{"simulate --model thesis --iterations 10", "inspect " + Path("a/evaluations.capnp"), "--help", "simulate --help"}) {
         const Result r = Run(command + " > /dev/full");
         EXPECT_NE(r.exitCode, 0) << command;
         EXPECT_THAT(r.err, HasSubstr("could not write the output")) << command;
@@ -132,26 +132,26 @@ TEST_F(Hardening, OutputThatCouldNotBeWrittenIsNeverASuccess) {
 
 TEST_F(Hardening, OutputsNeverReplaceLinksDevicesOrInputs) {
     fs::create_symlink("/etc/hostname", Path("link.obj"));
-    ExpectRefused("simulate --iterations 1 --save-mesh " + Path("link.obj"), "symbolic link");
+    ExpectRefused("simulate --model thesis --iterations 1 --save-mesh " + Path("link.obj"), "symbolic link");
     EXPECT_TRUE(fs::is_symlink(Path("link.obj")));
-    ExpectRefused("simulate --iterations 1 --save-mesh /dev/null", "not a regular file");
-    ASSERT_EQ(Run("render --shape sine --size 160x120 --iterations 100 --out " + Path("p")).exitCode, 0);
+    ExpectRefused("simulate --model thesis --iterations 1 --save-mesh /dev/null", "not a regular file");
+    ASSERT_EQ(Run("render --model thesis --shape sine --size 160x120 --iterations 100 --out " + Path("p")).exitCode, 0);
     const std::string expected = Slurp(dir_ / "p" / "inflation.png");
     ExpectRefused("imgdiff " + Path("p/inflation.png") + " " + Path("p/stretch.png") + " --diff " + Path("p/inflation.png"), "also an input");
     EXPECT_EQ(Slurp(dir_ / "p" / "inflation.png"), expected);
-    ASSERT_EQ(Run("simulate --iterations 10 --save-mesh " + Path("m.obj")).exitCode, 0);
+    ASSERT_EQ(Run("simulate --model thesis --iterations 10 --save-mesh " + Path("m.obj")).exitCode, 0);
     const std::string mesh = Slurp(Path("m.obj"));
-    ExpectRefused("simulate --mesh " + Path("m.obj") + " --save-initial " + Path("m.obj"), "also an input");
+    ExpectRefused("simulate --model thesis --mesh " + Path("m.obj") + " --save-initial " + Path("m.obj"), "also an input");
     EXPECT_EQ(Slurp(Path("m.obj")), mesh);
 }
 
 TEST_F(Hardening, BadInputStopsARunBeforeAnyOutputIsWritten) {
     fs::create_directories(dir_ / "r" / "stretch.png");
-    ExpectRefused("render --shape sine --out " + Path("r"), "stretch.png");
+    ExpectRefused("render --model thesis --shape sine --out " + Path("r"), "stretch.png");
     EXPECT_FALSE(fs::exists(dir_ / "r" / "inflation.png"));
     fs::create_directories(dir_ / "t");
     std::ofstream(dir_ / "t" / "turntable") << "a file where the frames go";
-    ExpectRefused("render --shape sine --out " + Path("t") + " --turntable 3", "turntable");
+    ExpectRefused("render --model thesis --shape sine --out " + Path("t") + " --turntable 3", "turntable");
     EXPECT_FALSE(fs::exists(dir_ / "t" / "inflation.png"));
 }
 
@@ -159,7 +159,7 @@ TEST_F(Hardening, InterruptedRunsLeaveNoTemporaries) {
     for (int signal : {SIGINT, SIGTERM}) {
         const fs::path out = dir_ / ("frames_" + std::to_string(signal));
         {
-            Child render({ACTUATOR_BIN, "render", "--shape", "sine", "--iterations", "100", "--turntable", "400", "--png-level", "9", "--out", out.string()});
+            Child render({ACTUATOR_BIN, "render", "--model", "thesis", "--shape", "sine", "--iterations", "100", "--turntable", "400", "--png-level", "9", "--out", out.string()});
             // The frames wait as temporaries until the whole set is written (OutputBatch).
             ASSERT_TRUE(WaitUntil([&] { return fs::exists(out / "turntable") && Temporaries(out).size() >= 4; }, 60));
             render.Kill(signal);
@@ -188,7 +188,7 @@ TEST_F(Hardening, InterruptedRunsLeaveNoTemporaries) {
 TEST_F(Hardening, TextInCsvIsQuotedAsRfc4180Says) {
     const std::string label = R"(say "hi", then
 a new line)";
-    nlohmann::json experiment = {{"sim", {{"iterations", 200}}}, {"render", {{"figures", false}}},
+    nlohmann::json experiment = {{"model", {{"name", "thesis"}}}, {"sim", {{"iterations", 200}}}, {"render", {{"figures", false}}},
                                  {"evaluate", {{"shapes", {{{"family", "cylinder"}, {"label", label}}, {{"family", "sine"}, {"amplitude", 2}, {"phase", {0.5, 2.6}}}}}}}};
     Write("list.json", experiment.dump());
     ASSERT_EQ(Run("sweep " + Path("list.json") + " --out " + Path("l")).exitCode, 0);
@@ -201,13 +201,13 @@ a new line)";
 }
 
 TEST_F(Hardening, JobsTooLargeForTheMachineAreRefusedUpFront) {
-    ExpectRefused("render --resolution 256 --turns 256 --iterations 100000 --timelapse 100000 --out " + Path("big"), "GB of snapshots");
+    ExpectRefused("render --model thesis --resolution 256 --turns 256 --iterations 100000 --timelapse 100000 --out " + Path("big"), "GB of snapshots");
     EXPECT_FALSE(fs::exists(Path("big/inflation.png")));
     const auto started = std::chrono::steady_clock::now();
-    ExpectRefused("simulate --mesh /dev/zero", "is a device");
-    ExpectRefused("simulate --shape free-xy --offsets /dev/zero", "is a device");
+    ExpectRefused("simulate --model thesis --mesh /dev/zero", "is a device");
+    ExpectRefused("simulate --model thesis --shape free-xy --offsets /dev/zero", "is a device");
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5);
-    ExpectRefused("simulate --resolution 4096 --turns 4096", "vertices");
+    ExpectRefused("simulate --model thesis --resolution 4096 --turns 4096", "vertices");
     // The physical models' work is bounded from the mesh before anything is built: 1000 x 1000 would
     // need about 35 GB; a long thin tube meshed near-equilateral (--rings 0) would need far more.
     ExpectRefused("simulate --model shell --shape cylinder --ring-vertices 1000 --rings 1000", "would need about 35");
@@ -222,14 +222,14 @@ TEST_F(Hardening, JobsTooLargeForTheMachineAreRefusedUpFront) {
 
 TEST_F(Hardening, LongFileNamesWorkUpToTheSystemsLimit) {
     const std::string name254 = std::string(250, 'm') + ".obj";
-    const Result ok = Run("simulate --iterations 1 --save-mesh " + Path(name254));
+    const Result ok = Run("simulate --model thesis --iterations 1 --save-mesh " + Path(name254));
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
     EXPECT_TRUE(fs::exists(Path(name254)));
-    ExpectRefused("simulate --iterations 1 --save-mesh " + Path(std::string(260, 'm') + ".obj"), "longer than 255 bytes");
+    ExpectRefused("simulate --model thesis --iterations 1 --save-mesh " + Path(std::string(260, 'm') + ".obj"), "longer than 255 bytes");
 }
 
 TEST_F(Hardening, AFailedRunIsPicturedAsFarAsItIsFinite) {
-    const Result r = Run("render --shape sine --amplitude 4.1 --iterations 40000 --size 320x240 --out " + Path("nan"));
+    const Result r = Run("render --model thesis --shape sine --amplitude 4.1 --iterations 40000 --size 320x240 --out " + Path("nan"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(nlohmann::json::parse(r.out)["inflation"]["status"], "ok");
     const render::Image image = testing_support::LoadPng(dir_ / "nan" / "inflation.png");
@@ -244,7 +244,7 @@ TEST_F(Hardening, AFailedRunIsPicturedAsFarAsItIsFinite) {
 TEST_F(Hardening, DeeplyNestedJsonIsRefusedByEveryReader) {
     // 100,000 levels: copying or destroying such a document recurses once per level.
     const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-    Write("deep.json", R"({"id": "d", "note": )" + deep + R"(, "sim": {"iterations": 100},
+    Write("deep.json", R"({"id": "d", "note": )" + deep + R"(, "model": {"name": "thesis"}, "sim": {"iterations": 100},
         "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
     for (const std::string command : {"sweep", "evolve"}) ExpectRefused(command + " " + Path("deep.json") + " --out " + Path("o"), "levels deep at line 1");
     ExpectRefused("compare " + Path("deep.json") + " " + Path("deep.json") + " --out " + Path("o"), "levels deep");
@@ -318,7 +318,7 @@ TEST(HardeningOptimizers, EveryDefinitionTheCheckAcceptsRuns) {
 }
 
 TEST_F(Hardening, OptimizerParametersAreCheckedAgainstThePopulation) {
-    Write("pso.json", R"({"id": "p", "sim": {"iterations": 100}, "optimizer": {"algorithm": "pso", "population": 8, "generations": 1,
+    Write("pso.json", R"({"model": {"name": "thesis"}, "id": "p", "sim": {"iterations": 100}, "optimizer": {"algorithm": "pso", "population": 8, "generations": 1,
         "parameters": {"neighb_param": 1000}, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
     ExpectRefused("evolve " + Path("pso.json") + " --out " + Path("o"), "pso's ring topology (neighb_type 2) needs neighb_param from 2 to the population (8), got 1000");
     EXPECT_FALSE(fs::exists(Path("o")));
@@ -340,13 +340,13 @@ TEST_F(Hardening, AFullDiskIsExit74AndLeavesNoHalfOfAnOutput) {
     expectFull(limited(64, "export --model shell --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --out " + Path("part")));
     EXPECT_FALSE(fs::exists(Path("part")));
     // render: the two figures (about 130 and 110 kB) fit, the turntable's frames (about 210 kB) do not.
-    expectFull(limited(180, "render --shape sine --amplitude 4.1 --turntable 2 --out " + Path("pictures")));
+    expectFull(limited(180, "render --model thesis --shape sine --amplitude 4.1 --turntable 2 --out " + Path("pictures")));
     EXPECT_FALSE(fs::exists(Path("pictures")));
-    ASSERT_EQ(Run("render --shape sine --amplitude 4.1 --turntable 2 --out " + Path("pictures")).exitCode, 0);
+    ASSERT_EQ(Run("render --model thesis --shape sine --amplitude 4.1 --turntable 2 --out " + Path("pictures")).exitCode, 0);
     EXPECT_GT(fs::file_size(Path("pictures/turntable/frame_0000.png")), 180u << 10) << "the case no longer tests a set cut in the middle";
     EXPECT_LT(fs::file_size(Path("pictures/inflation.png")), 180u << 10);
     // simulate: both meshes or neither (the thesis OBJs are about 60 kB each).
-    expectFull(limited(40, "simulate --iterations 10 --save-initial " + Path("a.obj") + " --save-mesh " + Path("b.obj")));
+    expectFull(limited(40, "simulate --model thesis --iterations 10 --save-initial " + Path("a.obj") + " --save-mesh " + Path("b.obj")));
     EXPECT_FALSE(fs::exists(Path("a.obj")));
     EXPECT_FALSE(fs::exists(Path("b.obj")));
     // A run that writes as it goes stops with 74, keeps whole records, and resumes to the end.
@@ -362,7 +362,7 @@ TEST_F(Hardening, AFullDiskIsExit74AndLeavesNoHalfOfAnOutput) {
 // and --set; compare its files, seeds and budget. Another one given on resume is refused, not mixed in.
 TEST_F(Hardening, AResumeContinuesTheRunItResumesAndNoOther) {
     fs::create_directories(dir_ / "mine");
-    Write("mine/s.json", R"({"id": "s", "sim": {"iterations": 200}, "render": {"figures": false},
+    Write("mine/s.json", R"({"model": {"name": "thesis"}, "id": "s", "sim": {"iterations": 200}, "render": {"figures": false},
         "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})");
     ASSERT_EQ(Run("reproduce --experiments " + Path("mine") + " --part thesis --out " + Path("r")).exitCode, 0);
     const std::string report = Slurp(dir_ / "r" / "report.md");
@@ -378,9 +378,9 @@ TEST_F(Hardening, AResumeContinuesTheRunItResumesAndNoOther) {
     ExpectRefused("reproduce --resume " + Path("r") + " --set sim.iterations=300", "--set");
     EXPECT_FALSE(fs::exists(dir_ / "elsewhere"));
     // compare: the budget and seeds it was started with.
-    Write("c1.json", R"({"id": "c1", "sim": {"iterations": 200}, "render": {"figures": false}, "optimizer": {"algorithm": "de", "population": 5,
+    Write("c1.json", R"({"model": {"name": "thesis"}, "id": "c1", "sim": {"iterations": 200}, "render": {"figures": false}, "optimizer": {"algorithm": "de", "population": 5,
         "generations": 2, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
-    Write("c2.json", R"({"id": "c2", "sim": {"iterations": 200}, "render": {"figures": false}, "optimizer": {"algorithm": "pso", "population": 5,
+    Write("c2.json", R"({"model": {"name": "thesis"}, "id": "c2", "sim": {"iterations": 200}, "render": {"figures": false}, "optimizer": {"algorithm": "pso", "population": 5,
         "generations": 2, "objectives": ["thesis_fitness"], "genome": {"family": "sine", "amplitude": [0, 5]}}})");
     ASSERT_EQ(Run("compare " + Path("c1.json") + " " + Path("c2.json") + " --seeds 1 --evaluations 10 --out " + Path("c")).exitCode, 0);
     ExpectRefused("compare --resume " + Path("c") + " --evaluations 20", "--evaluations '20' is not what");
@@ -415,7 +415,7 @@ TEST_F(Hardening, FlagsTakeNoValueAndOptionsWithoutEffectAreRefused) {
     for (const std::string command : {"simulate", "render", "sweep", "evolve", "reproduce", "export", "compare", "inspect", "serve", "imgdiff"})
         ExpectRefused(command + " --help=1", "--help takes no value");
     ExpectRefused("reproduce --quick=true --out " + Path("r"), "--quick takes no value");
-    ExpectRefused("render --shape sine --video=1 --out " + Path("r"), "--video takes no value");
+    ExpectRefused("render --model thesis --shape sine --video=1 --out " + Path("r"), "--video takes no value");
     EXPECT_FALSE(fs::exists(Path("r")));
     ExpectRefused("evolve " + Ga(1) + " --out " + Path("r") + " --threads 2 --workers 127.0.0.1:1", "--threads counts this machine's threads");
     ExpectRefused("simulate --model shell --shape cylinder --force-n 3", "--force-n applies to --load force, not --load inflate");

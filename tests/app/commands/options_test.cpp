@@ -248,8 +248,8 @@ protected:
 
 TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
     // An archive for --from and a deformed mesh for --mesh.
-    ASSERT_EQ(testing_support::RunShell(std::string(ACTUATOR_BIN) + " simulate --shape sine --iterations 300 --save-mesh " + (dir_ / "m.obj").string(), dir_).exitCode, 0);
-    std::ofstream(dir_ / "s.json") << R"({"id": "s", "sim": {"iterations": 200}, "render": {"figures": false, "thumbnails": false},
+    ASSERT_EQ(testing_support::RunShell(std::string(ACTUATOR_BIN) + " simulate --model thesis --shape sine --iterations 300 --save-mesh " + (dir_ / "m.obj").string(), dir_).exitCode, 0);
+    std::ofstream(dir_ / "s.json") << R"({"model": {"name": "thesis"}, "id": "s", "sim": {"iterations": 200}, "render": {"figures": false, "thumbnails": false},
         "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [2]}]}})";
     ASSERT_EQ(testing_support::RunShell(std::string(ACTUATOR_BIN) + " sweep " + (dir_ / "s.json").string() + " --out " + (dir_ / "a").string(), dir_).exitCode, 0);
     const std::string archive = (dir_ / "a" / "evaluations.capnp").string(), out = (dir_ / "out").string();
@@ -272,8 +272,8 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
         modes.push_back({"thesis " + load, Registered("simulate"), {"--model", "thesis", "--load", load, "--iterations", "200"}, thesisMode});
     for (const std::string shape : {"sine", "bspline"})
         modes.push_back({"thesis " + shape, Registered("simulate"),
-                         {"--shape", shape, "--iterations", "200", shape == "sine" ? "--amplitude" : "--control-points", shape == "sine" ? "2" : "1,2,1,2,1"},
-                         {"--iterations", "--shape"}});
+                         {"--model", "thesis", "--shape", shape, "--iterations", "200", shape == "sine" ? "--amplitude" : "--control-points", shape == "sine" ? "2" : "1,2,1,2,1"},
+                         {"--model", "--iterations", "--shape"}});
     for (const std::string load : {"inflate", "gas", "volume", "force", "blocked"})
         modes.push_back({"shell " + load, Registered("simulate"),
                          Joined({"--model", "shell", "--load", load},
@@ -288,8 +288,8 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
 }
 
 TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {
-    ASSERT_EQ(testing_support::RunShell(std::string(ACTUATOR_BIN) + " simulate --shape sine --iterations 300 --save-mesh " + (dir_ / "m.obj").string(), dir_).exitCode, 0);
-    std::ofstream(dir_ / "s.json") << R"({"id": "s", "sim": {"iterations": 200}, "render": {"figures": false, "thumbnails": false},
+    ASSERT_EQ(testing_support::RunShell(std::string(ACTUATOR_BIN) + " simulate --model thesis --shape sine --iterations 300 --save-mesh " + (dir_ / "m.obj").string(), dir_).exitCode, 0);
+    std::ofstream(dir_ / "s.json") << R"({"model": {"name": "thesis"}, "id": "s", "sim": {"iterations": 200}, "render": {"figures": false, "thumbnails": false},
         "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]}, "axes": [{"parameter": "amplitude", "values": [1.3]}]}})";
     ASSERT_EQ(testing_support::RunShell(std::string(ACTUATOR_BIN) + " sweep " + (dir_ / "s.json").string() + " --out " + (dir_ / "a").string(), dir_).exitCode, 0);
     const std::string archive = (dir_ / "a" / "evaluations.capnp").string();
@@ -312,16 +312,16 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {
     const std::vector<std::string> small{"--size", "64x64", "--supersample", "1"};
     const std::vector<std::string> sine{"--shape", "sine", "--amplitude", "1.3", "--phase", "0.5,pi-0.5"};
     std::vector<Mode> render{
-        {"thesis", Registered("render"), Joined(Joined(sine, small), {"--iterations", "200"}), {"--shape", "--iterations", "--solid"}},
+        {"thesis", Registered("render"), Joined(Joined(sine, small), {"--model", "thesis", "--iterations", "200"}), {"--shape", "--model", "--iterations", "--solid"}},
         {"shell", Registered("render"), Joined(Joined(Joined(sine, small), {"--model", "shell"}), kSmallShell), {"--shape", "--model", "--solid"}},
-        {"solid cutaway", Registered("render"), Joined(Joined(sine, small), {"--solid", "cutaway", "--sampling", "1"}), {"--shape", "--solid"}},
-        {"solid mold", Registered("render"), Joined(Joined(sine, small), {"--solid", "mold", "--sampling", "1"}), {"--shape", "--solid"}},
+        {"solid cutaway", Registered("render"), Joined(Joined(sine, small), {"--model", "thesis", "--solid", "cutaway", "--sampling", "1"}), {"--shape", "--model", "--solid"}},
+        {"solid mold", Registered("render"), Joined(Joined(sine, small), {"--model", "thesis", "--solid", "mold", "--sampling", "1"}), {"--shape", "--model", "--solid"}},
         {"from an archive", Registered("render"), Joined({"--from", archive, "--index", "0"}, small), {"--from", "--index", "--solid"}},
     };
     Check("render", render, given, exempt, true, {{"--max-bisections", {"--max-iterations", "1"}}, {"--port-mm", {"--fittings"}}});
     given.erase("--solid");
     std::vector<Mode> exports{
-        {"thesis", Registered("export"), Joined(sine, {"--sampling", "1"}), {"--shape"}},
+        {"thesis", Registered("export"), Joined(sine, {"--model", "thesis", "--sampling", "1"}), {"--shape", "--model"}},
         {"shell", Registered("export"), Joined(sine, {"--model", "shell", "--sampling", "1", "--ring-vertices", "16", "--rings", "24"}), {"--shape", "--model"}},
         {"from an archive", Registered("export"), {"--from", archive, "--index", "0", "--sampling", "1"}, {"--from", "--index"}},
     };

@@ -23,7 +23,7 @@ class SearchCli : public CliTest {
 protected:
     // A GA small enough for a test but long enough (about a second per run) to be killed mid-run.
     std::string SmallGa(int generations = 10, int runs = 2, bool figures = true) const {
-        Write("ga.json", R"({"id": "test", "title": "small GA", "seed": 99, "sim": {"iterations": 3000},
+        Write("ga.json", R"({"model": {"name": "thesis"}, "id": "test", "title": "small GA", "seed": 99, "sim": {"iterations": 3000},
             "evolve": {"runs": )" + std::to_string(runs) + R"(, "population": 10, "generations": )" + std::to_string(generations) +
                              R"(, "tournament": 3, "elite": 1, "mutpb": 0.5, "indpb": 0.2,
                         "genome": {"kind": "bspline", "region": "middle", "splines": 2, "control": [0, 8], "length": [5, 9]}},
@@ -36,7 +36,7 @@ protected:
         const bool multi = algorithm == "nsga2" || algorithm == "moead";
         const std::string model = multi ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2},
                                                        "fibres": "braid", "fibre_stiffness_n_per_mm": 50},)"
-                                        : R"("sim": {"iterations": 3000},)";
+                                        : R"("model": {"name": "thesis"}, "sim": {"iterations": 3000},)";
         const std::string objectives = multi ? R"(["contraction", "max_stretch"])" : R"(["thesis_fitness"])";
         Write(algorithm + ".json", R"({"id": "o", "title": "small optimizer", "seed": 5, )" + model + R"(
             "optimizer": {"algorithm": ")" + algorithm + R"(", "runs": )" + std::to_string(runs) + R"(, "population": 8, "objectives": )" + objectives +
@@ -46,7 +46,7 @@ protected:
         return Path(algorithm + ".json");
     }
     std::string SmallSweep(int points = 24) const {
-        Write("sweep.json", R"({"id": "s", "sim": {"iterations": 4000},
+        Write("sweep.json", R"({"model": {"name": "thesis"}, "id": "s", "sim": {"iterations": 4000},
             "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
                       "axes": [{"parameter": "amplitude", "from": 1, "to": 8, "points": )" + std::to_string(points) + R"(}]},
             "thesis_result": {"points": [{"amplitude": 4.1, "fitness": 0.75}]}})");
@@ -237,7 +237,7 @@ TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
         for (const bool shell : {false, true}) {
             const bool multi = algorithm == "nsga2" || algorithm == "moead";
             const std::string model = shell ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2}},)"
-                                            : R"("sim": {"iterations": 2000},)";
+                                            : R"("model": {"name": "thesis"}, "sim": {"iterations": 2000},)";
             const std::string objectives = shell ? (multi ? (algorithm == "nsga2" ? R"(["contraction", "blocking_force"])" : R"(["contraction", "limit_margin"])") : R"(["contraction"])")
                                                  : (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])");
             const std::string name = algorithm + (shell ? "_shell" : "_thesis");
@@ -259,7 +259,7 @@ TEST_F(SearchCli, EveryAlgorithmResumesExactlyAfterAKillWhateverTheThreads) {
     for (const std::string algorithm : {"xnes", "de", "sade", "pso", "moead"}) {
         SCOPED_TRACE(algorithm);
         const bool multi = algorithm == "moead";
-        Write(algorithm + ".json", R"({"id": "k", "seed": 8, "sim": {"iterations": 3000}, "render": {"thumbnails": false},
+        Write(algorithm + ".json", R"({"model": {"name": "thesis"}, "id": "k", "seed": 8, "sim": {"iterations": 3000}, "render": {"thumbnails": false},
             "optimizer": {"algorithm": ")" + algorithm + R"(", "population": 12, "generations": 8, "objectives": )" +
                                        (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])") + R"(,
                           "genome": {"family": "bspline", "splines": 1, "control_points": 6}}})");
@@ -335,7 +335,7 @@ TEST_F(SearchCli, OptimizerDefinitionsThatCannotRunAreRefused) {
 TEST_F(SearchCli, CompareRunsEveryContenderWithTheSameSeedsToTheSameBudget) {
     const std::string cmaes = SmallOptimizer("cmaes", 10);
     // The GA on the optimizer's problem: one spline of 6 control points in [0, 8], 3,000 iterations.
-    Write("ga.json", R"({"id": "test", "title": "small GA", "seed": 99, "sim": {"iterations": 3000},
+    Write("ga.json", R"({"model": {"name": "thesis"}, "id": "test", "title": "small GA", "seed": 99, "sim": {"iterations": 3000},
         "evolve": {"runs": 1, "population": 10, "generations": 10, "tournament": 3, "elite": 1, "mutpb": 0.5, "indpb": 0.2,
                    "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [0, 8], "length": [6, 6]}}})");
     const std::string ga = Path("ga.json");
@@ -432,11 +432,11 @@ TEST_F(SearchCli, OverwriteKeepsTheOldResultsUntilTheNewRunHasOne) {
     ASSERT_EQ(Run("evolve " + SmallGa(1, 1, false) + " --out " + Path("a")).exitCode, 0);
     const std::string old = Slurp(dir_ / "a" / "evaluations.csv");
     // A run that fails before its first result puts the old results back.
-    Write("bad.json", R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}, "render": {"figures": 1}})");
+    Write("bad.json", R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}, "render": {"figures": 1}})");
     ExpectRefused("sweep " + Path("bad.json") + " --out " + Path("a") + " --overwrite", "expected true or false");
     EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.csv"), old);
     // Interrupted (SIGTERM) before its first result: the old results are back in place.
-    Write("slow.json", R"({"sim": {"iterations": 3000000}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
+    Write("slow.json", R"({"model": {"name": "thesis"}, "sim": {"iterations": 3000000}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
     {
         Child child({ACTUATOR_BIN, "sweep", Path("slow.json"), "--out", Path("a"), "--overwrite"});
         ASSERT_TRUE(WaitUntil([&] { return fs::exists(Path("a/run.json")) && Slurp(dir_ / "a" / "run.json").find("3000000") != std::string::npos; }, 30));
@@ -497,7 +497,7 @@ TEST_F(SearchCli, OneEvaluationIdInTheArchiveTheLogTheThumbnailsAndRender) {
     // The design column feeds straight back into simulate.
     const size_t design = static_cast<size_t>(std::find(log[0].begin(), log[0].end(), "design") - log[0].begin());
     ASSERT_LT(design, log[0].size()) << "evaluations.csv has a design column";
-    const Result fromCsv = Run("simulate --shape bspline --control-points \"" + log[5][design] + "\" --iterations 3000");
+    const Result fromCsv = Run("simulate --model thesis --shape bspline --control-points \"" + log[5][design] + "\" --iterations 3000");
     ASSERT_EQ(fromCsv.exitCode, 0) << fromCsv.err;
     EXPECT_EQ(nlohmann::json::parse(fromCsv.out)["fitness"], records[4]["fitness"]);
 
@@ -530,30 +530,30 @@ TEST_F(SearchCli, SetOverridesAnyExperimentKeyAndIsCheckedLikeTheFile) {
 }
 
 TEST_F(SearchCli, BadExperimentFilesAreRefusedPrecisely) {
-    const std::string sweep = R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})";
+    const std::string sweep = R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})";
     auto refuse = [&](const std::string& text, const std::string& mentions, std::source_location where = std::source_location::current()) {
         Write("bad.json", text);
         ExpectRefused("sweep " + Path("bad.json") + " --out " + Path("o"), mentions, where);
     };
-    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}, "iteratons": 5})",
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}, "iteratons": 5})",
            "'iteratons': unknown key");
-    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": "many"}]}})",
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": "many"}]}})",
            "'sweep.axes[0].points': expected a whole number, got 'many'");
-    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 0}]}})",
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 0}]}})",
            "'sweep.axes[0].points': '0' is out of range");
-    refuse(R"({"sweep": {"shape": {"family": "cone"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})",
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "cone"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})",
            "'sweep.shape.family': unknown value 'cone'");
-    refuse(R"({"evolve": {"population": 10, "tournament": 3, "mutpb": 1.5, "genome": {"kind": "bspline"}}})", "'evolve.mutpb': '1.5' is out of range");
-    refuse(R"({"evolve": {"genome": {"kind": "bspline", "length": [3, 9]}}})", "'evolve.genome.length'");
-    refuse(R"({"evolve": {"genome": {"kind": "bspline", "splines": 3}}})", "'evolve.genome.splines'");
-    refuse(R"({"evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 18446744073709551615}})", "'18446744073709551615' is out of range");
-    refuse(R"({"sweep": {"shape": {"family": "sine", "amplitude": 1e400}, "axes": []}})", "line 1");
-    refuse(R"({"sweep": {"shape": {"family": "sine"}}})", "'sweep.axes': missing");
-    refuse(R"({"shape": {"family": "sine"}, "sweep": {}})", "'shape': has moved");
-    refuse(R"({"iterations": 100, "sweep": {}})", "'iterations': has moved");
-    refuse(R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}, "sim": {"pressure": 0.01}})",
+    refuse(R"({"model": {"name": "thesis"}, "evolve": {"population": 10, "tournament": 3, "mutpb": 1.5, "genome": {"kind": "bspline"}}})", "'evolve.mutpb': '1.5' is out of range");
+    refuse(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline", "length": [3, 9]}}})", "'evolve.genome.length'");
+    refuse(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline", "splines": 3}}})", "'evolve.genome.splines'");
+    refuse(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 18446744073709551615}})", "'18446744073709551615' is out of range");
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine", "amplitude": 1e400}, "axes": []}})", "line 1");
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}}})", "'sweep.axes': missing");
+    refuse(R"({"model": {"name": "thesis"}, "shape": {"family": "sine"}, "sweep": {}})", "'shape': has moved");
+    refuse(R"({"model": {"name": "thesis"}, "iterations": 100, "sweep": {}})", "'iterations': has moved");
+    refuse(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}, "sim": {"pressure": 0.01}})",
            "did you mean 'sim.pressure_scale'");
-    refuse(R"({"sweep": )", "not valid JSON");
+    refuse(R"({"model": {"name": "thesis"}, "sweep": )", "not valid JSON");
     refuse("[1, 2]", "must hold a JSON object");
     refuse(R"({"sim": {"load": "squash"}, )" + sweep.substr(1), "'sim.load': unknown value 'squash'");
     Write("ok.json", sweep);

@@ -64,11 +64,11 @@ TEST_F(ShellCli, BadInputIsRefusedWithOneLineAndNothingWritten) {
     ExpectRefused("simulate --model shell --material unobtainium" + save, "ecoflex-00-30");
     ExpectRefused("simulate --model shell --load stretch" + save, "inflate, gas, volume, force or blocked");
     ExpectRefused("simulate --model shell --iterations 100" + save, "thesis model");
-    ExpectRefused("simulate --pressure-kpa 3" + save, "membrane and shell");
+    ExpectRefused("simulate --model thesis --pressure-kpa 3" + save, "membrane and shell");
     ExpectRefused("simulate --model shell --resolution 20" + save, "--ring-vertices");
     ExpectRefused("simulate --model plastic" + save, "thesis, membrane or shell");
     ExpectRefused("render --model shell --shape cylinder --color-by stretch --timelapse 3 --steps 5 --out " + Path("pictures"), "--steps");
-    ExpectRefused("render --shape cylinder --color-by stress --out " + Path("pictures"), "membrane or shell");
+    ExpectRefused("render --model thesis --shape cylinder --color-by stress --out " + Path("pictures"), "membrane or shell");
     // A mesh that is not the model's surface.
     Write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     ExpectRefused("simulate --model shell --mesh " + Path("quad.obj") + save, "triangles");
@@ -131,7 +131,7 @@ TEST_F(ShellCli, APressureSweepIsTheContractionPressureCurveAndItsArchiveReplays
     ASSERT_EQ(replay.exitCode, 0) << replay.err;
     EXPECT_EQ(nlohmann::json::parse(replay.out)["contraction_percent"].get<double>(), contraction[2]);
     // And the thesis model has no pressure axis.
-    Write("thesis.json", R"({"sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2]}]}})");
+    Write("thesis.json", R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2]}]}})");
     ExpectRefused("sweep " + Path("thesis.json") + " --out " + Path("never"), "pressure_kpa");
     EXPECT_FALSE(fs::exists(dir_ / "never" / "evaluations.capnp"));
 }
@@ -178,7 +178,7 @@ TEST_F(ShellCli, FibresReachTheModelAndBadFibreInputIsRefused) {
     ExpectRefused("simulate --model shell --fibres braid --fibre-angle-deg 91", "--fibre-angle-deg");
     ExpectRefused("simulate --model shell --fibres braid --fibre-stiffness-n-per-mm -2", "--fibre-stiffness-n-per-mm");
     ExpectRefused("simulate --model shell --fibres knitted", "braid");
-    ExpectRefused("simulate --fibres braid", "membrane and shell");
+    ExpectRefused("simulate --model thesis --fibres braid", "membrane and shell");
     const std::string sweep = R"("sweep": {"shape": {"family": "sine", "amplitude": 1}, "axes": [{"parameter": "fibre_angle_deg", "values": [20, 40]}]})";
     Write("gap.json", R"({"model": {"name": "shell", "fibres": "braid", "fibre_bands": [{"from": 0, "to": 0.4, "angle_deg": 20},
         {"from": 0.5, "to": 1, "angle_deg": 40}]}, )" + sweep + "}");

@@ -53,14 +53,14 @@ private:
 class Remote : public CliTest {
 protected:
     std::string Sweep(int points, int iterations) const {
-        Write("sweep.json", R"({"id": "remote", "sim": {"iterations": )" + std::to_string(iterations) + R"(},
+        Write("sweep.json", R"({"id": "remote", "model": {"name": "thesis"}, "sim": {"iterations": )" + std::to_string(iterations) + R"(},
             "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]},
                       "axes": [{"parameter": "amplitude", "from": 1, "to": 10, "points": )" + std::to_string(points) + R"(}]},
             "render": {"figures": false, "thumbnails": false}})");
         return Path("sweep.json");
     }
     std::string Ga() const {
-        Write("ga.json", R"({"id": "remote-ga", "seed": 5, "sim": {"iterations": 2000},
+        Write("ga.json", R"({"model": {"name": "thesis"}, "id": "remote-ga", "seed": 5, "sim": {"iterations": 2000},
             "evolve": {"runs": 1, "population": 8, "generations": 3, "genome": {"kind": "bspline", "splines": 1, "length": [5, 8]}},
             "render": {"figures": false, "thumbnails": false}})");
         return Path("ga.json");

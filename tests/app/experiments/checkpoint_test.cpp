@@ -12,7 +12,7 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-const char* kGa = R"({"id": "g", "evolve": {"population": 6, "generations": 3, "genome": {"kind": "bspline", "splines": 2, "length": [5, 8]}}})";
+const char* kGa = R"({"model": {"name": "thesis"}, "id": "g", "evolve": {"population": 6, "generations": 3, "genome": {"kind": "bspline", "splines": 2, "length": [5, 8]}}})";
 
 std::vector<std::pair<double, sim::Status>> Synthetic(const std::vector<const sim::Genome*>& genomes) {
     std::vector<std::pair<double, sim::Status>> out;
@@ -81,7 +81,7 @@ TEST(Checkpoint, ARunResumedUnderAnEditedExperimentIsRefusedNamingTheChange) {
 }
 
 TEST(OptimizerCheckpoint, RoundTripsAndRefusesHostileOrEditedContents) {
-    const char* experiment = R"({"id": "o", "optimizer": {"algorithm": "cmaes", "population": 8, "objectives": ["thesis_fitness"],
+    const char* experiment = R"({"model": {"name": "thesis"}, "id": "o", "optimizer": {"algorithm": "cmaes", "population": 8, "objectives": ["thesis_fitness"],
                                 "genome": {"family": "sine"}}})";
     const app::Experiment e = app::ParseExperiment(experiment, "o.json");
     const app::OptimizerCheckpoint c{7, 3, 40, "", 0};

@@ -11,8 +11,8 @@ using ::testing::HasSubstr;
 
 namespace {
 
-const char* kSweep = R"({"id": "t", "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})";
-const char* kGa = R"({"id": "g", "evolve": {"genome": {"kind": "bspline"}}})";
+const char* kSweep = R"({"model": {"name": "thesis"}, "id": "t", "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "from": 1, "to": 2, "points": 3}]}})";
+const char* kGa = R"({"model": {"name": "thesis"}, "id": "g", "evolve": {"genome": {"kind": "bspline"}}})";
 
 std::string Refusal(const std::string& text, const std::vector<app::Override>& overrides = {}) {
     try {
@@ -41,7 +41,7 @@ TEST(Experiment, DefaultsComeFromTheDefStructs) {
 
 TEST(Experiment, TheSimBlockSetsEveryThesisConstant) {
     const app::Experiment e = app::ParseExperiment(
-        R"({"evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 500, "load": "stretch", "spring_constant": 0.02,
+        R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 500, "load": "stretch", "spring_constant": 0.02,
             "pressure_scale": "0.01", "pull_force": 0.001, "step_scale": 0.05, "divergence_limit": 100, "precision": "double"}})",
         "x.json");
     EXPECT_EQ(e.params.iterations, 500);
@@ -71,13 +71,13 @@ TEST(Experiment, MessagesNameTheFileTheKeyAndTheNearestValidKey) {
     EXPECT_THAT(Refusal(kGa, {{"evolve.generatons", "3"}}), HasSubstr("did you mean 'evolve.generations'?"));
     EXPECT_THAT(Refusal(kGa, {{"evolve.generatons", "3"}}), HasSubstr("--set evolve.generatons=3"));
     EXPECT_THAT(Refusal(kGa, {{"evolve.population", "many"}}), HasSubstr("'evolve.population': expected a whole number, got 'many'"));
-    EXPECT_THAT(Refusal(R"({"evolve": {"genome": {"kind": "bspline"}}, "sim": {"pressure": 0.01}})"),
+    EXPECT_THAT(Refusal(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "sim": {"pressure": 0.01}})"),
                 HasSubstr("x.json: 'sim.pressure': unknown key (did you mean 'sim.pressure_scale'?)"));
-    EXPECT_THAT(Refusal(R"({"evolve": {"genome": {"kind": "bspline"}}, "zzzz": 1})"), HasSubstr("valid here:"));
-    EXPECT_THAT(Refusal(R"({"evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 1e400}})"), HasSubstr("key 'iterations'"));
+    EXPECT_THAT(Refusal(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "zzzz": 1})"), HasSubstr("valid here:"));
+    EXPECT_THAT(Refusal(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 1e400}})"), HasSubstr("key 'iterations'"));
     EXPECT_THAT(Refusal(kGa, {{"sweep.axes[2].to", "1"}}), HasSubstr("'sweep.axes' is not a list"));
     // 100,000 signs before a digit: refused as not a number, quoted short, no stack overflow.
-    const std::string deep = Refusal(std::string(R"({"evolve": {"genome": {"kind": "bspline"}}, "sim": {"step_scale": ")") + std::string(100000, '-') + "1\"}}");
+    const std::string deep = Refusal(std::string(R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "sim": {"step_scale": ")") + std::string(100000, '-') + "1\"}}");
     EXPECT_THAT(deep, HasSubstr("'sim.step_scale': '-----"));
     EXPECT_THAT(deep, HasSubstr("is not a number"));
     EXPECT_LT(deep.size(), 300u);
@@ -123,7 +123,7 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     EXPECT_THAT(Refusal(shell(R"("load": {"pressure_kpa": 2})",
                               R"("sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2]}]})")),
                 HasSubstr("'model.load.pressure_kpa': has no effect here: sweep.axes[0] varies it"));
-    EXPECT_THAT(Refusal(R"({"sweep": {"shape": {"family": "sine", "amplitude": 2}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})"),
+    EXPECT_THAT(Refusal(R"({"model": {"name": "thesis"}, "sweep": {"shape": {"family": "sine", "amplitude": 2}, "axes": [{"parameter": "amplitude", "values": [1, 2]}]}})"),
                 HasSubstr("'sweep.shape.amplitude'"));
     EXPECT_THAT(Refusal(shell(R"("fibres": "braid", "fibre_angle_deg": 40)", R"("evolve": {"genome": {"kind": "bspline", "fibre_angles": 1}})")),
                 HasSubstr("the genome's fibre angle genes give the angles"));

@@ -35,12 +35,12 @@ protected:
     std::unique_ptr<app::Evaluator> evaluator_ = app::MakeLocalEvaluator(2);
 };
 
-const char* kSweep = R"({"id": "s", "sim": {"iterations": 500}, "render": {"figures": false, "thumbnails": false},
+const char* kSweep = R"({"model": {"name": "thesis"}, "id": "s", "sim": {"iterations": 500}, "render": {"figures": false, "thumbnails": false},
     "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1, 2, 3]}]},
     "thesis_result": {"points": [{"amplitude": 2.5, "fitness": 0.3}]}})";
-const char* kList = R"({"id": "l", "sim": {"iterations": 500, "load": "stretch"}, "render": {"figures": false, "thumbnails": false},
+const char* kList = R"({"model": {"name": "thesis"}, "id": "l", "sim": {"iterations": 500, "load": "stretch"}, "render": {"figures": false, "thumbnails": false},
     "evaluate": {"shapes": [{"family": "cylinder", "thesis_fitness": -1}, {"family": "sine", "amplitude": 2, "phase": [0.5, 2.6]}]}})";
-const char* kGa = R"({"id": "g", "sim": {"iterations": 300}, "render": {"figures": false, "thumbnails": false},
+const char* kGa = R"({"model": {"name": "thesis"}, "id": "g", "sim": {"iterations": 300}, "render": {"figures": false, "thumbnails": false},
     "evolve": {"population": 4, "generations": 2, "genome": {"kind": "bspline", "length": [4, 6]}}})";
 
 }  // namespace

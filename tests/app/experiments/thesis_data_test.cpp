@@ -108,7 +108,7 @@ TEST(ThesisData, TheStretchTestsUseTheBestGenomeOfEachTable) {
 
 TEST(ThesisData, AGenomeWhoseLengthDisagreesWithItsTableIsRefused) {
     const std::string file = (fs::temp_directory_path() / "thesis_length_test.json").string();
-    std::ofstream(file) << R"({"id": "x", "evolve": {"genome": {"kind": "bspline"}},
+    std::ofstream(file) << R"({"model": {"name": "thesis"}, "id": "x", "evolve": {"genome": {"kind": "bspline"}},
         "thesis_result": {"run_best": [1.0], "specimens": [{"run": 1, "thesis_fitness": 1.0, "length": 5, "family": "bspline", "control_points": [[1, 2, 3, 4]]}]}})";
     try {
         app::LoadExperiment(file, {});

@@ -10,7 +10,7 @@ using ::testing::HasSubstr;
 using Cli = CliTest;
 
 TEST_F(Cli, SimulatePrintsOneJsonObjectWithTheResult) {
-    const Result r = Run("simulate --shape abs-sine --amplitude 4 --phase 0,12.566370614359172");
+    const Result r = Run("simulate --model thesis --shape abs-sine --amplitude 4 --phase 0,12.566370614359172");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     EXPECT_EQ(json["status"], "ok");
@@ -25,8 +25,8 @@ TEST_F(Cli, SimulatePrintsOneJsonObjectWithTheResult) {
 }
 
 TEST_F(Cli, PhaseAcceptsMultiplesOfPi) {
-    const auto a = nlohmann::json::parse(Run("simulate --shape abs-sine --phase 0,4pi --iterations 100").out);
-    const auto b = nlohmann::json::parse(Run("simulate --shape abs-sine --phase 0,12.566370614359172 --iterations 100").out);
+    const auto a = nlohmann::json::parse(Run("simulate --model thesis --shape abs-sine --phase 0,4pi --iterations 100").out);
+    const auto b = nlohmann::json::parse(Run("simulate --model thesis --shape abs-sine --phase 0,12.566370614359172 --iterations 100").out);
     EXPECT_EQ(a["final_positions_hash"], b["final_positions_hash"]);
 }
 
@@ -35,14 +35,14 @@ TEST_F(Cli, EveryShapeRuns) {
                                    "--shape bspline --region middle --control-points \"8,8,0,4,0,0,2\"",
                                    "--shape bspline --region middle --control-points \"4,6,2,5;2,3,7,4,6;5,5,1,2;3,3,3,3\"",
                                    "--shape sine --amplitude 4.1 --phase 0.5,2.6415926535 --load stretch"}) {
-        const Result r = Run("simulate " + args + " --iterations 300");
+        const Result r = Run("simulate --model thesis " + args + " --iterations 300");
         ASSERT_EQ(r.exitCode, 0) << args << ": " << r.err;
         EXPECT_EQ(nlohmann::json::parse(r.out)["status"], "ok") << args;
     }
     std::string offsets;
     for (int i = 0; i < 900; ++i) offsets += "0.1 -0.05\n";
     Write("offsets.txt", offsets);
-    const Result r = Run("simulate --shape free-xy --offsets " + Path("offsets.txt") + " --iterations 300");
+    const Result r = Run("simulate --model thesis --shape free-xy --offsets " + Path("offsets.txt") + " --iterations 300");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     EXPECT_EQ(json["shape"]["name"], "free-xy");
@@ -51,23 +51,23 @@ TEST_F(Cli, EveryShapeRuns) {
     std::string genome;
     for (int i = 0; i < 900; ++i) genome += std::string(i ? "," : "") + "0.1,-0.05";
     Write("genome.txt", genome);
-    const auto fromGenome = nlohmann::json::parse(Run("simulate --shape free-xy --offsets " + Path("genome.txt") + " --iterations 300").out);
+    const auto fromGenome = nlohmann::json::parse(Run("simulate --model thesis --shape free-xy --offsets " + Path("genome.txt") + " --iterations 300").out);
     EXPECT_EQ(fromGenome["final_positions_hash"], json["final_positions_hash"]);
 }
 
 TEST_F(Cli, SavedMeshesRoundTripExactly) {
-    const Result first = Run("simulate --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") + " --save-mesh " +
+    const Result first = Run("simulate --model thesis --shape sine --amplitude 4.1 --iterations 800 --save-initial " + Path("initial.obj") + " --save-mesh " +
                              Path("final.obj"));
     ASSERT_EQ(first.exitCode, 0) << first.err;
     const auto a = nlohmann::json::parse(first.out);
 
     // The initial mesh read back evolves to the very same bits.
-    const auto b = nlohmann::json::parse(Run("simulate --mesh " + Path("initial.obj") + " --iterations 800").out);
+    const auto b = nlohmann::json::parse(Run("simulate --model thesis --mesh " + Path("initial.obj") + " --iterations 800").out);
     EXPECT_EQ(b["final_positions_hash"], a["final_positions_hash"]);
     EXPECT_EQ(b["fitness"], a["fitness"]);
 
     // The final mesh read back is the same positions (zero iterations leave it as read).
-    const auto c = nlohmann::json::parse(Run("simulate --mesh " + Path("final.obj") + " --iterations 0").out);
+    const auto c = nlohmann::json::parse(Run("simulate --model thesis --mesh " + Path("final.obj") + " --iterations 0").out);
     EXPECT_EQ(c["final_positions_hash"], a["final_positions_hash"]);
 
     // And it is a real OBJ: 900 vertices and the model's triangles, wound outward.
@@ -84,58 +84,58 @@ TEST_F(Cli, SavedMeshesRoundTripExactly) {
 }
 
 TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
-    ExpectRefused("simulate --shape banana", "banana");
-    ExpectRefused("simulate --shape bspline --control-points 1,2,3", "at least 4");
-    ExpectRefused("simulate --shape bspline --control-points \"1,2,3,4;1,2\"", "spline 2");
-    ExpectRefused("simulate --shape sine --amplitude abc", "--amplitude");
-    ExpectRefused("simulate --shape sine --amplitude nan", "--amplitude");
-    ExpectRefused("simulate --shape sine --amplitude inf", "--amplitude");
-    ExpectRefused("simulate --shape sine --phase 1", "--phase");
-    ExpectRefused("simulate --iterations -5", "--iterations");
-    ExpectRefused("simulate --iterations 1e3", "--iterations");
-    ExpectRefused("simulate --mesh " + Path("missing.obj"), "missing.obj");
-    ExpectRefused("simulate --shape cylinder --amplitude 3", "does not apply");
-    ExpectRefused("simulate --bogus 1", "--bogus");
-    ExpectRefused("simulate --amplitude", "--amplitude");
-    ExpectRefused("simulate --amplitude 1 --amplitude 2", "--amplitude");
-    ExpectRefused("simulate --turns 4", "--turns");
-    ExpectRefused("simulate --load squeeze", "choose inflate, stretch or none");
+    ExpectRefused("simulate --model thesis --shape banana", "banana");
+    ExpectRefused("simulate --model thesis --shape bspline --control-points 1,2,3", "at least 4");
+    ExpectRefused("simulate --model thesis --shape bspline --control-points \"1,2,3,4;1,2\"", "spline 2");
+    ExpectRefused("simulate --model thesis --shape sine --amplitude abc", "--amplitude");
+    ExpectRefused("simulate --model thesis --shape sine --amplitude nan", "--amplitude");
+    ExpectRefused("simulate --model thesis --shape sine --amplitude inf", "--amplitude");
+    ExpectRefused("simulate --model thesis --shape sine --phase 1", "--phase");
+    ExpectRefused("simulate --model thesis --iterations -5", "--iterations");
+    ExpectRefused("simulate --model thesis --iterations 1e3", "--iterations");
+    ExpectRefused("simulate --model thesis --mesh " + Path("missing.obj"), "missing.obj");
+    ExpectRefused("simulate --model thesis --shape cylinder --amplitude 3", "does not apply");
+    ExpectRefused("simulate --model thesis --bogus 1", "--bogus");
+    ExpectRefused("simulate --model thesis --amplitude", "--amplitude");
+    ExpectRefused("simulate --model thesis --amplitude 1 --amplitude 2", "--amplitude");
+    ExpectRefused("simulate --model thesis --turns 4", "--turns");
+    ExpectRefused("simulate --model thesis --load squeeze", "choose inflate, stretch or none");
     ExpectRefused("simulate --index 3", "--from");
     ExpectRefused("frobnicate", "frobnicate");
 
     Write("short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-    ExpectRefused("simulate --mesh " + Path("short.obj"), "3 vertices; the model's mesh has 900");
+    ExpectRefused("simulate --model thesis --mesh " + Path("short.obj"), "3 vertices; the model's mesh has 900");
     Write("garbage.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0garbage", 18));
-    ExpectRefused("simulate --mesh " + Path("garbage.obj"), "garbage.obj");
+    ExpectRefused("simulate --model thesis --mesh " + Path("garbage.obj"), "garbage.obj");
     Write("text.obj", "hello world\n");
-    ExpectRefused("simulate --mesh " + Path("text.obj"), "text.obj:1");
+    ExpectRefused("simulate --model thesis --mesh " + Path("text.obj"), "text.obj:1");
     Write("nan.obj", "v 0 nan 0\n");
-    ExpectRefused("simulate --mesh " + Path("nan.obj"), "nan.obj:1");
+    ExpectRefused("simulate --model thesis --mesh " + Path("nan.obj"), "nan.obj:1");
     Write("offsets.txt", "0.1 0.2\n");
-    ExpectRefused("simulate --shape free-xy --offsets " + Path("offsets.txt"), "expected 1800");
+    ExpectRefused("simulate --model thesis --shape free-xy --offsets " + Path("offsets.txt"), "expected 1800");
 }
 
 TEST_F(Cli, OutputsFollowTheirExtensionAndNeverReplaceWhatIsNotOurs) {
-    ExpectRefused("simulate --save-mesh " + Path("out.stl"), "must end in .obj");
+    ExpectRefused("simulate --model thesis --save-mesh " + Path("out.stl"), "must end in .obj");
     fs::create_symlink(Path("target.obj"), Path("link.obj"));
-    ExpectRefused("simulate --save-mesh " + Path("link.obj"), "symbolic link");
+    ExpectRefused("simulate --model thesis --save-mesh " + Path("link.obj"), "symbolic link");
     EXPECT_FALSE(fs::exists(Path("target.obj")));
-    ExpectRefused("simulate --save-mesh /dev/null", "not a regular file");
-    ASSERT_EQ(Run("simulate --iterations 10 --save-initial " + Path("in.obj")).exitCode, 0);
+    ExpectRefused("simulate --model thesis --save-mesh /dev/null", "not a regular file");
+    ASSERT_EQ(Run("simulate --model thesis --iterations 10 --save-initial " + Path("in.obj")).exitCode, 0);
     const std::string before = Slurp(Path("in.obj"));
-    ExpectRefused("simulate --mesh " + Path("in.obj") + " --save-mesh " + Path("in.obj"), "also an input");
+    ExpectRefused("simulate --model thesis --mesh " + Path("in.obj") + " --save-mesh " + Path("in.obj"), "also an input");
     EXPECT_EQ(Slurp(Path("in.obj")), before);
 }
 
 TEST_F(Cli, RefusedRunsWriteNoFile) {
-    ExpectRefused("simulate --shape sine --amplitude x --save-mesh " + Path("out.obj"), "--amplitude");
-    ExpectRefused("simulate --save-mesh " + Path("no/such/folder/out.obj"), "does not exist");
+    ExpectRefused("simulate --model thesis --shape sine --amplitude x --save-mesh " + Path("out.obj"), "--amplitude");
+    ExpectRefused("simulate --model thesis --save-mesh " + Path("no/such/folder/out.obj"), "does not exist");
     EXPECT_FALSE(fs::exists(Path("out.obj")));
     for (const auto& entry : fs::directory_iterator(dir_)) EXPECT_THAT(entry.path().filename().string(), ::testing::Not(HasSubstr(".tmp")));
 }
 
 TEST_F(Cli, OutputThatCannotBeWrittenIsAnError) {
-    const Result r = Run("simulate --iterations 10 > /dev/full");
+    const Result r = Run("simulate --model thesis --iterations 10 > /dev/full");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_THAT(r.err, HasSubstr("could not write the output"));
 }
@@ -147,7 +147,7 @@ TEST_F(Cli, HelpExplainsEveryOptionWithItsDefault) {
     const Result version = Run("--version");
     EXPECT_EQ(version.exitCode, 0);
     EXPECT_THAT(version.out, ::testing::StartsWith("actuator "));
-    const Result help = Run("simulate --help");
+    const Result help = Run("simulate --model thesis --help");
     EXPECT_EQ(help.exitCode, 0);
     for (const char* option : {"--shape", "--amplitude", "--phase", "--region", "--control-points", "--offsets", "--mesh", "--resolution",
                                "--turns", "--load", "--iterations", "--precision", "--save-mesh", "--from", "--pressure-scale"})
@@ -158,7 +158,7 @@ TEST_F(Cli, HelpExplainsEveryOptionWithItsDefault) {
 }
 
 TEST_F(Cli, NumericalFailureIsAStatusNotAnError) {
-    const Result r = Run("simulate --shape sine --amplitude 4.1 --iterations 40000");
+    const Result r = Run("simulate --model thesis --shape sine --amplitude 4.1 --iterations 40000");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     EXPECT_NE(json["status"], "ok");

@@ -50,7 +50,7 @@ void ExpectMatchesGolden(const std::string& name, const render::Image& actual) {
 }
 
 app::Experiment Sweep(const std::string& axes, const std::string& points) {
-    return app::ParseExperiment(R"({"id": "G", "title": "golden", "sim": {"iterations": 2000},
+    return app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "G", "title": "golden", "sim": {"iterations": 2000},
         "sweep": {"shape": {"family": "abs-sine", "phase": [0, "pi"]}, "axes": )" + axes + R"(},
         "thesis_result": {"points": )" + points + "}}", "golden.json");
 }
@@ -73,7 +73,7 @@ TEST(FigureGoldens, LandscapeHeatmapDivergesAboutZeroAndMarksTheThesisPoints) {
 }
 
 TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
-    const app::Experiment e = app::ParseExperiment(R"({"id": "G", "title": "golden GA", "sim": {"iterations": 2000},
+    const app::Experiment e = app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "G", "title": "golden GA", "sim": {"iterations": 2000},
         "evolve": {"runs": 2, "genome": {"kind": "bspline"}}})", "golden.json");
     std::vector<app::RunCurve> runs;
     for (int r = 0; r < 2; ++r) {

@@ -250,7 +250,7 @@ TEST(Solid, FilesReadBackAsWhatWasBuilt) {
 class ExportCli : public CliTest {};
 
 TEST_F(ExportCli, WritesTheSolidsAndAManifestThatAddsUp) {
-    const Result r = Run("export --shape bspline --region middle --control-points 1,1.4,0.8,1.3,1 --unit-mm 5 --wall-mm 1 --fittings --out " + Path("part"));
+    const Result r = Run("export --model thesis --shape bspline --region middle --control-points 1,1.4,0.8,1.3,1 --unit-mm 5 --wall-mm 1 --fittings --out " + Path("part"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto manifest = nlohmann::json::parse(Slurp(dir_ / "part" / "manifest.json"));
     ASSERT_EQ(manifest["files"].size(), 6u) << "the actuator, the mold's three parts and two fittings";
@@ -270,26 +270,26 @@ TEST_F(ExportCli, WritesTheSolidsAndAManifestThatAddsUp) {
 }
 
 TEST_F(ExportCli, RefusesWhatCannotBeMadeAndWritesNothing) {
-    Result r = Run("export --shape sine --amplitude 1 --phase 0,2pi --out " + Path("zero"));
+    Result r = Run("export --model thesis --shape sine --amplitude 1 --phase 0,2pi --out " + Path("zero"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("cannot make this design: the design's radius is"));
     EXPECT_FALSE(fs::exists(dir_ / "zero"));
-    r = Run("export --shape cylinder --wall-mm 20 --out " + Path("thick"));
+    r = Run("export --model thesis --shape cylinder --wall-mm 20 --out " + Path("thick"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("reaches the axis"));
     EXPECT_FALSE(fs::exists(dir_ / "thick"));
-    r = Run("export --shape cylinder");
+    r = Run("export --model thesis --shape cylinder");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("--out DIR is required"));
-    r = Run("export --shape cylinder --fittings --port-mm 9 --out " + Path("port"));
+    r = Run("export --model thesis --shape cylinder --fittings --port-mm 9 --out " + Path("port"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("a port of 9 mm does not fit"));
     EXPECT_FALSE(fs::exists(dir_ / "port"));
     r = Run("export --model shell --shape cylinder --unit-mm 3 --out " + Path("unit"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("--radius-mm"));
-    ASSERT_EQ(Run("export --shape cylinder --out " + Path("once")).exitCode, 0);
-    r = Run("export --shape cylinder --out " + Path("once"));
+    ASSERT_EQ(Run("export --model thesis --shape cylinder --out " + Path("once")).exitCode, 0);
+    r = Run("export --model thesis --shape cylinder --out " + Path("once"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("not an empty folder"));
 }
@@ -302,10 +302,10 @@ TEST_F(ExportCli, ShellModelGeometryAndOtherFormats) {
     EXPECT_EQ(manifest["files"][0]["file"], "actuator.ply");
     EXPECT_EQ(manifest["part"]["wall_mm"], 1.5);
     EXPECT_NEAR(manifest["files"][0]["bounds_mm"]["max"][2].get<double>(), 90, 1e-9);
-    r = Run("export --shape cylinder --format obj --out " + Path("obj"));
+    r = Run("export --model thesis --shape cylinder --format obj --out " + Path("obj"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "obj" / "mold_shell_b.obj"));
-    r = Run("export --shape cylinder --ascii --out " + Path("ascii"));
+    r = Run("export --model thesis --shape cylinder --ascii --out " + Path("ascii"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(Slurp(dir_ / "ascii" / "actuator.stl").rfind("solid ", 0), 0u);
 }
@@ -314,13 +314,13 @@ TEST_F(ExportCli, RenderDrawsTheCutAwayAndTheMoldWithoutSimulating) {
     Result r = Run("render --model shell --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --length-mm 40 --solid cutaway --size 400x300 --out " + Path("pics"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     testing_support::ExpectPicture(dir_ / "pics" / "cutaway.png");
-    r = Run("render --shape cylinder --solid mold --size 400x300 --out " + Path("pics"));
+    r = Run("render --model thesis --shape cylinder --solid mold --size 400x300 --out " + Path("pics"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     testing_support::ExpectPicture(dir_ / "pics" / "mold.png");
-    r = Run("render --shape cylinder --solid cutaway --turntable 4 --out " + Path("pics"));
+    r = Run("render --model thesis --shape cylinder --solid cutaway --turntable 4 --out " + Path("pics"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("does not go with --solid"));
-    r = Run("render --shape cylinder --solid section --out " + Path("pics"));
+    r = Run("render --model thesis --shape cylinder --solid section --out " + Path("pics"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("choose cutaway or mold"));
 }
@@ -374,7 +374,7 @@ TEST_F(ExportCli, AFreeXyDesignExports) {
     std::string zeros;
     for (int i = 0; i < 900; ++i) zeros += "0 0\n";
     Write("offsets.txt", zeros);
-    const Result r = Run("export --shape free-xy --offsets " + Path("offsets.txt") + " --out " + Path("xy"));
+    const Result r = Run("export --model thesis --shape free-xy --offsets " + Path("offsets.txt") + " --out " + Path("xy"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto manifest = nlohmann::json::parse(Slurp(dir_ / "xy" / "manifest.json"));
     const double volume = manifest["silicone"]["volume_mm3"];
