@@ -586,12 +586,6 @@ void FibreOutputs(const ShellProblem& p, const Positions& x, double length, Shel
 // equilibrium nearby (past the pressure maximum), or a snap through to a distant branch.
 constexpr double kRunawayVolume = 3;
 
-// One pressure-controlled (or gas, or force) load path in steps to the target, each step tried
-// whole from the previous state and halved on failure.
-struct PathEnd {
-    Status status = Status::Ok;
-    double reached = 0;  // the load parameter reached (pressure kPa, or force N)
-};
 
 }  // namespace
 
@@ -610,11 +604,245 @@ Status SolveVolume(const ShellProblem& problem, const SolverDef& def, double vol
     return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
 }
 
+namespace {
+
+// One evaluation as it passes through the stages of EvaluateShell: the tube, its solver, the state
+// q and the outputs each stage writes.
+struct TubeEvaluation {
+    const ShellDef& def;
+    const LoadDef& load;
+    const ShellProblem& problem;
+    ShellOutputs& out;
+    Solver solver;
+    Eigen::VectorXd q;
+    Positions x;  // scratch: q's positions
+    double length;
+
+    TubeEvaluation(const ShellDef& d, const ShellProblem& p, ShellOutputs& o)
+        : def(d), load(d.load), problem(p), out(o), solver(p, d.solver), q(UnknownsOf(p, p.rest)), length(d.geometry.lengthMm) {
+        solver.holdAxial = load.kind == ShellLoad::Blocked;
+    }
+
+    // The load parameter at fraction s of the target.
+    LoadTerms LoadAt(double s) const {
+        LoadTerms l;
+        switch (load.kind) {
+            case ShellLoad::Inflate:
+            case ShellLoad::Blocked: l.pressure = s * load.pressureKpa * 1e-3; break;
+            case ShellLoad::Gas: l.gasConstant = (l.atmosphere + s * load.pressureKpa * 1e-3) * problem.restVolume; break;
+            case ShellLoad::Force: l.force = s * load.forceN; break;
+            case ShellLoad::Volume: break;
+        }
+        return l;
+    }
+    // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
+    // current state q); a prescribed one is s times the target, exactly the target at s = 1.
+    double GaugeKpa(double s) {
+        const LoadTerms l = LoadAt(s);
+        if (l.gasConstant > 0) {
+            PositionsOf(problem, q, x);
+            return (l.gasConstant / EnclosedVolume(problem, x) - l.atmosphere) * 1e3;
+        }
+        return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
+    }
+    // Where Newton stops as Runaway after a state of this volume (a force load has no such limit).
+    double VolumeLimitAfter(double volume) const {
+        return load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : kRunawayVolume * volume;
+    }
+    // One point of the curve: the state q at this pressure.
+    void Record(double pressureKpa) {
+        PositionsOf(problem, q, x);
+        out.curvePressureKpa.push_back(pressureKpa);
+        out.curveContractionPercent.push_back(Contraction(problem, q, length));
+        out.curveVolumeMm3.push_back(EnclosedVolume(problem, x));
+        out.steps.push_back(x);
+    }
+    // The load the end state is judged and measured under.
+    LoadTerms FinalLoad() const {
+        if (load.kind != ShellLoad::Volume) return LoadAt(1.0);
+        LoadTerms l;
+        l.pressure = out.targetPressureKpa * 1e-3;
+        return l;
+    }
+};
+
+// Stage: the load path in load.steps steps to the target, each point recorded on the curve. Volume
+// control steps the enclosed volume; the others step the load, each step tried whole from the
+// previous state and halved on failure down to 1/2^maxBisections.
+Status FollowLoadPath(TubeEvaluation& t) {
+    const LoadDef& load = t.load;
+    ShellOutputs& out = t.out;
+    Status status = Status::Ok;
+    if (load.kind == ShellLoad::Volume) {
+        double p = 0;
+        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
+            const double target = t.problem.restVolume * (1 + (load.volumeRatio - 1) * k / load.steps);
+            const NewtonEnd end = t.solver.AtVolume(t.q, p, target);
+            if (end == NewtonEnd::Converged) t.Record(p * 1e3);
+            else status = end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+        }
+        out.targetPressureKpa = p * 1e3;
+        return status;
+    }
+    double reached = 0;
+    double lastVolume = t.problem.restVolume;
+    // The tangent dq/dp = K^-1 dV/dq at the last converged state predicts the next one (pressure
+    // loads): Newton then starts close and needs fewer iterations.
+    Eigen::VectorXd tangent;
+    const bool predict = load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Blocked;
+    for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
+        const double goal = double(k) / load.steps;
+        double increment = goal - reached;
+        const double smallest = increment / std::pow(2.0, t.def.solver.maxBisections);
+        while (reached < goal - 1e-15 && status == Status::Ok) {
+            const double next = std::min(goal, reached + increment);
+            Eigen::VectorXd trial = t.q;
+            if (predict && tangent.size() == t.q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
+            const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume));
+            if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
+            if (end == NewtonEnd::Runaway && increment <= smallest) {
+                out.limitPressureKpa = t.GaugeKpa(reached);
+                status = Status::LimitPoint;
+                break;
+            }
+            if (end == NewtonEnd::Converged) {
+                PositionsOf(t.problem, trial, t.x);
+                const double volume = EnclosedVolume(t.problem, t.x);
+                // A converged state far beyond the last one has snapped through to a distant branch:
+                // past the pressure maximum. (An unstable state is caught at the end, by inertia.)
+                if (volume > t.VolumeLimitAfter(lastVolume)) {
+                    out.limitPressureKpa = t.GaugeKpa(reached);
+                    status = Status::LimitPoint;
+                    break;
+                }
+                t.q = std::move(trial);
+                reached = next;
+                lastVolume = volume;
+                if (predict) {
+                    Eigen::VectorXd w = AssembleEnergy(t.problem, t.q, t.LoadAt(reached), t.solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
+                    t.solver.HoldGradient(w);
+                    // With the last Newton step's Hessian (a moment before convergence), solved as
+                    // Newton's steps are; the preconditioner alone when that fails.
+                    int used = 0;
+                    if (!t.solver.preconditioner || t.solver.PreconditionedStep(t.solver.pattern.matrix, 0, w, -w, tangent, &used) != Solver::Linear::Solved)
+                        tangent = t.solver.factor->Solve(w);
+                    if (!tangent.allFinite()) tangent.resize(0);
+                }
+                continue;
+            }
+            if (increment <= smallest) {
+                // Newton runs away when no equilibrium exists: past the pressure maximum.
+                PositionsOf(t.problem, trial, t.x);
+                const double volume = EnclosedVolume(t.problem, t.x);
+                if (load.kind != ShellLoad::Force && (end == NewtonEnd::Runaway || !std::isfinite(volume) || volume > 2 * lastVolume)) {
+                    out.limitPressureKpa = t.GaugeKpa(reached);
+                    status = Status::LimitPoint;
+                } else if (status == Status::Ok) {
+                    status = Status::NotConverged;
+                }
+                break;
+            }
+            increment *= 0.5;
+        }
+        if (status == Status::Ok) t.Record(t.GaugeKpa(reached));
+    }
+    out.targetPressureKpa = t.GaugeKpa(reached);
+    return status;
+}
+
+// Stage: the exact Hessian's inertia at the end of the path tells a stable equilibrium from one past
+// the pressure maximum; StableState steps off a saddle beside a stable state first, and the curve's
+// last point becomes that state. Returns the exact Hessian's negative pivots (its factor stays in
+// solver.exactFactor).
+int SettleOnStableState(TubeEvaluation& t, const LoadTerms& finalLoad) {
+    EnergyResult exact;
+    if (t.load.kind == ShellLoad::Volume) return t.solver.ExactInertia(t.q, finalLoad, &exact);  // volume control holds a state past the maximum
+    bool escaped = false;
+    const int negative = t.solver.StableState(t.q, finalLoad, t.VolumeLimitAfter(t.out.curveVolumeMm3.back()), &exact, &escaped);
+    if (escaped) {
+        ShellOutputs& out = t.out;
+        PositionsOf(t.problem, t.q, t.x);
+        out.targetPressureKpa = t.GaugeKpa(1.0);  // status ok: the path reached its target
+        out.curvePressureKpa.back() = out.targetPressureKpa;
+        out.curveContractionPercent.back() = Contraction(t.problem, t.q, t.length);
+        out.curveVolumeMm3.back() = EnclosedVolume(t.problem, t.x);
+        out.steps.back() = t.x;
+    }
+    return negative;
+}
+
+// Stage: what the end state measures (also where the path stopped short: the pictures show it).
+void Measure(TubeEvaluation& t, SimResult& result) {
+    ShellOutputs& out = t.out;
+    PositionsOf(t.problem, t.q, t.x);
+    result.final = t.x;
+    out.displacementMm = t.problem.axial >= 0 ? t.q[t.problem.axial] : 0;
+    out.volumeMm3 = EnclosedVolume(t.problem, t.x);
+    MaxStretchAndStress(t.problem, t.x, &out.maxStretch, &out.maxStressKpa);
+    out.maxStressKpa *= 1e3;
+    FibreOutputs(t.problem, t.x, t.length, out);
+    result.contractionPercent = Contraction(t.problem, t.q, t.length);
+}
+
+// Stage: the stiffness at the free equilibrium, 1 / (K^-1)_uu of the exact Hessian (its Schur
+// complement). Returns K^-1 e_u, dq per unit axial force (empty when the top is held).
+Eigen::VectorXd AxialStiffness(TubeEvaluation& t, int negativePivots) {
+    if (negativePivots < 0 || t.problem.axial < 0 || t.solver.holdAxial) return {};  // no exact factor, or the top is held
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(t.problem.unknowns);
+    unit[t.problem.axial] = 1;
+    Eigen::VectorXd response = t.solver.exactFactor->Solve(unit);
+    t.out.axialStiffnessNPerMm = 1 / response[t.problem.axial];
+    return response;
+}
+
+// Stage: the blocking force, the top clamp held at its rest place at the final load, from the free
+// state. Only a stable held state's force is the actuator's: pulled back, a buckled wall can come to
+// rest on a saddle (12 of 285 GA designs of reproduce's part 2), whose force no clamp would measure.
+void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::VectorXd& axialResponse) {
+    const ShellProblem& problem = t.problem;
+    if (t.load.kind == ShellLoad::Blocked) {
+        t.out.blockingForceN = AssembleEnergy(problem, t.q, finalLoad, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+        return;
+    }
+    if (t.load.kind != ShellLoad::Inflate && t.load.kind != ShellLoad::Gas) return;
+    // Starting from the free state's linear response to the clamp's return (not from the free state
+    // with the clamp alone moved, which strains the rings beside it the most).
+    Eigen::VectorXd held = t.q;
+    if (axialResponse.allFinite() && axialResponse.size() == t.q.size() && axialResponse[problem.axial] > 0)
+        held -= (t.q[problem.axial] / axialResponse[problem.axial]) * axialResponse;
+    held[problem.axial] = 0;
+    t.solver.PreconditionWithExact();
+    t.solver.holdAxial = true;
+    if (t.solver.Minimise(held, finalLoad) == NewtonEnd::Converged) {
+        Positions heldPositions;
+        PositionsOf(problem, held, heldPositions);
+        EnergyResult heldExact;
+        if (t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0)
+            t.out.blockingForceN = heldExact.axialForce;
+    }
+    t.solver.holdAxial = false;
+}
+
+// Stage: the verdict on an equilibrium that was reached: a wall through itself, a state past the
+// pressure maximum (negative curvature of the exact Hessian under a prescribed load), else ok.
+Status JudgeEquilibrium(TubeEvaluation& t, int negativePivots) {
+    if (t.def.solver.selfContact && SelfIntersects(t.problem, t.x)) return Status::SelfIntersection;
+    if (negativePivots > 0 && t.load.kind != ShellLoad::Volume) {
+        t.out.limitPressureKpa = t.out.targetPressureKpa;
+        return Status::LimitPoint;
+    }
+    return Status::Ok;
+}
+
+}  // namespace
+
+// The evaluation as its pipeline: build the tube, follow the load path, settle on a stable state,
+// measure, judge, stiffness and blocking force, then the stretch verdict. Each output is written by
+// one stage (the solver's counters once, at the end).
 SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     const auto started = std::chrono::steady_clock::now();
     SimResult result;
     ShellOutputs& out = result.shell;
-    const LoadDef& load = def.load;
     out.stretchLimit = StretchLimit(def.material);
     out.tensileStrengthKpa = def.material.tensileStrengthKpa;
     auto finish = [&](Status status) {
@@ -631,211 +859,18 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     result.final = problem.rest;
     out.restVolumeMm3 = problem.restVolume;
 
-    Solver solver(problem, def.solver);
-    Eigen::VectorXd q = UnknownsOf(problem, problem.rest);
-    LoadTerms terms;
-    const double length = def.geometry.lengthMm;
-    solver.holdAxial = load.kind == ShellLoad::Blocked;
-
-    // The load parameter at fraction s of the target.
-    auto loadAt = [&](double s) {
-        LoadTerms l;
-        switch (load.kind) {
-            case ShellLoad::Inflate:
-            case ShellLoad::Blocked: l.pressure = s * load.pressureKpa * 1e-3; break;
-            case ShellLoad::Gas: l.gasConstant = (l.atmosphere + s * load.pressureKpa * 1e-3) * problem.restVolume; break;
-            case ShellLoad::Force: l.force = s * load.forceN; break;
-            case ShellLoad::Volume: break;
-        }
-        return l;
-    };
-    Positions x;
-    auto record = [&](double pressureKpa) {
-        PositionsOf(problem, q, x);
-        out.curvePressureKpa.push_back(pressureKpa);
-        out.curveContractionPercent.push_back(Contraction(problem, q, length));
-        out.curveVolumeMm3.push_back(EnclosedVolume(problem, x));
-        out.steps.push_back(x);
-    };
-    // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
-    // current state q); a prescribed one is s times the target, exactly the target at s = 1.
-    auto gaugeKpa = [&](double s) {
-        const LoadTerms l = loadAt(s);
-        if (l.gasConstant > 0) {
-            PositionsOf(problem, q, x);
-            return (l.gasConstant / EnclosedVolume(problem, x) - l.atmosphere) * 1e3;
-        }
-        return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
-    };
-
-    // Where Newton stops as Runaway after a state of this volume (a force load has no such limit).
-    auto volumeLimitAfter = [&](double volume) {
-        return load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : kRunawayVolume * volume;
-    };
-
-    Status status = Status::Ok;
-    if (load.kind == ShellLoad::Volume) {
-        double p = 0;
-        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
-            const double target = problem.restVolume * (1 + (load.volumeRatio - 1) * k / load.steps);
-            const NewtonEnd end = solver.AtVolume(q, p, target);
-            if (end == NewtonEnd::Converged) record(p * 1e3);
-            else status = end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
-        }
-        out.targetPressureKpa = p * 1e3;
-    } else {
-        // Steps to the target, each tried whole, halved on failure down to 1/2^maxBisections.
-        double reached = 0;
-        double lastVolume = problem.restVolume;
-        // The tangent dq/dp = K^-1 dV/dq at the last converged state predicts the next one (pressure
-        // loads): Newton then starts close and needs fewer iterations.
-        Eigen::VectorXd tangent;
-        const bool predict = load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Blocked;
-        for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
-            const double goal = double(k) / load.steps;
-            double increment = goal - reached;
-            const double smallest = increment / std::pow(2.0, def.solver.maxBisections);
-            while (reached < goal - 1e-15 && status == Status::Ok) {
-                const double next = std::min(goal, reached + increment);
-                Eigen::VectorXd trial = q;
-                if (predict && tangent.size() == q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
-                const NewtonEnd end = solver.Minimise(trial, loadAt(next), volumeLimitAfter(lastVolume));
-                if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
-                if (end == NewtonEnd::Runaway && increment <= smallest) {
-                    out.limitPressureKpa = gaugeKpa(reached);
-                    status = Status::LimitPoint;
-                    break;
-                }
-                if (end == NewtonEnd::Converged) {
-                    PositionsOf(problem, trial, x);
-                    const double volume = EnclosedVolume(problem, x);
-                    // A converged state far beyond the last one has snapped through to a distant branch:
-                    // past the pressure maximum. (An unstable state is caught at the end, by inertia.)
-                    if (volume > volumeLimitAfter(lastVolume)) {
-                        out.limitPressureKpa = gaugeKpa(reached);
-                        status = Status::LimitPoint;
-                        break;
-                    }
-                    q = std::move(trial);
-                    reached = next;
-                    lastVolume = volume;
-                    if (predict) {
-                        Eigen::VectorXd w = AssembleEnergy(problem, q, loadAt(reached), solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
-                        solver.HoldGradient(w);
-                        // With the last Newton step's Hessian (a moment before convergence), solved as
-                        // Newton's steps are; the preconditioner alone when that fails.
-                        int used = 0;
-                        if (!solver.preconditioner || solver.PreconditionedStep(solver.pattern.matrix, 0, w, -w, tangent, &used) != Solver::Linear::Solved)
-                            tangent = solver.factor->Solve(w);
-                        if (!tangent.allFinite()) tangent.resize(0);
-                    }
-                    continue;
-                }
-                if (increment <= smallest) {
-                    // Newton runs away when no equilibrium exists: past the pressure maximum.
-                    PositionsOf(problem, trial, x);
-                    const double volume = EnclosedVolume(problem, x);
-                    if (load.kind != ShellLoad::Force && (end == NewtonEnd::Runaway || !std::isfinite(volume) || volume > 2 * lastVolume)) {
-                        out.limitPressureKpa = gaugeKpa(reached);
-                        status = Status::LimitPoint;
-                    } else if (status == Status::Ok) {
-                        status = Status::NotConverged;
-                    }
-                    break;
-                }
-                increment *= 0.5;
-            }
-            if (status == Status::Ok) record(gaugeKpa(reached));
-        }
-        out.targetPressureKpa = gaugeKpa(reached);
-    }
-
-    // The exact Hessian's inertia at the end of the path tells a stable equilibrium from one past the
-    // pressure maximum (StableState steps off a saddle beside a stable state first).
-    const LoadTerms finalLoad = load.kind == ShellLoad::Volume ? [&] {
-        LoadTerms l;
-        l.pressure = out.targetPressureKpa * 1e-3;
-        return l;
-    }() : loadAt(1.0);
-    int negative = -1;  // the exact Hessian's negative pivots at q (its factor stays in solver.exactFactor)
-    EnergyResult exact;
-    if (status == Status::Ok && load.kind == ShellLoad::Volume) {
-        negative = solver.ExactInertia(q, finalLoad, &exact);  // volume control holds a state past the maximum
-    } else if (status == Status::Ok) {
-        bool escaped = false;
-        negative = solver.StableState(q, finalLoad, volumeLimitAfter(out.curveVolumeMm3.back()), &exact, &escaped);
-        if (escaped) {
-            PositionsOf(problem, q, x);
-            out.targetPressureKpa = gaugeKpa(1.0);  // status ok: the path reached its target
-            out.curvePressureKpa.back() = out.targetPressureKpa;
-            out.curveContractionPercent.back() = Contraction(problem, q, length);
-            out.curveVolumeMm3.back() = EnclosedVolume(problem, x);
-            out.steps.back() = x;
-        }
-    }
-
-    PositionsOf(problem, q, x);
-    result.final = x;
-    out.newtonIterations = solver.counters.iterations;
+    TubeEvaluation t(def, problem, out);
+    Status status = FollowLoadPath(t);
+    const LoadTerms finalLoad = t.FinalLoad();
+    const int negativePivots = status == Status::Ok ? SettleOnStableState(t, finalLoad) : -1;
+    Measure(t, result);
+    if (status == Status::Ok) status = JudgeEquilibrium(t, negativePivots);
+    if (status == Status::Ok) BlockingForce(t, finalLoad, AxialStiffness(t, negativePivots));
+    out.newtonIterations = t.solver.counters.iterations;
+    out.factorizations = t.solver.counters.factorizations;
     result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
-    out.displacementMm = problem.axial >= 0 ? q[problem.axial] : 0;
-    out.volumeMm3 = EnclosedVolume(problem, x);
-    MaxStretchAndStress(problem, x, &out.maxStretch, &out.maxStressKpa);
-    out.maxStressKpa *= 1e3;
-    FibreOutputs(problem, x, length, out);
-    result.contractionPercent = Contraction(problem, q, length);
-    if (status != Status::Ok) {
-        out.factorizations = solver.counters.factorizations;
-        return finish(status);
-    }
-    if (def.solver.selfContact && SelfIntersects(problem, x)) {
-        out.factorizations = solver.counters.factorizations;
-        return finish(Status::SelfIntersection);
-    }
-
-    // Stiffness at the free equilibrium: 1 / (K^-1)_uu of the exact Hessian (its Schur complement).
-    Eigen::VectorXd axialResponse;  // dq per unit axial force: K^-1 e_u
-    {
-        if (negative > 0 && load.kind != ShellLoad::Volume) {
-            out.limitPressureKpa = out.targetPressureKpa;
-            out.factorizations = solver.counters.factorizations;
-            return finish(Status::LimitPoint);
-        }
-        if (negative >= 0 && problem.axial >= 0 && !solver.holdAxial) {
-            Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.unknowns);
-            unit[problem.axial] = 1;
-            axialResponse = solver.exactFactor->Solve(unit);
-            out.axialStiffnessNPerMm = 1 / axialResponse[problem.axial];
-        }
-    }
-    // Blocking force: the top clamp held at its rest place at the final load, from the free state.
-    if (load.kind == ShellLoad::Blocked) {
-        out.blockingForceN = AssembleEnergy(problem, q, finalLoad, solver.terms, true, nullptr, HessianKind::Exact).axialForce;
-    } else if (load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Gas) {
-        // Starting from the free state's linear response to the clamp's return (not from the free
-        // state with the clamp alone moved, which strains the rings beside it the most).
-        Eigen::VectorXd held = q;
-        if (axialResponse.allFinite() && axialResponse.size() == q.size() && axialResponse[problem.axial] > 0)
-            held -= (q[problem.axial] / axialResponse[problem.axial]) * axialResponse;
-        held[problem.axial] = 0;
-        solver.PreconditionWithExact();
-        solver.holdAxial = true;
-        // Only a stable held state's force is the actuator's: pulled back, a buckled wall can come to
-        // rest on a saddle (12 of 285 GA designs of reproduce's part 2), whose force no clamp would measure.
-        if (solver.Minimise(held, finalLoad) == NewtonEnd::Converged) {
-            Positions heldPositions;
-            PositionsOf(problem, held, heldPositions);
-            EnergyResult heldExact;
-            if (solver.StableState(held, finalLoad, volumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0)
-                out.blockingForceN = heldExact.axialForce;
-        }
-        solver.holdAxial = false;
-    }
-    out.newtonIterations = solver.counters.iterations;
-    result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
-    out.factorizations = solver.counters.factorizations;
-    if (out.maxStretch > out.stretchLimit) return finish(Status::OverStretched);
-    return finish(Status::Ok);
+    if (status == Status::Ok && out.maxStretch > out.stretchLimit) status = Status::OverStretched;
+    return finish(status);
 }
 
 }  // namespace sim
