@@ -28,7 +28,7 @@ Experiment ExperimentToRun(const Cli& cli, const std::string& file, const std::s
 int RunExperimentCommand(int argc, char** argv, int first, bool evolve) {
     const char* command = evolve ? "evolve" : "sweep";
     Cli cli(command, evolve ? "Runs an experiment's genetic algorithm (thesis chapter 5, DEAP's eaSimple plus elitism; the 'evolve' block) or optimizer "
-                              "(pagmo's cmaes, xnes, de, sade, pso, nsga2, moead or sga; the 'optimizer' block): as many independent runs as the file asks, "
+                              "(pagmo's " + sim::Choices<sim::Algorithm>() + "; the 'optimizer' block): as many independent runs as the file asks, "
                               "each seeded from the experiment's seed. Same seed, same bytes, whatever --threads or --workers."
                             : "Evaluates every point of an experiment's 1-D or 2-D grid of sine shapes, or every shape of an experiment that lists them "
                               "('evaluate'), and draws the fitness landscape.");

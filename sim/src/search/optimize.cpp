@@ -6,9 +6,11 @@
 
 #include "sim/optimize.h"
 
+#include "algorithms.h"
+
 namespace sim {
 
-bool IsMultiObjective(Algorithm algorithm) { return algorithm == Algorithm::Nsga2 || algorithm == Algorithm::Moead; }
+bool IsMultiObjective(Algorithm algorithm) { return AlgorithmRowOf(algorithm).multiObjective; }
 
 // [SECTION] Objectives ----------------------------------------------------------------------------
 
@@ -213,46 +215,13 @@ VectorDesign DesignOfVector(const VectorGenomeDef& def, const std::vector<double
 // [SECTION] Parameters and checks -----------------------------------------------------------------
 
 const std::vector<AlgorithmParameter>& AlgorithmParameters() {
-    // pagmo 2.18's own defaults, except where noted.
-    static const std::vector<AlgorithmParameter> table{
-        {Algorithm::Cmaes, "sigma0", 0.3, 1e-6, 1, false, "initial step size sigma0 (pagmo: 0.5)"},
-        {Algorithm::Cmaes, "cc", -1, -1, 1, false, "backward time horizon for the evolution path (-1: automatic)"},
-        {Algorithm::Cmaes, "cs", -1, -1, 1, false, "makes partly up for the small variance loss in case the indicator is zero (-1: automatic)"},
-        {Algorithm::Cmaes, "c1", -1, -1, 1, false, "learning rate for the rank-one update of the covariance matrix (-1: automatic)"},
-        {Algorithm::Cmaes, "cmu", -1, -1, 1, false, "learning rate for the rank-mu update of the covariance matrix (-1: automatic)"},
-        {Algorithm::Xnes, "sigma0", 0.3, 1e-6, 1, false, "initial step size sigma0 (pagmo: automatic)"},
-        {Algorithm::Xnes, "eta_mu", -1, -1, 1, false, "learning rate for the mean (-1: automatic)"},
-        {Algorithm::Xnes, "eta_sigma", -1, -1, 1, false, "learning rate for the step size (-1: automatic)"},
-        {Algorithm::Xnes, "eta_b", -1, -1, 1, false, "learning rate for the covariance (-1: automatic)"},
-        {Algorithm::De, "F", 0.8, 0, 1, false, "weight coefficient of the difference vectors"},
-        {Algorithm::De, "CR", 0.9, 0, 1, false, "crossover probability"},
-        {Algorithm::De, "variant", 2, 1, 10, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"},
-        {Algorithm::Sade, "variant", 2, 1, 18, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"},
-        {Algorithm::Sade, "variant_adptv", 1, 1, 2, true, "self-adaptation: 1 jDE, 2 iDE"},
-        {Algorithm::Pso, "omega", 0.7298, 0, 1, false, "inertia weight (or constriction factor)"},
-        {Algorithm::Pso, "eta1", 2.05, 0, 4, false, "social component"},
-        {Algorithm::Pso, "eta2", 2.05, 0, 4, false, "cognitive component"},
-        {Algorithm::Pso, "max_vel", 0.5, 1e-6, 1, false, "largest velocity, as a fraction of each gene's range"},
-        {Algorithm::Pso, "variant", 5, 1, 6, true, "algorithm variant (pagmo's numbering; 5: canonical with constriction)"},
-        {Algorithm::Pso, "neighb_type", 2, 1, 4, true, "swarm topology: 1 gbest, 2 lbest, 3 Von Neumann, 4 adaptive random"},
-        {Algorithm::Pso, "neighb_param", 4, 1, 1000, true, "topology parameter (lbest: neighbours)"},
-        {Algorithm::Nsga2, "cr", 0.95, 0, 0.999999, false, "crossover probability"},
-        {Algorithm::Nsga2, "eta_c", 10, 1, 100, false, "distribution index of the crossover"},
-        {Algorithm::Nsga2, "m", 0.01, 0, 1, false, "mutation probability"},
-        {Algorithm::Nsga2, "eta_m", 50, 1, 100, false, "distribution index of the mutation"},
-        {Algorithm::Moead, "neighbours", 10, 2, 10000, true, "size of each weight's neighbourhood (pagmo: 20); smaller than the population"},
-        {Algorithm::Moead, "CR", 1, 0, 1, false, "crossover parameter of the DE operator"},
-        {Algorithm::Moead, "F", 0.5, 0, 1, false, "scale factor of the DE operator"},
-        {Algorithm::Moead, "eta_m", 20, 0, 100, false, "distribution index of the polynomial mutation"},
-        {Algorithm::Moead, "realb", 0.9, 0, 1, false, "chance that the mating pool is the neighbourhood"},
-        {Algorithm::Moead, "limit", 2, 1, 10000, true, "most parents replaced by one child"},
-        // pagmo's simple genetic algorithm: tournament selection, exponential crossover, polynomial
-        // mutation, pure elitism (pagmo's defaults for the three operators).
-        {Algorithm::Sga, "cr", 0.9, 0, 1, false, "crossover probability"},
-        {Algorithm::Sga, "m", 0.02, 0, 1, false, "mutation probability per gene"},
-        {Algorithm::Sga, "param_m", 1, 1, 100, false, "distribution index of the polynomial mutation (small: wide steps)"},
-        {Algorithm::Sga, "param_s", 2, 1, 1000, true, "tournament size; at most the population"},
-    };
+    // Every row's parameters, in the table's order (algorithms.cpp).
+    static const std::vector<AlgorithmParameter> table = [] {
+        std::vector<AlgorithmParameter> all;
+        for (const AlgorithmRow& row : AlgorithmRows())
+            for (const AlgorithmParameterRow& p : row.parameters) all.push_back({row.id, p.name, p.defaultValue, p.min, p.max, p.integer, p.meaning});
+        return all;
+    }();
     return table;
 }
 
@@ -264,19 +233,16 @@ double ParameterValue(const OptimizerDef& def, const char* name) {
 }
 
 namespace {
-// pagmo's smallest populations (it throws otherwise, mid-run).
-int SmallestPopulation(Algorithm a) {
-    switch (a) {
-        case Algorithm::Cmaes: return 5;
-        case Algorithm::Xnes: return 5;
-        case Algorithm::De: return 5;
-        case Algorithm::Sade: return 7;
-        case Algorithm::Pso: return 2;
-        case Algorithm::Nsga2: return 8;
-        case Algorithm::Moead: return 4;
-        case Algorithm::Sga: return 2;
-    }
-    return 1;
+int SmallestPopulation(Algorithm a) { return AlgorithmRowOf(a).smallestPopulation; }
+
+// The algorithms that optimise several objectives (or one), named as experiment files name them.
+std::string AlgorithmsFor(bool multiObjective) {
+    std::vector<std::string> names;
+    for (const AlgorithmRow& row : AlgorithmRows())
+        if (row.multiObjective == multiObjective) names.push_back(Name(row.id));
+    std::string text;
+    for (size_t k = 0; k < names.size(); ++k) text += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+    return text;
 }
 }  // namespace
 
@@ -312,9 +278,9 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
     if (def.objectives.empty()) return "at least one objective is needed";
     const bool multi = IsMultiObjective(def.algorithm);
     if (multi && def.objectives.size() < 2)
-        return fmt::format("{} optimises several objectives: give two or more (one objective: cmaes, xnes, de, sade or pso)", name);
+        return fmt::format("{} optimises several objectives: give two or more (one objective: {})", name, AlgorithmsFor(false));
     if (!multi && def.objectives.size() != 1)
-        return fmt::format("{} optimises one objective (got {}); for several use nsga2 or moead", name, def.objectives.size());
+        return fmt::format("{} optimises one objective (got {}); for several use {}", name, def.objectives.size(), AlgorithmsFor(true));
     for (size_t i = 0; i < def.objectives.size(); ++i) {
         if (std::string e = ObjectiveError(def.objectives[i].kind, model); !e.empty()) return e;
         for (size_t j = 0; j < i; ++j)

@@ -8,19 +8,13 @@
 #include <map>
 #include <memory>
 #include <pagmo/algorithm.hpp>
-#include <pagmo/algorithms/cmaes.hpp>
-#include <pagmo/algorithms/de.hpp>
-#include <pagmo/algorithms/moead.hpp>
-#include <pagmo/algorithms/nsga2.hpp>
-#include <pagmo/algorithms/pso_gen.hpp>
-#include <pagmo/algorithms/sade.hpp>
-#include <pagmo/algorithms/sga.hpp>
-#include <pagmo/algorithms/xnes.hpp>
 #include <pagmo/population.hpp>
 #include <pagmo/problem.hpp>
 #include <pagmo/utils/hypervolume.hpp>
 
 #include "sim/optimize.h"
+
+#include "algorithms.h"
 
 namespace sim {
 namespace {
@@ -80,28 +74,7 @@ struct DesignProblem {
 
 unsigned Seed32(std::uint64_t seed, std::uint64_t stream) { return static_cast<unsigned>(DeriveSeed(seed, stream) >> 32); }
 
-pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) {
-    auto p = [&](const char* name) { return ParameterValue(def, name); };
-    auto u = [&](const char* name) { return static_cast<unsigned>(ParameterValue(def, name)); };
-    // One generation per evolve() call, with memory, so that stepping equals one long call; pagmo's
-    // own tolerances off (0): the run's stop criteria decide.
-    switch (def.algorithm) {
-        case Algorithm::Cmaes: return pagmo::algorithm{pagmo::cmaes(1, p("cc"), p("cs"), p("c1"), p("cmu"), p("sigma0"), 0, 0, true, true, seed)};
-        case Algorithm::Xnes: return pagmo::algorithm{pagmo::xnes(1, p("eta_mu"), p("eta_sigma"), p("eta_b"), p("sigma0"), 0, 0, true, true, seed)};
-        case Algorithm::De: return pagmo::algorithm{pagmo::de(1, p("F"), p("CR"), u("variant"), 0, 0, seed)};
-        case Algorithm::Sade: return pagmo::algorithm{pagmo::sade(1, u("variant"), u("variant_adptv"), 0, 0, true, seed)};
-        case Algorithm::Pso:
-            return pagmo::algorithm{pagmo::pso_gen(1, p("omega"), p("eta1"), p("eta2"), p("max_vel"), u("variant"), u("neighb_type"), u("neighb_param"), true, seed)};
-        case Algorithm::Nsga2: return pagmo::algorithm{pagmo::nsga2(1, p("cr"), p("eta_c"), p("m"), p("eta_m"), seed)};
-        case Algorithm::Sga:
-            return pagmo::algorithm{pagmo::sga(1, p("cr"), 1.0, p("m"), p("param_m"), u("param_s"), "exponential", "polynomial", "tournament", seed)};
-        case Algorithm::Moead:
-            // "low discrepancy" weights work for any population size ("grid" does not).
-            return pagmo::algorithm{pagmo::moead(1, "low discrepancy", "tchebycheff", static_cast<pagmo::population::size_type>(p("neighbours")), p("CR"),
-                                                 p("F"), p("eta_m"), p("realb"), u("limit"), true, seed)};
-    }
-    return pagmo::algorithm{};
-}
+pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) { return AlgorithmRowOf(def.algorithm).make(def, seed); }
 
 
 // The statistics of a generation and of the run so far.
