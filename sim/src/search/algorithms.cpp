@@ -8,6 +8,7 @@
 #include <pagmo/algorithms/sade.hpp>
 #include <pagmo/algorithms/sga.hpp>
 #include <pagmo/algorithms/xnes.hpp>
+#include <fmt/format.h>
 #include <stdexcept>
 
 namespace sim {
@@ -58,13 +59,24 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
          [](const OptimizerDef& d, unsigned seed) {
              return pagmo::algorithm{pagmo::pso_gen(1, P(d, "omega"), P(d, "eta1"), P(d, "eta2"), P(d, "max_vel"), U(d, "variant"), U(d, "neighb_type"),
                                                     U(d, "neighb_param"), true, seed)};
+         },
+         [](const OptimizerDef& d) -> std::string {
+             // The ring (lbest) takes neighb_param / 2 neighbours on each side: none below 2, and it
+             // reads past the swarm when they are more than the swarm.
+             if (P(d, "neighb_type") != 2 || (P(d, "neighb_param") >= 2 && P(d, "neighb_param") <= d.population)) return "";
+             return fmt::format("pso's ring topology (neighb_type 2) needs neighb_param from 2 to the population ({}), got {:g}", d.population,
+                                P(d, "neighb_param"));
          }},
         {Algorithm::Nsga2, true, 8,
          {{"cr", 0.95, 0, 0.999999, false, "crossover probability"},
           {"eta_c", 10, 1, 100, false, "distribution index of the crossover"},
           {"m", 0.01, 0, 1, false, "mutation probability"},
           {"eta_m", 50, 1, 100, false, "distribution index of the mutation"}},
-         [](const OptimizerDef& d, unsigned seed) { return pagmo::algorithm{pagmo::nsga2(1, P(d, "cr"), P(d, "eta_c"), P(d, "m"), P(d, "eta_m"), seed)}; }},
+         [](const OptimizerDef& d, unsigned seed) { return pagmo::algorithm{pagmo::nsga2(1, P(d, "cr"), P(d, "eta_c"), P(d, "m"), P(d, "eta_m"), seed)}; },
+         [](const OptimizerDef& d) -> std::string {
+             if (d.population % 4 == 0) return "";
+             return fmt::format("nsga2 needs a population that is a multiple of 4 (got {}; try {})", d.population, (d.population + 3) / 4 * 4);
+         }},
         {Algorithm::Moead, true, 4,
          {{"neighbours", 10, 2, 10000, true, "size of each weight's neighbourhood (pagmo: 20); smaller than the population"},
           {"CR", 1, 0, 1, false, "crossover parameter of the DE operator"},
@@ -76,6 +88,10 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
              // "low discrepancy" weights work for any population size ("grid" does not).
              return pagmo::algorithm{pagmo::moead(1, "low discrepancy", "tchebycheff", static_cast<pagmo::population::size_type>(P(d, "neighbours")),
                                                   P(d, "CR"), P(d, "F"), P(d, "eta_m"), P(d, "realb"), U(d, "limit"), true, seed)};
+         },
+         [](const OptimizerDef& d) -> std::string {
+             if (P(d, "neighbours") < d.population) return "";
+             return fmt::format("moead's neighbours ({:g}) must be smaller than the population ({})", P(d, "neighbours"), d.population);
          }},
         // pagmo's simple genetic algorithm: tournament selection, exponential crossover, polynomial
         // mutation, pure elitism (pagmo's defaults for the three operators).
@@ -87,6 +103,10 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
          [](const OptimizerDef& d, unsigned seed) {
              return pagmo::algorithm{
                  pagmo::sga(1, P(d, "cr"), 1.0, P(d, "m"), P(d, "param_m"), U(d, "param_s"), "exponential", "polynomial", "tournament", seed)};
+         },
+         [](const OptimizerDef& d) -> std::string {
+             if (P(d, "param_s") <= d.population) return "";
+             return fmt::format("sga's tournament (param_s {}) is larger than the population ({})", P(d, "param_s"), d.population);
          }},
     };
     return rows;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pagmo/algorithm.hpp>
+#include <string>
 #include <vector>
 
 #include "sim/optimize.h"
@@ -27,6 +28,9 @@ struct AlgorithmRow {
     // One generation per evolve() call, with memory, so that stepping equals one long call; pagmo's
     // own tolerances off: the run's stop criteria decide.
     pagmo::algorithm (*make)(const OptimizerDef& def, unsigned seed);
+    // What pagmo would refuse mid-run (or misread) in this algorithm's settings, beyond each
+    // parameter's range; empty when they can run. Null: nothing more to check.
+    std::string (*error)(const OptimizerDef& def) = nullptr;
 };
 
 const std::vector<AlgorithmRow>& AlgorithmRows();

@@ -250,8 +250,6 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
     const char* name = Name(def.algorithm);
     if (def.population < SmallestPopulation(def.algorithm) || def.population > 100000)
         return fmt::format("{} needs a population of at least {} (got {})", name, SmallestPopulation(def.algorithm), def.population);
-    if (def.algorithm == Algorithm::Nsga2 && def.population % 4 != 0)
-        return fmt::format("nsga2 needs a population that is a multiple of 4 (got {}; try {})", def.population, (def.population + 3) / 4 * 4);
     for (const auto& [key, value] : def.parameters) {
         const AlgorithmParameter* found = nullptr;
         std::string valid;
@@ -265,16 +263,10 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
             return fmt::format("{} parameter '{}' must be {} in [{:g}, {:g}] (got {:g})", name, key, found->integer ? "an integer" : "a number",
                                found->min, found->max, value);
     }
-    if (def.algorithm == Algorithm::Sga && ParameterValue(def, "param_s") > def.population)
-        return fmt::format("sga's tournament (param_s {}) is larger than the population ({})", ParameterValue(def, "param_s"), def.population);
-    // pso's ring (lbest) takes neighb_param / 2 neighbours on each side: none below 2, and it reads past
-    // the swarm when they are more than the swarm.
-    if (def.algorithm == Algorithm::Pso && ParameterValue(def, "neighb_type") == 2 &&
-        (ParameterValue(def, "neighb_param") < 2 || ParameterValue(def, "neighb_param") > def.population))
-        return fmt::format("pso's ring topology (neighb_type 2) needs neighb_param from 2 to the population ({}), got {:g}", def.population,
-                           ParameterValue(def, "neighb_param"));
-    if (def.algorithm == Algorithm::Moead && ParameterValue(def, "neighbours") >= def.population)
-        return fmt::format("moead's neighbours ({:g}) must be smaller than the population ({})", ParameterValue(def, "neighbours"), def.population);
+    if (const auto rule = AlgorithmRowOf(def.algorithm).error) {
+        const std::string error = rule(def);
+        if (!error.empty()) return error;
+    }
     if (def.objectives.empty()) return "at least one objective is needed";
     const bool multi = IsMultiObjective(def.algorithm);
     if (multi && def.objectives.size() < 2)
