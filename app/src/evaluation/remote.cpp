@@ -23,21 +23,14 @@
 #include "sim/fields.h"
 #include "support/number_expression.h"
 #include "formats/schema_convert.h"
+#include "sim/model.h"
 
 namespace app {
 
 namespace {
 
 // Vertices of a job's meshes.
-std::uint64_t Vertices(const sim::EvalJob& job) {
-    if (job.model == sim::ModelKind::Thesis) return static_cast<std::uint64_t>(std::max(0, sim::VertexCount(job.Thesis().mesh)));
-    const sim::GeometryDef& g = job.Shell().geometry;
-    return static_cast<std::uint64_t>(std::max(0, g.ringVertices)) * static_cast<std::uint64_t>(std::max(0, sim::RingCount(g))) + 2;
-}
-
-// A Newton iteration of the shell models (assembly and a sparse factorisation) costs about as much
-// per vertex as ten thousand relaxation steps of the thesis model (measured at 30 x 30).
-constexpr std::uint64_t kNewtonIterationWork = 10000;
+std::uint64_t Vertices(const sim::EvalJob& job) { return static_cast<std::uint64_t>(std::max(0, sim::ModelOf(job).vertices(job))); }
 
 }  // namespace
 
@@ -45,12 +38,7 @@ std::uint64_t ReplyWords(const sim::EvalJob& job) {
     const std::uint64_t curve = job.model == sim::ModelKind::Thesis ? 0 : 3ull * static_cast<std::uint64_t>(std::max(0, job.Shell().load.steps));
     return 6ull * Vertices(job) + curve + 96;
 }
-std::uint64_t Work(const sim::EvalJob& job) {
-    if (job.model == sim::ModelKind::Thesis) return Vertices(job) * static_cast<std::uint64_t>(std::max(1, job.Thesis().params.iterations));
-    const sim::LoadDef& l = job.Shell().load;
-    const sim::SolverDef& s = job.Shell().solver;
-    return Vertices(job) * static_cast<std::uint64_t>(std::max(1, l.steps)) * static_cast<std::uint64_t>(std::max(1, s.maxIterations)) * kNewtonIterationWork;
-}
+std::uint64_t Work(const sim::EvalJob& job) { return sim::ModelOf(job).work(job); }  // the model's own estimate
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Addresses
