@@ -120,11 +120,10 @@ TEST_F(SearchCli, ThesisAmplitudeSweepPeaksBetween3And5AndTurnsNegativePast7) {
         if (row["quantity"] == "best amplitude") bestAmplitude = row["ours"].get<double>();
     EXPECT_GE(bestAmplitude, 3.0);
     EXPECT_LE(bestAmplitude, 5.0);
-    const auto rows = app::ParseCsv(Slurp(dir_ / "s41" / "results.csv"));
-    ASSERT_EQ(rows.size(), 31u);  // header + 30 amplitudes
-    EXPECT_EQ(rows[0][1], "amplitude");
-    for (size_t k = 1; k < rows.size(); ++k)
-        if (std::stod(rows[k][1]) > 7) EXPECT_LT(std::stod(rows[k][2]), 0) << "A=" << rows[k][1];
+    const app::Table results = app::Table::Read((dir_ / "s41" / "results.csv").string());
+    ASSERT_EQ(results.Rows(), 30u);  // 30 amplitudes
+    for (size_t k = 0; k < results.Rows(); ++k)
+        if (results.Number(k, "amplitude") > 7) EXPECT_LT(results.Number(k, "fitness"), 0) << "A=" << results.Text(k, "amplitude");
     for (const char* figure : {"landscape.png", "best_inflation.png", "best_stretch.png", "contact_sheet.png"}) ExpectPicture(dir_ / "s41" / figure);
 }
 
@@ -144,22 +143,22 @@ TEST_F(SearchCli, EvolveGivesTheSameBytesWhateverTheThreadCount) {
 TEST_F(SearchCli, EvolveImprovesAndLogsEveryGeneration) {
     const Result r = Run("evolve " + SmallGa(10, 1, false) + " --out " + Path("e"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const auto rows = app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "logbook.csv"));
-    ASSERT_EQ(rows.size(), 12u);  // header + generations 0..10
-    EXPECT_EQ(rows[0], (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "q1", "median", "q3", "invalid", "stopped_by"}));
-    for (size_t g = 1; g < rows.size(); ++g) {
+    const app::Table log = app::Table::Read((dir_ / "e" / "run_1" / "logbook.csv").string());
+    ASSERT_EQ(log.Rows(), 11u);  // generations 0..10
+    EXPECT_EQ(log.Columns(), (std::vector<std::string>{"generation", "evaluations", "best", "worst", "mean", "std", "q1", "median", "q3", "invalid", "stopped_by"}));
+    const size_t last = log.Rows() - 1;
+    for (size_t g = 0; g < log.Rows(); ++g) {
         // The quartiles lie between the worst and the best, in order.
-        const double best = std::stod(rows[g][2]), worst = std::stod(rows[g][3]), q1 = std::stod(rows[g][6]), median = std::stod(rows[g][7]), q3 = std::stod(rows[g][8]);
-        EXPECT_LE(worst, q1);
-        EXPECT_LE(q1, median);
-        EXPECT_LE(median, q3);
-        EXPECT_LE(q3, best);
+        EXPECT_LE(log.Number(g, "worst"), log.Number(g, "q1"));
+        EXPECT_LE(log.Number(g, "q1"), log.Number(g, "median"));
+        EXPECT_LE(log.Number(g, "median"), log.Number(g, "q3"));
+        EXPECT_LE(log.Number(g, "q3"), log.Number(g, "best"));
     }
-    EXPECT_EQ(rows.back().back(), "generations");
-    EXPECT_EQ(rows[rows.size() - 2].back(), "");
-    EXPECT_EQ(rows[1][1], "10");  // the initial population is evaluated whole
-    for (size_t k = 2; k < rows.size(); ++k) EXPECT_GE(std::stod(rows[k][2]), std::stod(rows[k - 1][2])) << "best fell at row " << k;
-    EXPECT_GT(std::stod(rows.back()[2]), std::stod(rows[1][2])) << "ten generations should improve on the initial best";
+    EXPECT_EQ(log.Text(last, "stopped_by"), "generations");
+    EXPECT_EQ(log.Text(last - 1, "stopped_by"), "");
+    EXPECT_EQ(log.Text(0, "evaluations"), "10");  // the initial population is evaluated whole
+    for (size_t k = 1; k < log.Rows(); ++k) EXPECT_GE(log.Number(k, "best"), log.Number(k - 1, "best")) << "best fell at generation " << k;
+    EXPECT_GT(log.Number(last, "best"), log.Number(0, "best")) << "ten generations should improve on the initial best";
     EXPECT_EQ(app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "best_per_generation.csv")).size(), 12u);
     EXPECT_GE(app::ParseCsv(Slurp(dir_ / "e" / "run_1" / "halloffame.csv")).size(), 2u);
 }
@@ -172,13 +171,13 @@ TEST_F(SearchCli, EvolveStopsAtItsCriteriaAndSaysWhichInTheLogbook) {
         const fs::path out = dir_ / reason;
         const Result r = Run("evolve " + experiment + " --out " + out.string() + " --set " + set);
         ASSERT_EQ(r.exitCode, 0) << r.err;
-        const auto rows = app::ParseCsv(Slurp(out / "run_1" / "logbook.csv"));
-        EXPECT_EQ(rows.back().back(), reason) << set;
-        EXPECT_LT(rows.size(), 12u) << set << ": stopped before generation 10";
+        const app::Table log = app::Table::Read((out / "run_1" / "logbook.csv").string());
+        EXPECT_EQ(log.Text(log.Rows() - 1, "stopped_by"), reason) << set;
+        EXPECT_LT(log.Rows(), 11u) << set << ": stopped before generation 10";
         EXPECT_THAT(r.out, HasSubstr("stopped by " + reason)) << set;
     }
     int evaluations = 0;
-    for (const auto& row : app::ParseCsv(Slurp(dir_ / "evaluations" / "run_1" / "logbook.csv"))) evaluations += row[0] == "generation" ? 0 : std::stoi(row[1]);
+    for (double n : app::Table::Read((dir_ / "evaluations" / "run_1" / "logbook.csv").string()).Numbers("evaluations")) evaluations += static_cast<int>(n);
     EXPECT_GE(evaluations, 25);
 }
 
@@ -247,8 +246,7 @@ TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
             const Result r = Run("evolve " + Path(name + ".json") + " --out " + Path(name));
             ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
             EXPECT_THAT(r.out, HasSubstr("stopped by generations")) << name;
-            const auto logbook = app::ParseCsv(Slurp(dir_ / name / "run_1" / "logbook.csv"));
-            EXPECT_EQ(logbook.size(), 4u) << name;
+            EXPECT_EQ(app::Table::Read((dir_ / name / "run_1" / "logbook.csv").string()).Rows(), 3u) << name;
             EXPECT_TRUE(fs::exists(dir_ / name / "run_1" / (multi ? "pareto_front.csv" : "halloffame.csv"))) << name;
         }
 }
@@ -276,33 +274,24 @@ TEST_F(SearchCli, EveryAlgorithmResumesExactlyAfterAKillWhateverTheThreads) {
 TEST_F(SearchCli, ParetoFrontsAreNonDominatedAndPictured) {
     const Result r = Run("evolve " + SmallOptimizer("nsga2", 4) + " --out " + Path("pareto"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const auto front = app::ParseCsv(Slurp(dir_ / "pareto" / "run_1" / "pareto_front.csv"));
-    ASSERT_GE(front.size(), 3u);
-    EXPECT_THAT(front[0], ::testing::ElementsAre("front", "evaluation", "generation", "status", "contraction_percent", "largest_stretch", "design",
+    const app::Table front = app::Table::Read((dir_ / "pareto" / "run_1" / "pareto_front.csv").string());
+    ASSERT_GE(front.Rows(), 2u);
+    EXPECT_THAT(front.Columns(), ::testing::ElementsAre("front", "evaluation", "generation", "status", "contraction_percent", "largest_stretch", "design",
                                                  "gene_spline1.c1", "gene_spline1.c2", "gene_spline1.c3", "gene_spline1.c4", "gene_spline1.c5",
                                                  "gene_spline1.c6", "gene_fibre_angle_deg"));
     // Nothing evaluated dominates a front design (contraction up, stretch down).
-    const auto all = app::ParseCsv(Slurp(dir_ / "pareto" / "evaluations.csv"));
-    size_t contraction = 0, stretch = 0, status = 0;
-    for (size_t k = 0; k < all[0].size(); ++k) {
-        if (all[0][k] == "contraction_percent") contraction = k;
-        if (all[0][k] == "max_stretch") stretch = k;
-        if (all[0][k] == "status") status = k;
-    }
-    ASSERT_GT(contraction * stretch * status, 0u);
-    for (size_t f = 1; f < front.size(); ++f) {
-        const double c = std::stod(front[f][4]), s = std::stod(front[f][5]);
-        for (size_t k = 1; k < all.size(); ++k) {
-            if (all[k][status] != "ok") continue;
-            const double c2 = std::stod(all[k][contraction]), s2 = std::stod(all[k][stretch]);
-            EXPECT_FALSE(c2 >= c && s2 <= s && (c2 > c || s2 < s)) << "evaluation " << all[k][0] << " dominates front design " << f;
+    const app::Table all = app::Table::Read((dir_ / "pareto" / "evaluations.csv").string());
+    for (size_t f = 0; f < front.Rows(); ++f) {
+        const double c = front.Number(f, "contraction_percent"), s = front.Number(f, "largest_stretch");
+        for (size_t k = 0; k < all.Rows(); ++k) {
+            if (all.Text(k, "status") != "ok") continue;
+            const double c2 = all.Number(k, "contraction_percent"), s2 = all.Number(k, "max_stretch");
+            EXPECT_FALSE(c2 >= c && s2 <= s && (c2 > c || s2 < s)) << "evaluation " << all.Text(k, "evaluation") << " dominates front design " << f;
         }
     }
-    const auto logbook = app::ParseCsv(Slurp(dir_ / "pareto" / "run_1" / "logbook.csv"));
-    ASSERT_EQ(logbook.size(), 6u);
-    const size_t hv = std::find(logbook[0].begin(), logbook[0].end(), "hypervolume") - logbook[0].begin();
-    ASSERT_LT(hv, logbook[0].size());
-    for (size_t g = 2; g < logbook.size(); ++g) EXPECT_GE(std::stod(logbook[g][hv]), std::stod(logbook[g - 1][hv])) << "hypervolume fell";
+    const std::vector<double> hypervolume = app::Table::Read((dir_ / "pareto" / "run_1" / "logbook.csv").string()).Numbers("hypervolume");
+    ASSERT_EQ(hypervolume.size(), 5u);
+    for (size_t g = 1; g < hypervolume.size(); ++g) EXPECT_GE(hypervolume[g], hypervolume[g - 1]) << "hypervolume fell";
     for (const char* figure : {"pareto_front.png", "pareto_designs.png", "hypervolume.png", "best_inflation.png"}) ExpectPicture(dir_ / "pareto" / figure);
 }
 

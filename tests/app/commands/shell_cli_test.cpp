@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_fixture.h"
+#include "formats/table.h"
 #include "formats/csv.h"
 
 namespace fs = std::filesystem;
@@ -113,19 +114,16 @@ TEST_F(ShellCli, APressureSweepIsTheContractionPressureCurveAndItsArchiveReplays
         "render": {"figures": false, "thumbnails": false}})");
     const Result r = Run("sweep " + Path("pressure.json") + " --out " + Path("runs"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const auto rows = app::ParseCsv(Slurp(dir_ / "runs" / "results.csv"));
-    ASSERT_EQ(rows.size(), 4u);
-    EXPECT_EQ(rows[0][1], "pressure_kpa");
-    std::vector<double> contraction;
-    for (size_t k = 1; k < rows.size(); ++k) contraction.push_back(std::stod(rows[k][3]));
+    const app::Table results = app::Table::Read((dir_ / "runs" / "results.csv").string());
+    ASSERT_EQ(results.Rows(), 3u);
+    EXPECT_EQ(results.Numbers("pressure_kpa"), (std::vector<double>{1, 2, 3}));
+    const std::vector<double> contraction = results.Numbers("contraction_percent");
     EXPECT_GT(contraction[0], contraction[1]) << "lengthens more with pressure";
     EXPECT_GT(contraction[1], contraction[2]);
-    const auto log = app::ParseCsv(Slurp(dir_ / "runs" / "evaluations.csv"));
-    const auto column = [&](const std::string& name) { return static_cast<size_t>(std::find(log[0].begin(), log[0].end(), name) - log[0].begin()); };
-    ASSERT_LT(column("max_stretch"), log[0].size());
-    EXPECT_EQ(log[1][column("model")], "membrane");
-    EXPECT_EQ(log[3][column("pressure_kpa")], "3");
-    EXPECT_FALSE(log[3][column("max_stretch")].empty());
+    const app::Table log = app::Table::Read((dir_ / "runs" / "evaluations.csv").string());
+    EXPECT_EQ(log.Text(0, "model"), "membrane");
+    EXPECT_EQ(log.Text(2, "pressure_kpa"), "3");
+    EXPECT_FALSE(log.Text(2, "max_stretch").empty());
     // The stored job replays to the same number.
     const Result replay = Run("simulate --from " + Path("runs/evaluations.capnp") + " --index 2");
     ASSERT_EQ(replay.exitCode, 0) << replay.err;
@@ -159,9 +157,9 @@ TEST_F(ShellCli, EvolveUnderTheMembraneModelDoesNotDependOnThreads) {
     ASSERT_EQ(Run("evolve " + Path("ga.json") + " --threads 2 --out " + Path("two")).exitCode, 0);
     for (const char* file : {"evaluations.csv", "run_1/logbook.csv", "run_1/halloffame.csv"})
         EXPECT_EQ(Slurp(dir_ / "one" / file), Slurp(dir_ / "two" / file)) << file;
-    const auto logbook = app::ParseCsv(Slurp(dir_ / "one" / "run_1" / "logbook.csv"));
-    ASSERT_EQ(logbook.size(), 3u);
-    EXPECT_FALSE(logbook[1][2].empty()) << "generation 0 has a best contraction";
+    const app::Table logbook = app::Table::Read((dir_ / "one" / "run_1" / "logbook.csv").string());
+    ASSERT_EQ(logbook.Rows(), 2u);
+    EXPECT_FALSE(logbook.Text(0, "best").empty()) << "generation 0 has a best contraction";
 }
 
 // Fibres from the command line and from experiment files; bad fibre input refused.
@@ -200,12 +198,11 @@ TEST_F(ShellCli, AFibreAngleSweepCrossesZeroAtTheMagicAngle) {
         "render": {"thumbnails": false}})");
     const Result r = Run("sweep " + Path("angles.json") + " --out " + Path("angles"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const auto rows = app::ParseCsv(Slurp(dir_ / "angles" / "results.csv"));
-    ASSERT_EQ(rows.size(), 5u);
-    EXPECT_EQ(rows[0][2], "fibre_angle_deg");
-    for (size_t k = 1; k < rows.size(); ++k) {
-        const double angle = std::stod(rows[k][2]), contraction = std::stod(rows[k][4]);
-        EXPECT_EQ(contraction > 0, angle < 54.7) << "at " << rows[k][1] << " kPa and " << angle << " degrees";
+    const app::Table results = app::Table::Read((dir_ / "angles" / "results.csv").string());
+    ASSERT_EQ(results.Rows(), 4u);
+    for (size_t k = 0; k < results.Rows(); ++k) {
+        const double angle = results.Number(k, "fibre_angle_deg"), contraction = results.Number(k, "contraction_percent");
+        EXPECT_EQ(contraction > 0, angle < 54.7) << "at " << results.Text(k, "pressure_kpa") << " kPa and " << angle << " degrees";
     }
     testing_support::ExpectPicture(dir_ / "angles" / "landscape.png");
 }
