@@ -217,27 +217,26 @@ ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::fun
     std::rewind(file);
     kj::FdInputStream raw(fileno(file));
     kj::BufferedInputStreamWrapper stream(raw);
+    // A record that does not decode: not an archive at all when it is the first, else a torn tail.
+    auto unreadable = [&] {
+        if (scan.records == 0) {
+            std::fclose(file);
+            throw UsageError(Quote(path) + " is not an evaluation archive");
+        }
+        scan.tornTail = true;
+        scan.problem = "the file ends in an incomplete record after " + std::to_string(scan.records);
+    };
     while (stream.tryGetReadBuffer().size() > 0) {
         try {
             capnp::PackedMessageReader message(stream, ArchiveLimits(static_cast<std::uint64_t>(info.st_size)));
             ArchiveRecord record = Decode(message, withMeshes);
             ++scan.records;
             if (!visit(std::move(record))) break;
-        } catch (const std::exception& error) {
-            if (scan.records == 0) {
-                std::fclose(file);
-                throw UsageError(Quote(path) + " is not an evaluation archive");
-            }
-            scan.tornTail = true;
-            scan.problem = "the file ends in an incomplete record after " + std::to_string(scan.records);
+        } catch (const std::exception&) {
+            unreadable();
             break;
-        } catch (const kj::Exception& error) {
-            if (scan.records == 0) {
-                std::fclose(file);
-                throw UsageError(Quote(path) + " is not an evaluation archive");
-            }
-            scan.tornTail = true;
-            scan.problem = "the file ends in an incomplete record after " + std::to_string(scan.records);
+        } catch (const kj::Exception&) {
+            unreadable();
             break;
         }
     }
