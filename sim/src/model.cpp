@@ -98,12 +98,16 @@ std::uint64_t ShellWork(const EvalJob& job) {
 const char* kThesisFitness = "the thesis's contraction measure, mesh units";
 const char* kContraction = "contraction at the target pressure, % (positive = shorter)";
 
+ModelDef ThesisDefault() { return ThesisDef{}; }
+ModelDef ShellDefault() { return DefaultShellDef(); }
+
 const Model kModels[] = {
-    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, ThesisOutputs, kThesisFitness, "mesh units",
-     false},
-    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellOutputList, kContraction, "mm",
+    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, ThesisDefault, ThesisOutputs, kThesisFitness,
+     "mesh units", false},
+    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellOutputList,
+     kContraction, "mm", true},
+    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellOutputList, kContraction, "mm",
      true},
-    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellOutputList, kContraction, "mm", true},
 };
 
 }  // namespace
@@ -112,6 +116,12 @@ const Model& ModelOf(ModelKind kind) {
     for (const Model& m : kModels)
         if (m.kind == kind) return m;
     throw std::logic_error("a model kind without a row");
+}
+
+void EvalJob::SetModel(ModelKind kind) {
+    model = kind;
+    ModelDef fresh = ModelOf(kind).defaultDef();
+    if (fresh.index() != def.index()) def = std::move(fresh);  // a def of that kind already given is kept
 }
 
 void VisitOutputs(const SimResult& r, const EvalJob& job, OutputVisitor& v) {

@@ -2,6 +2,8 @@
 #include "formats/json_out.h"
 #include "experiments/experiment_runner.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -54,6 +56,8 @@ std::string SummaryJson(const Experiment& e, const ExperimentOutcome& o) {
 }
 
 }  // namespace
+
+std::string SheetName(int generation) { return fmt::format("sheets/generation_{:03}.png", generation); }
 
 fs::path RunFolder(const RunContext& c, int run) { return c.dir / ("run_" + std::to_string(run)); }
 

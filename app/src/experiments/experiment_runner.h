@@ -1,6 +1,6 @@
 // Runs one experiment into a results folder and says what came of it: files, timings, and our
 // numbers beside the thesis's. RunExperiment is a dispatcher; each kind has its own file
-// (run_sweep.cpp, run_list.cpp, run_evolve.cpp). Shared by sweep, evolve and reproduce.
+// (run_sweep.cpp, run_list.cpp, run_evolve.cpp, run_optimize.cpp). Shared by sweep, evolve and reproduce.
 #pragma once
 
 #include <cmath>
@@ -64,6 +64,8 @@ struct RunContext {
 
 // A GA or optimizer run's folder, DIR/run_K (1-based).
 std::filesystem::path RunFolder(const RunContext& c, int run);
+// A generation's contact sheet inside its run's folder: sheets/generation_NNN.png.
+std::string SheetName(int generation);
 
 // Resume of runs that checkpoint after every generation: each run's DIR/run_K/checkpoint.json read
 // by `parse(text, path)` (which checks it), a gap before the newest refused, and the archive cut back

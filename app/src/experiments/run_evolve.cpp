@@ -112,7 +112,6 @@ void WriteRunFiles(const fs::path& dir, const RunCheckpoint& checkpoint) {
     WriteFileAtomically((dir / "checkpoint.json").string(), FormatCheckpoint(checkpoint));
 }
 
-std::string SheetName(int generation) { return fmt::format("sheets/generation_{:03}.png", generation); }
 
 void WriteGenerationSheet(RunContext& c, const fs::path& runDir, int run, GenomeCache& cache, const sim::GaState& state,
                           std::unique_ptr<render::MeshRenderer>& renderer) {

@@ -189,7 +189,6 @@ std::string DesignsText(const Experiment& e, const sim::OptimizerRun& run, const
     return table.Csv();
 }
 
-std::string SheetName(int generation) { return fmt::format("sheets/generation_{:03}.png", generation); }
 
 bool Multi(const Experiment& e) { return e.optimizer.objectives.size() > 1; }
 

@@ -39,11 +39,7 @@ struct EvalJob {
     ModelDef def = ThesisDef{};
 
     // Sets the model, with its default def unless the job already holds a def of that kind.
-    void SetModel(ModelKind kind) {
-        model = kind;
-        if (kind == ModelKind::Thesis) Thesis();
-        else Shell();
-    }
+    void SetModel(ModelKind kind);  // model.cpp: the row gives the default def
 
     // The model's def. The const forms require the def to be the model's; the others make it so
     // (a job being built: set `model`, then fill its def).
@@ -84,6 +80,7 @@ struct Model {
     Surface (*surface)(const EvalJob& job);         // what its meshes are drawn on
     int (*vertices)(const EvalJob& job);            // of its meshes
     std::uint64_t (*work)(const EvalJob& job);      // an estimate of its cost (server limits): vertex-iterations
+    ModelDef (*defaultDef)();                       // the def a job of this model starts from
     // Its own outputs (beside fitness, contraction and time, which every model has), in order.
     void (*outputs)(const SimResult& result, const EvalJob& job, OutputVisitor& visitor);
     const char* fitnessLabel;                       // what its fitness is, with its unit
