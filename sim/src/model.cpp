@@ -156,9 +156,9 @@ std::vector<std::string> OutputNames(bool withTime) {
 }
 
 std::string JobError(const EvalJob& job) {
-    const bool thesisDef = std::holds_alternative<ThesisDef>(job.def);
-    if (thesisDef != (job.model == ModelKind::Thesis)) return std::string("the job's settings are not the ") + Name(job.model) + " model's";
-    return ModelOf(job).error(job);
+    const Model& model = ModelOf(job);
+    if (model.defaultDef().index() != job.def.index()) return std::string("the job's settings are not the ") + Name(job.model) + " model's";
+    return model.error(job);
 }
 
 }  // namespace sim

@@ -9,6 +9,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 #include <string_view>
 #include <utility>
 
@@ -33,16 +34,22 @@ constexpr std::optional<E> FromName(std::string_view text) {
     return std::nullopt;
 }
 
+// "a, b or c": names listed for messages and help text.
+inline std::string ListText(const std::vector<std::string>& names, const char* conjunction = "or") {
+    std::string text;
+    for (size_t k = 0; k < names.size(); ++k) {
+        if (k > 0) text += k + 1 == names.size() ? std::string(" ") + conjunction + " " : std::string(", ");
+        text += names[k];
+    }
+    return text;
+}
+
 // "a, b or c": the valid names, for messages and help text.
 template <class E>
 std::string Choices(const char* conjunction = "or") {
-    std::string text;
-    const auto& table = EnumNames<E>::table;
-    for (size_t k = 0; k < table.size(); ++k) {
-        if (k > 0) text += k + 1 == table.size() ? std::string(" ") + conjunction + " " : std::string(", ");
-        text += table[k].second;
-    }
-    return text;
+    std::vector<std::string> names;
+    for (const auto& [v, name] : EnumNames<E>::table) names.emplace_back(name);
+    return ListText(names, conjunction);
 }
 
 // "a|b|c": the valid names as an option's value placeholder.

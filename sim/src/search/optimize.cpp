@@ -233,23 +233,20 @@ double ParameterValue(const OptimizerDef& def, const char* name) {
 }
 
 namespace {
-int SmallestPopulation(Algorithm a) { return AlgorithmRowOf(a).smallestPopulation; }
-
 // The algorithms that optimise several objectives (or one), named as experiment files name them.
 std::string AlgorithmsFor(bool multiObjective) {
     std::vector<std::string> names;
     for (const AlgorithmRow& row : AlgorithmRows())
         if (row.multiObjective == multiObjective) names.push_back(Name(row.id));
-    std::string text;
-    for (size_t k = 0; k < names.size(); ++k) text += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
-    return text;
+    return ListText(names);
 }
 }  // namespace
 
 std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const MeshDef& mesh) {
     const char* name = Name(def.algorithm);
-    if (def.population < SmallestPopulation(def.algorithm) || def.population > 100000)
-        return fmt::format("{} needs a population of at least {} (got {})", name, SmallestPopulation(def.algorithm), def.population);
+    const int smallest = AlgorithmRowOf(def.algorithm).smallestPopulation;
+    if (def.population < smallest || def.population > 100000)
+        return fmt::format("{} needs a population of at least {} (got {})", name, smallest, def.population);
     for (const auto& [key, value] : def.parameters) {
         const AlgorithmParameter* found = nullptr;
         std::string valid;
