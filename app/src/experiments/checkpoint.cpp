@@ -125,11 +125,24 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
         if (rng == std::array<std::uint64_t, 4>{}) throw std::runtime_error("the generator's state is all zero (xoshiro256** would repeat zeros forever)");
         c.state.rng.SetState(rng);
         for (const auto& individual : j.at("population")) c.state.population.push_back(IndividualFrom(individual, e));
-        for (const auto& row : j.at("logbook"))
-            c.state.logbook.push_back(sim::LogbookRow{row.at("generation").get<int>(), row.at("evaluations").get<int>(), NumberOrNaN(row.at("best")),
-                                                      NumberOrNaN(row.at("worst")), NumberOrNaN(row.at("mean")), NumberOrNaN(row.at("std")),
-                                                      row.at("invalid").get<int>(), NumberOrNaN(row.at("q1")), NumberOrNaN(row.at("median")),
-                                                      NumberOrNaN(row.at("q3"))});
+        for (const auto& row : j.at("logbook")) {
+            sim::LogbookRow r;
+            r.generation = row.at("generation").get<int>();
+            r.evaluations = row.at("evaluations").get<int>();
+            r.best = NumberOrNaN(row.at("best"));
+            r.worst = NumberOrNaN(row.at("worst"));
+            r.mean = NumberOrNaN(row.at("mean"));
+            r.stddev = NumberOrNaN(row.at("std"));
+            r.invalid = row.at("invalid").get<int>();
+            r.q1 = NumberOrNaN(row.at("q1"));
+            r.median = NumberOrNaN(row.at("median"));
+            r.q3 = NumberOrNaN(row.at("q3"));
+            // What the GA derives from the rows before (not stored: older checkpoints lack them).
+            const sim::LogbookRow* before = c.state.logbook.empty() ? nullptr : &c.state.logbook.back();
+            r.evaluationsSoFar = (before ? before->evaluationsSoFar : 0) + r.evaluations;
+            r.bestSoFar = before && std::isfinite(before->bestSoFar) && !(r.best > before->bestSoFar) ? before->bestSoFar : r.best;
+            c.state.logbook.push_back(r);
+        }
         for (const auto& individual : j.at("best_per_generation")) c.state.bestPerGeneration.push_back(IndividualFrom(individual, e));
         for (const auto& individual : j.at("hall_of_fame")) c.state.hallOfFame.push_back(IndividualFrom(individual, e));
         if (static_cast<int>(c.state.population.size()) != e.ga.population)

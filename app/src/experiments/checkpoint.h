@@ -33,7 +33,7 @@ std::string BestPerGenerationCsv(const sim::GaState& state);
 std::string HallOfFameCsv(const sim::GaState& state);
 
 // An optimizer run's state on disk. No optimizer state: a resume replays the run from its seed with
-// the archive's results as answers (run_optimize.cpp), so the generation, the archive's length, the
+// the archive's results as answers (pagmo_engine.cpp), so the generation, the archive's length, the
 // stop reason and the experiment are all it needs.
 struct OptimizerCheckpoint {
     std::uint64_t seed = 0;

@@ -71,8 +71,8 @@ ExperimentOutcome RunExperiment(const Experiment& e, const fs::path& out, const 
     switch (e.kind) {
         case ExperimentKind::Sweep: RunSweep(context); break;
         case ExperimentKind::Evaluate: RunList(context); break;
-        case ExperimentKind::Evolve: RunEvolution(context); break;
-        case ExperimentKind::Optimize: RunOptimization(context); break;
+        case ExperimentKind::Evolve:
+        case ExperimentKind::Optimize: RunSearch(context); break;
     }
     outcome.simulations = recorder.Simulated();
     outcome.evaluations = static_cast<long long>(recorder.Count());

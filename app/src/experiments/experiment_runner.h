@@ -1,6 +1,6 @@
 // Runs one experiment into a results folder and says what came of it: files, timings, and our
 // numbers beside the thesis's. RunExperiment is a dispatcher; each kind has its own file
-// (run_sweep.cpp, run_list.cpp, run_evolve.cpp, run_optimize.cpp). Shared by sweep, evolve and reproduce.
+// (run_sweep.cpp, run_list.cpp; the GA and the optimizers share search_loop.cpp). Shared by sweep, evolve and reproduce.
 #pragma once
 
 #include <cmath>
@@ -67,39 +67,14 @@ std::filesystem::path RunFolder(const RunContext& c, int run);
 // A generation's contact sheet inside its run's folder: sheets/generation_NNN.png.
 std::string SheetName(int generation);
 
-// Resume of runs that checkpoint after every generation: each run's DIR/run_K/checkpoint.json read
-// by `parse(text, path)` (which checks it), a gap before the newest refused, and the archive cut back
-// to the newest checkpoint's `archiveCount`. Without --resume: no checkpoints, the archive untouched.
-template <class Checkpoint, class Parse>
-std::vector<std::optional<Checkpoint>> ResumeRuns(RunContext& c, int runs, const Parse& parse);
-
 void RunSweep(RunContext& c);
 void RunList(RunContext& c);
-void RunEvolution(RunContext& c);
-void RunOptimization(RunContext& c);
+void RunSearch(RunContext& c);  // the GA and the optimizers: search_loop.cpp
 
 // The best design's figures (its inflation result is given). Under the thesis model also the stretch
 // test, evaluated and archived as a figure evaluation; under the membrane and shell models the
 // contraction-pressure curve. A turntable when the experiment asks.
 void WriteBestFigures(RunContext& c, const std::filesystem::path& folder, const sim::EvalJob& job, const sim::SimResult& inflated,
                       const std::string& title, int turntableFrames, bool listInOutcome);
-
-template <class Checkpoint, class Parse>
-std::vector<std::optional<Checkpoint>> ResumeRuns(RunContext& c, int runs, const Parse& parse) {
-    std::vector<std::optional<Checkpoint>> saved(static_cast<size_t>(runs));
-    if (!c.options.resume) return saved;
-    int newest = 0;  // 1-based run of the newest checkpoint; 0: none
-    for (int r = 1; r <= runs; ++r) {
-        const std::filesystem::path path = RunFolder(c, r) / "checkpoint.json";
-        std::error_code ec;
-        if (!std::filesystem::exists(path, ec)) continue;
-        saved[r - 1] = parse(ReadInputFile(path.string()), path.string());
-        newest = r;
-    }
-    for (int r = 1; r < newest; ++r)
-        if (!saved[r - 1]) throw UsageError("--resume: " + Quote(RunFolder(c, r).string()) + " has no checkpoint, yet a later run has one");
-    c.recorder.RollBack(newest ? saved[newest - 1]->archiveCount : 0);
-    return saved;
-}
 
 }  // namespace app

@@ -157,10 +157,13 @@ render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& 
         }
         plot.bands = {range, middle};
         plot.series = {bestLine, medianLine};
-        if (!run.bestSoFar.empty()) {
+        if (run.showBestSoFar) {
             bestLine.label = "generation's best";
-            render::LineSeries soFar{"best so far", {}, run.bestSoFar, {0.05f, 0.05f, 0.05f}};
-            for (const auto& row : run.logbook) soFar.x.push_back(row.generation);
+            render::LineSeries soFar{"best so far", {}, {}, {0.05f, 0.05f, 0.05f}};
+            for (const auto& row : run.logbook) {
+                soFar.x.push_back(row.generation);
+                soFar.y.push_back(row.bestSoFar);
+            }
             plot.series = {soFar, bestLine, medianLine};
         }
         if (std::isfinite(run.reference) && !run.logbook.empty()) {
@@ -171,7 +174,7 @@ render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& 
         }
         if (!run.logbook.empty()) {
             const auto& last = run.logbook.back();
-            const double best = run.bestSoFar.empty() ? last.best : run.bestSoFar.back();
+            const double best = run.showBestSoFar ? last.bestSoFar : last.best;
             plot.highlight = std::pair{double(last.generation), best};
             plot.highlightLabel = fmt::format("best {:.4f}", best);
         }

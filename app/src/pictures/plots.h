@@ -35,7 +35,9 @@ render::Image LandscapeImage(const PlotContext& e, const std::vector<double>& fi
 struct RunCurve {
     std::string title;  // e.g. "run 2"
     std::vector<sim::LogbookRow> logbook;
-    std::vector<double> bestSoFar{};  // optimizers that may lose their best (CMA-ES): per generation; empty for the GA
+    // Draws the rows' best so far beside the generation's best: for optimizers that may lose their
+    // best (CMA-ES). The GA's elitism keeps its best, so its best line already is the best so far.
+    bool showBestSoFar = false;
     double reference = NAN;           // the thesis's best for this run, drawn as a line; NaN: none
     std::string referenceLabel{};     // e.g. "thesis, Table 5.4: 1.13"
 };

@@ -137,22 +137,8 @@ struct EvaluatedDesign {
     int generation = 0;  // when it was first asked for
 };
 
-struct OptimizerLogRow {
-    int generation = 0;
-    long long evaluations = 0;  // distinct designs evaluated so far (cumulative)
-    // One objective, over the generation's valid members, natural units and direction:
-    double best = NAN, worst = NAN, mean = NAN, stddev = NAN;
-    double q1 = NAN, median = NAN, q3 = NAN;  // quartiles of the first objective's valid values
-    double bestSoFar = NAN;  // over every design evaluated so far
-    int invalid = 0;         // members whose status is not Ok
-    // Several objectives: the hypervolume of every valid design so far (against referencePoint) and
-    // the size of their non-dominated front.
-    double hypervolume = NAN;
-    int frontSize = 0;
-};
-
 struct OptimizerRun {
-    std::vector<OptimizerLogRow> logbook;
+    std::vector<LogbookRow> logbook;
     std::vector<EvaluatedDesign> evaluated;  // every distinct design, in the order first asked
     std::vector<std::vector<double>> population;  // the last generation's members (vectors)
     std::vector<size_t> hallOfFame;  // one objective: indices into `evaluated`, best first (at most 10)

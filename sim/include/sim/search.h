@@ -112,12 +112,21 @@ struct Individual {
     bool Valid() const { return evaluated && status == Status::Ok; }
 };
 
+// One generation of a search, as the GA and every optimizer log it (each engine's logbook.csv
+// writes the columns it has always written from this one row).
 struct LogbookRow {
     int generation = 0;
-    int evaluations = 0;  // individuals evaluated this generation (DEAP's nevals)
-    double best = 0, worst = 0, mean = 0, stddev = 0;  // over valid individuals; stddev with ddof 0
-    int invalid = 0;      // individuals whose evaluation failed (nan or diverged)
-    double q1 = NAN, median = NAN, q3 = NAN;  // quartiles over valid individuals (linear interpolation, numpy's default)
+    long long evaluations = 0;       // designs evaluated in this generation (DEAP's nevals)
+    long long evaluationsSoFar = 0;  // the run's evaluations up to and including this generation
+    // The first objective over the generation's valid members, natural units and direction; stddev
+    // with ddof 0; quartiles with linear interpolation (numpy's default).
+    double best = NAN, worst = NAN, mean = NAN, stddev = NAN;
+    double q1 = NAN, median = NAN, q3 = NAN;
+    double bestSoFar = NAN;  // over every design the run has evaluated
+    int invalid = 0;         // members whose evaluation failed
+    // Several objectives: the hypervolume of every valid design so far and the size of their front.
+    double hypervolume = NAN;
+    int frontSize = 0;
 };
 
 // The q-quantile (0..1) of values sorted ascending, interpolating linearly between neighbours.

@@ -78,11 +78,12 @@ pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) { return 
 
 
 // The statistics of a generation and of the run so far.
-OptimizerLogRow LogRow(const OptimizerDef& def, const OptimizerRun& run, const pagmo::population& pop, const std::map<std::vector<double>, size_t>& known,
+LogbookRow LogRow(const OptimizerDef& def, const OptimizerRun& run, const pagmo::population& pop, const std::map<std::vector<double>, size_t>& known,
                        int generation) {
-    OptimizerLogRow row;
+    LogbookRow row;
     row.generation = generation;
-    row.evaluations = static_cast<long long>(run.evaluated.size());
+    row.evaluationsSoFar = static_cast<long long>(run.evaluated.size());
+    row.evaluations = row.evaluationsSoFar - (run.logbook.empty() ? 0 : run.logbook.back().evaluationsSoFar);
     const bool maximise = def.objectives[0].maximise;
     auto better = [&](double a, double b) { return maximise ? a > b : a < b; };
     std::vector<double> values;
@@ -126,7 +127,7 @@ bool Counts(const std::vector<double>& minimised) {
 }
 
 // Front and hypervolume of every valid design so far (several objectives); the hall of fame (one).
-void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& row) {
+void UpdateBests(const OptimizerDef& def, OptimizerRun& run, LogbookRow& row) {
     std::vector<size_t> valid;
     std::vector<std::vector<double>> points;
     for (size_t k = 0; k < run.evaluated.size(); ++k) {
@@ -177,13 +178,13 @@ void UpdateBests(const OptimizerDef& def, OptimizerRun& run, OptimizerLogRow& ro
 // Why the run stops after this generation, or "".
 std::string StopReason(const OptimizerDef& def, const OptimizerRun& run) {
     const StopDef& s = def.stop;
-    const OptimizerLogRow& last = run.logbook.back();
+    const LogbookRow& last = run.logbook.back();
     if (last.generation >= def.generations) return "generations";
-    if (s.evaluations > 0 && last.evaluations >= s.evaluations) return "evaluations";
+    if (s.evaluations > 0 && last.evaluationsSoFar >= s.evaluations) return "evaluations";
     if (std::isfinite(s.target) && std::isfinite(last.bestSoFar) && (def.objectives[0].maximise ? last.bestSoFar >= s.target : last.bestSoFar <= s.target))
         return "target";
     if (s.stagnation > 0 && static_cast<int>(run.logbook.size()) > s.stagnation) {
-        const OptimizerLogRow& then = run.logbook[run.logbook.size() - 1 - static_cast<size_t>(s.stagnation)];
+        const LogbookRow& then = run.logbook[run.logbook.size() - 1 - static_cast<size_t>(s.stagnation)];
         const bool multi = def.objectives.size() > 1;
         const double now = multi ? last.hypervolume : last.bestSoFar, before = multi ? then.hypervolume : then.bestSoFar;
         const bool improved = multi ? now > before : (def.objectives[0].maximise ? now > before : now < before);
@@ -235,7 +236,7 @@ OptimizerRun RunOptimizer(const OptimizerDef& def, const MeshDef& mesh, std::uin
             pop = algorithm.evolve(pop);
         }
         run.population = pop.get_x();
-        OptimizerLogRow row = LogRow(def, run, pop, oracle->known, generation);
+        LogbookRow row = LogRow(def, run, pop, oracle->known, generation);
         UpdateBests(def, run, row);
         run.logbook.push_back(row);
         std::string reason = StopReason(def, run);

@@ -227,6 +227,9 @@ void Record(GaState& state, int evaluations) {
         row.best = row.worst = row.mean = row.stddev = std::nan("");
         state.bestPerGeneration.push_back(state.population.front());
     }
+    const LogbookRow* before = state.logbook.empty() ? nullptr : &state.logbook.back();
+    row.evaluationsSoFar = (before ? before->evaluationsSoFar : 0) + evaluations;
+    row.bestSoFar = before && std::isfinite(before->bestSoFar) && !(row.best > before->bestSoFar) ? before->bestSoFar : row.best;
     state.logbook.push_back(row);
     for (const auto* individual : ranked) {
         const bool known = std::any_of(state.hallOfFame.begin(), state.hallOfFame.end(),
@@ -385,10 +388,8 @@ std::string GenomeText(const Genome& genome) {
 std::string GaStopReason(const GaDef& def, const GaState& state) {
     if (state.generation >= def.generations) return "generations";
     const StopDef& s = def.stop;
-    long long evaluations = 0;
-    for (const LogbookRow& row : state.logbook) evaluations += row.evaluations;
-    if (s.evaluations > 0 && evaluations >= s.evaluations) return "evaluations";
     if (state.logbook.empty()) return "";
+    if (s.evaluations > 0 && state.logbook.back().evaluationsSoFar >= s.evaluations) return "evaluations";
     // Elitism keeps the best: a generation's best is the run's best so far.
     const double best = state.logbook.back().best;
     if (std::isfinite(s.target) && best >= s.target) return "target";

@@ -111,8 +111,8 @@ TEST(Optimize, FailedDesignsAreNeverTheBestAndStopCriteriaAreHonoured) {
     def.stop.evaluations = 30;
     run = RunOptimizer(def, kMesh, 1, evaluate, {});
     EXPECT_EQ(run.stopReason, "evaluations");
-    EXPECT_GE(run.logbook.back().evaluations, 30);
-    EXPECT_LT(run.logbook[run.logbook.size() - 2].evaluations, 30);
+    EXPECT_GE(run.logbook.back().evaluationsSoFar, 30);
+    EXPECT_LT(run.logbook[run.logbook.size() - 2].evaluationsSoFar, 30);
 
     def.stop.evaluations = 0;
     def.stop.stagnation = 3;
