@@ -1,6 +1,8 @@
 // The model table: one row per model. A new model is a row here (and its folder, def and outputs).
 #include "sim/model.h"
 
+#include "sim/names.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -101,12 +103,24 @@ const char* kContraction = "contraction at the target pressure, % (positive = sh
 ModelDef ThesisDefault() { return ThesisDef{}; }
 ModelDef ShellDefault() { return DefaultShellDef(); }
 
+std::string ThesisMeshText(const EvalJob& job) {
+    return std::to_string(job.Thesis().mesh.resolution) + " vertices per turn x " + std::to_string(job.Thesis().mesh.turns) + " turns, vertices in helix order";
+}
+std::string ShellMeshText(const EvalJob& job) {
+    return std::to_string(job.Shell().geometry.ringVertices) + " vertices per ring x " + std::to_string(RingCount(job.Shell().geometry)) +
+           " rings and two cap centres, millimetres";
+}
+const char* ThesisLoadName(const EvalJob& job) { return Name(job.Thesis().params.load); }
+const char* ShellLoadName(const EvalJob& job) { return Name(job.Shell().load.kind); }
+int NoCurve(const EvalJob&) { return 0; }
+int ShellCurvePoints(const EvalJob& job) { return std::max(0, job.Shell().load.steps); }
+
 const Model kModels[] = {
-    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, ThesisDefault, ThesisOutputs, kThesisFitness,
+    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, ThesisDefault, ThesisMeshText, ThesisLoadName, NoCurve, ThesisOutputs, kThesisFitness,
      "mesh units", false},
-    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellOutputList,
+    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellMeshText, ShellLoadName, ShellCurvePoints, ShellOutputList,
      kContraction, "mm", true},
-    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellOutputList, kContraction, "mm",
+    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellMeshText, ShellLoadName, ShellCurvePoints, ShellOutputList, kContraction, "mm",
      true},
 };
 

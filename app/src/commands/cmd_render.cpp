@@ -322,7 +322,7 @@ static int RunRender(int argc, char** argv, int first) {
     // frames once they are in place.
     OutputBatch batch;
     std::vector<std::pair<fs::path, fs::path>> videos;  // (frames, mp4)
-    const std::string loadName = thesis ? sim::Name(job.Thesis().params.load) : sim::Name(job.Shell().load.kind);
+    const std::string loadName = sim::ModelOf(job).loadName(job);
     const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
                                                    ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", loadName)
                                      : JobTitle(job);

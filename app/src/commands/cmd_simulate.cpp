@@ -92,10 +92,7 @@ static int RunSimulate(int argc, char** argv, int first) {
     const sim::SimResult result = MakeLocalEvaluator(1)->EvaluateAll({job}).front();
 
     const auto surface = sim::SurfaceOf(job);
-    const std::string size = job.model == sim::ModelKind::Thesis
-                                 ? fmt::format("{} vertices per turn x {} turns, vertices in helix order", job.Thesis().mesh.resolution, job.Thesis().mesh.turns)
-                                 : fmt::format("{} vertices per ring x {} rings and two cap centres, millimetres", job.Shell().geometry.ringVertices,
-                                               sim::RingCount(job.Shell().geometry));
+    const std::string size = sim::ModelOf(job).meshText(job);
     OutputBatch batch;  // both meshes or neither
     if (cli.Given("--save-initial")) WriteFileAtomically(saveInitial, FormatObj(result.initial, surface, "actuator workbench initial mesh: " + size));
     if (cli.Given("--save-mesh")) WriteFileAtomically(saveMesh, FormatObj(result.final, surface, "actuator workbench final mesh: " + size));

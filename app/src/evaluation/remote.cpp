@@ -35,7 +35,7 @@ std::uint64_t Vertices(const sim::EvalJob& job) { return static_cast<std::uint64
 }  // namespace
 
 std::uint64_t ReplyWords(const sim::EvalJob& job) {
-    const std::uint64_t curve = job.model == sim::ModelKind::Thesis ? 0 : 3ull * static_cast<std::uint64_t>(std::max(0, job.Shell().load.steps));
+    const std::uint64_t curve = 3ull * static_cast<std::uint64_t>(sim::ModelOf(job).curvePoints(job));
     return 6ull * Vertices(job) + curve + 96;
 }
 std::uint64_t Work(const sim::EvalJob& job) { return sim::ModelOf(job).work(job); }  // the model's own estimate

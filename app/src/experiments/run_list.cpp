@@ -36,7 +36,8 @@ void RunList(RunContext& c) {
     // Table and figures from the archive: the same whether the run was resumed or not.
     Table table(std::vector<std::string>{"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
     std::unique_ptr<render::MeshRenderer> renderer;
-    const std::string load = e.model == sim::ModelKind::Thesis ? sim::Name(e.params.load) : sim::Name(e.shell.load.kind);
+    const sim::EvalJob base = JobOf(e, sim::CylinderShape{});
+    const std::string load = sim::ModelOf(base).loadName(base);
     c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) {
         const LabelledShape& shape = e.shapes[r.id];
         const bool ok = r.result.status == sim::Status::Ok;

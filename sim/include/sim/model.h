@@ -81,6 +81,9 @@ struct Model {
     int (*vertices)(const EvalJob& job);            // of its meshes
     std::uint64_t (*work)(const EvalJob& job);      // an estimate of its cost (server limits): vertex-iterations
     ModelDef (*defaultDef)();                       // the def a job of this model starts from
+    std::string (*meshText)(const EvalJob& job);    // its meshes' size and vertex order, for file headers
+    const char* (*loadName)(const EvalJob& job);    // the load it applies ("inflate", "stretch", "blocked", ...)
+    int (*curvePoints)(const EvalJob& job);         // points of its load curve per result (0: none)
     // Its own outputs (beside fitness, contraction and time, which every model has), in order.
     void (*outputs)(const SimResult& result, const EvalJob& job, OutputVisitor& visitor);
     const char* fitnessLabel;                       // what its fitness is, with its unit
