@@ -271,6 +271,25 @@ TEST_F(SearchCli, EveryAlgorithmResumesExactlyAfterAKillWhateverTheThreads) {
     }
 }
 
+// A run that wall time ended has ended: resumed, the GA and an optimizer alike only redraw, and
+// every output (the logbook still ending "seconds", the archive) is what the first session left.
+TEST_F(SearchCli, ARunEndedByWallTimeStaysEndedWhenResumed) {
+    const std::pair<std::string, std::string> searches[] = {{SmallGa(10, 1, false), "evolve.stop.seconds=0.001"},
+                                                            {SmallOptimizer("cmaes", 10), "optimizer.stop.seconds=0.001"}};
+    for (const auto& [experiment, set] : searches) {
+        SCOPED_TRACE(set);
+        const fs::path ended = dir_ / ("ended_" + set.substr(0, 6)), copy = dir_ / ("copy_" + set.substr(0, 6));
+        ASSERT_EQ(Run("evolve " + experiment + " --out " + ended.string() + " --set " + set).exitCode, 0);
+        const app::Table log = app::Table::Read((ended / "run_1" / "logbook.csv").string());
+        ASSERT_EQ(log.Text(log.Rows() - 1, "stopped_by"), "seconds");
+        ASSERT_LT(log.Rows(), 11u) << "wall time stopped the run before its last generation";
+        fs::copy(ended, copy, fs::copy_options::recursive);
+        const Result resumed = Run("evolve --resume " + ended.string());
+        ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+        ExpectSameOutputs(copy, ended);
+    }
+}
+
 TEST_F(SearchCli, ParetoFrontsAreNonDominatedAndPictured) {
     const Result r = Run("evolve " + SmallOptimizer("nsga2", 4) + " --out " + Path("pareto"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
