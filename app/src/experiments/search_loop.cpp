@@ -158,7 +158,7 @@ void RunSearch(RunContext& c) {
     if (best) {
         const ArchiveRecord record = c.recorder.ReadBack({runs[bestRun]->Cache().Of(best->key).id}).at(0);
         std::string title = engine->BestTitle(bestRun + 1, record.job);
-        const std::string fibres = record.job.model == sim::ModelKind::Thesis ? "" : FibreTitle(record.job.Shell().fibres);
+        const std::string fibres = FibreTitle(record.job);
         if (!fibres.empty()) title += ",  " + fibres;
         WriteBestFigures(c, c.dir, record.job, record.result, title, e.render.turntable == TurntablePlan::None ? 0 : e.render.turntableFrames, true);
     }

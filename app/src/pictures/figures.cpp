@@ -54,9 +54,14 @@ std::string FibreTitle(const sim::FibreDef& f) {
     return title + " deg";
 }
 
+std::string FibreTitle(const sim::EvalJob& job) {
+    const sim::ShellDef* shell = std::get_if<sim::ShellDef>(&job.def);
+    return shell ? FibreTitle(shell->fibres) : "";
+}
+
 std::string JobTitle(const sim::EvalJob& job) {
     if (job.model == sim::ModelKind::Thesis) return ShapeTitle(job.shape);
-    const std::string fibres = FibreTitle(job.Shell().fibres);
+    const std::string fibres = FibreTitle(job);
     return fmt::format("{}  -  {} model{}", ShapeTitle(job.shape), sim::Name(job.model), fibres.empty() ? "" : ",  " + fibres);
 }
 

@@ -20,6 +20,7 @@ namespace app {
 
 std::string ShapeTitle(const sim::Shape& shape);  // "sine  A = 4.1, phase 0.5 to pi-0.5"
 std::string FibreTitle(const sim::FibreDef& fibres);  // "braid +/-30 deg", "bands 20, 35 deg", "" without fibres
+std::string FibreTitle(const sim::EvalJob& job);     // the job's fibres; "" for a model without any
 // A job's picture title: the shape, and under the membrane and shell models the model and the fibres
 // ("sine  A = 1.3, ...  -  shell model,  braid +/-35 deg").
 std::string JobTitle(const sim::EvalJob& job);
