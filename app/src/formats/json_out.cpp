@@ -1,6 +1,7 @@
 #include "formats/json_out.h"
 
 #include <cmath>
+#include <variant>
 
 #include "support/errors.h"
 #include "sim/fields.h"
@@ -67,16 +68,15 @@ struct Writer {
 
 }  // namespace
 
-Json ModelJson(const sim::EvalJob& job) {
-    Json j{{"name", sim::Name(job.model)}};
-    if (job.model == sim::ModelKind::Thesis) {
-        VisitFields(job.Thesis().params, Writer{j});
-        VisitFields(job.Thesis().mesh, Writer{j});
-        j["vertices"] = sim::VertexCount(job.Thesis().mesh);
-        j["springs"] = sim::SpringCount(job.Thesis().mesh);
-        return j;
-    }
-    const sim::ShellDef& s = job.Shell();
+// Each def's block; a def added to sim::ModelDef without one here does not compile.
+static void DefJson(const sim::ThesisDef& d, Json& j) {
+    VisitFields(d.params, Writer{j});
+    VisitFields(d.mesh, Writer{j});
+    j["vertices"] = sim::VertexCount(d.mesh);
+    j["springs"] = sim::SpringCount(d.mesh);
+}
+
+static void DefJson(const sim::ShellDef& s, Json& j) {
     VisitFields(s.geometry, Writer{j});
     j["rings_used"] = sim::RingCount(s.geometry);
     j["material"] = sim::Name(s.material.preset);
@@ -93,6 +93,11 @@ Json ModelJson(const sim::EvalJob& job) {
     }
     if (!s.fibres.sectorAnglesDeg.empty()) j["fibre_sectors_deg"] = s.fibres.sectorAnglesDeg;
     if (!s.fibres.plus || !s.fibres.minus) j["fibre_families_on"] = {s.fibres.plus, s.fibres.minus};
+}
+
+Json ModelJson(const sim::EvalJob& job) {
+    Json j{{"name", sim::Name(job.model)}};
+    std::visit([&](const auto& def) { DefJson(def, j); }, job.def);
     return j;
 }
 
@@ -112,21 +117,22 @@ Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
             j["curve"] = curve;
             curves.clear();
         }
+        // The curves, as one list, where the visit put them: before the next single number.
         void Number(const char* name, const char*, double value) override {
-            if (std::string(name) == "elapsed_ms") {
-                Flush();
-                j[name] = value;
-                return;
-            }
+            Flush();
             j[name] = NumberJson(value);
         }
-        void Count(const char* name, long long value) override { j[name] = value; }
+        void Count(const char* name, long long value) override {
+            Flush();
+            j[name] = value;
+        }
         void Curve(const char* name, const char*, const std::vector<double>& values) override {
             curves.push_back({std::string(name).substr(std::string("curve_").size()), &values});
         }
     } writer;
     writer.j = Json{{"status", sim::Name(r.status)}};
     sim::VisitOutputs(r, job, writer);
+    writer.Flush();
     return writer.j;
 }
 

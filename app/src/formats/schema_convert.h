@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "actuator.capnp.h"
 #include "sim/batch.h"
@@ -52,14 +54,20 @@ template <class Builder>
 void SetJob(Builder out, const sim::EvalJob& job) {
     SetShape(out.initShape(), job.shape);
     out.setModel(static_cast<schema::ModelKind>(static_cast<int>(job.model)));
-    if (job.model != sim::ModelKind::Thesis) {
-        SetShellDef(out.initShell(), job.Shell());
-        return;
-    }
-    SetParams(out.initParams(), job.Thesis().params);
-    auto size = out.initMeshSize();
-    size.setResolution(static_cast<std::uint32_t>(job.Thesis().mesh.resolution));
-    size.setTurns(static_cast<std::uint32_t>(job.Thesis().mesh.turns));
+    // Each def its own struct; a def added to sim::ModelDef without one here does not compile.
+    std::visit(
+        [&](const auto& def) {
+            using Def = std::decay_t<decltype(def)>;
+            if constexpr (std::is_same_v<Def, sim::ShellDef>) SetShellDef(out.initShell(), def);
+            else {
+                static_assert(std::is_same_v<Def, sim::ThesisDef>, "a model def without its archive struct");
+                SetParams(out.initParams(), def.params);
+                auto size = out.initMeshSize();
+                size.setResolution(static_cast<std::uint32_t>(def.mesh.resolution));
+                size.setTurns(static_cast<std::uint32_t>(def.mesh.turns));
+            }
+        },
+        job.def);
 }
 template <class Reader>
 sim::EvalJob GetJob(Reader in) {
