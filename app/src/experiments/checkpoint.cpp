@@ -137,10 +137,7 @@ RunCheckpoint ParseCheckpoint(const std::string& text, const std::string& path, 
             r.q1 = NumberOrNaN(row.at("q1"));
             r.median = NumberOrNaN(row.at("median"));
             r.q3 = NumberOrNaN(row.at("q3"));
-            // What the GA derives from the rows before (not stored: older checkpoints lack them).
-            const sim::LogbookRow* before = c.state.logbook.empty() ? nullptr : &c.state.logbook.back();
-            r.evaluationsSoFar = (before ? before->evaluationsSoFar : 0) + r.evaluations;
-            r.bestSoFar = before && std::isfinite(before->bestSoFar) && !(r.best > before->bestSoFar) ? before->bestSoFar : r.best;
+            sim::ChainGaLogbookRow(r, c.state.logbook.empty() ? nullptr : &c.state.logbook.back());
             c.state.logbook.push_back(r);
         }
         for (const auto& individual : j.at("best_per_generation")) c.state.bestPerGeneration.push_back(IndividualFrom(individual, e));

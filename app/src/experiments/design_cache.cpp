@@ -59,8 +59,18 @@ std::vector<const DesignCache::Design*> DesignCache::Evaluate(const std::vector<
             return;
         }
         d.id = id;
+        if (!keepMeshes_) {
+            d.result = WithoutMeshes(std::move(r));
+            return;
+        }
+        // The meshes moved aside while the rest is copied: a result's meshes are most of its size.
+        sim::Positions initial = std::move(r.initial), last = std::move(r.final);
+        auto steps = std::move(r.shell.steps);
         d.result = WithoutMeshes(r);
-        if (keepMeshes_) meshes_[jobKeys[k]] = std::move(r);
+        r.initial = std::move(initial);
+        r.final = std::move(last);
+        r.shell.steps = std::move(steps);
+        meshes_[jobKeys[k]] = std::move(r);
     });
     std::vector<const Design*> out;
     for (const Request& request : requests) out.push_back(&designs_.at(request.key));

@@ -216,9 +216,10 @@ private:
         Table table(header);
         for (size_t k = 0; k < designs.size(); ++k) {
             const sim::EvaluatedDesign& d = run.evaluated[designs[k]];
-            std::vector<std::string> row{std::to_string(k + 1), std::to_string(DesignOf(d.x).id), std::to_string(d.generation), sim::Name(d.score.status)};
+            const std::string key = DesignKey(e, JobOfVector(e, d.x));
+            std::vector<std::string> row{std::to_string(k + 1), std::to_string(cache_.Of(key).id), std::to_string(d.generation), sim::Name(d.score.status)};
             for (double v : d.score.values) row.push_back(CsvNumber(v));
-            row.push_back(DesignKey(e, JobOfVector(e, d.x)));
+            row.push_back(key);
             for (double g : d.x) row.push_back(CsvNumber(g));
             table.AddRow(row);
         }

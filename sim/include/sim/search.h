@@ -129,6 +129,10 @@ struct LogbookRow {
     int frontSize = 0;
 };
 
+// A GA logbook row's running fields (evaluations so far, best so far) from the row before it (none
+// for generation 0): derived, never stored, so that checkpoints stay as they were written.
+void ChainGaLogbookRow(LogbookRow& row, const LogbookRow* before);
+
 // The q-quantile (0..1) of values sorted ascending, interpolating linearly between neighbours.
 double SortedQuantile(const std::vector<double>& ascending, double q);
 

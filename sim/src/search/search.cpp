@@ -7,6 +7,11 @@
 
 namespace sim {
 
+void ChainGaLogbookRow(LogbookRow& row, const LogbookRow* before) {
+    row.evaluationsSoFar = (before ? before->evaluationsSoFar : 0) + row.evaluations;
+    row.bestSoFar = before && std::isfinite(before->bestSoFar) && !(row.best > before->bestSoFar) ? before->bestSoFar : row.best;
+}
+
 double SortedQuantile(const std::vector<double>& ascending, double q) {
     if (ascending.empty()) return std::nan("");
     const double at = q * static_cast<double>(ascending.size() - 1);
@@ -227,9 +232,7 @@ void Record(GaState& state, int evaluations) {
         row.best = row.worst = row.mean = row.stddev = std::nan("");
         state.bestPerGeneration.push_back(state.population.front());
     }
-    const LogbookRow* before = state.logbook.empty() ? nullptr : &state.logbook.back();
-    row.evaluationsSoFar = (before ? before->evaluationsSoFar : 0) + evaluations;
-    row.bestSoFar = before && std::isfinite(before->bestSoFar) && !(row.best > before->bestSoFar) ? before->bestSoFar : row.best;
+    ChainGaLogbookRow(row, state.logbook.empty() ? nullptr : &state.logbook.back());
     state.logbook.push_back(row);
     for (const auto* individual : ranked) {
         const bool known = std::any_of(state.hallOfFame.begin(), state.hallOfFame.end(),
