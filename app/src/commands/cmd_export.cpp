@@ -68,10 +68,7 @@ static int RunExport(int argc, char** argv, int first) {
         cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         job = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
-        if (job.model != sim::ModelKind::Thesis) cli.CopyGivenFields(model.shell.geometry, job.Shell().geometry);
-        cli.RefuseIfGiven("--material", "does not go with --from: the material comes from the archive");
-        cli.RefuseFields(model.materialFields, "does not go with --from: the material comes from the archive");
-        RefuseOptionsWithoutEffect(cli, model, job, ModelUse::RestShape);
+        OverrideModelOptions(cli, model, job, ModelUse::RestShape);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
         job = BuildJob(cli, shape, model, ModelUse::RestShape);
@@ -113,7 +110,7 @@ static int RunExport(int argc, char** argv, int first) {
     }
     manifest["files"] = list;
     const double silicone = sim::MeshVolume(solids.actuator);
-    const sim::MaterialDef material = job.model == sim::ModelKind::Thesis ? sim::DefaultShellDef().material : job.Shell().material;
+    const sim::MaterialDef material = CastMaterialOf(job);
     manifest["silicone"] = Json{{"volume_mm3", silicone},
                                 {"material", sim::Name(material.preset)},
                                 {"density_kg_per_m3", material.densityKgPerM3},

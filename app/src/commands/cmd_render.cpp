@@ -217,14 +217,7 @@ static int RunRender(int argc, char** argv, int first) {
         for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
         cli.RefuseIfGiven("--timelapse", "needs a simulation; --from draws the stored meshes (re-simulate with actuator simulate --from)");
         cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
-        cli.RefuseIfGiven("--load", "does not go with --from: the settings come from the archive");
-        cli.RefuseIfGiven("--material", "does not go with --from: the settings come from the archive");
-        for (auto* fields : {&model.shell.geometry}) cli.RefuseFields(*fields, "does not go with --from: the settings come from the archive");
-        cli.RefuseFields(model.thesis, "does not go with --from: the settings come from the archive");
-        cli.RefuseFields(model.materialFields, "does not go with --from: the settings come from the archive");
-        cli.RefuseFields(model.shell.load, "does not go with --from: the settings come from the archive");
-        cli.RefuseFields(model.shell.solver, "does not go with --from: the settings come from the archive");
-        cli.RefuseFields(model.shell.fibres, "does not go with --from: the settings come from the archive");
+        RefuseModelOptions(cli, model, "does not go with --from: the settings come from the archive");
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         stored = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
         job = stored->job;

@@ -62,20 +62,9 @@ static int RunSimulate(int argc, char** argv, int first) {
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         const ArchiveRecord record = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
         job = record.job;
-        // Thesis settings given on this command line override the stored ones.
+        // Model settings given on this command line override the stored ones.
         cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
-        if (job.model == sim::ModelKind::Thesis) {
-            cli.CopyGivenFields(model.thesis, job.Thesis().params);
-            if (cli.Given("--load")) job.Thesis().params.load = ThesisLoad(model.load, "--load");
-        } else {
-            cli.CopyGivenFields(model.shell.geometry, job.Shell().geometry);
-            cli.CopyGivenFields(model.shell.load, job.Shell().load);
-            cli.CopyGivenFields(model.shell.solver, job.Shell().solver);
-            cli.CopyGivenFields(model.materialFields, job.Shell().material);
-            cli.CopyGivenFields(model.shell.fibres, job.Shell().fibres);
-            if (cli.Given("--load")) job.Shell().load.kind = ShellLoadOf(model.load, "--load");
-        }
-        RefuseOptionsWithoutEffect(cli, model, job, ModelUse::Simulate);
+        OverrideModelOptions(cli, model, job, ModelUse::Simulate);
         if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");

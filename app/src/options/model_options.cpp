@@ -1,5 +1,7 @@
 #include "options/model_options.h"
 
+#include <algorithm>
+
 #include "sim/fields.h"
 
 namespace app {
@@ -76,35 +78,85 @@ std::vector<std::string> GivenKeys(const Cli& cli, const Def& def) {
     return keys;
 }
 
-}  // namespace
+void RefuseWhereWithoutEffect(const std::string& key, const sim::FieldUse& u) {
+    if (!u.Applies())
+        throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) + " " + u.now);
+}
 
-void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::EvalJob& job, ModelUse use) {
-    // The other model's options.
-    const std::string model = std::string("--model ") + sim::Name(job.model);
-    if (job.model == sim::ModelKind::Thesis) {
-        std::vector<std::string> shellOptions{"--material"};
-        for (const auto& names : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.solver),
-                                  OptionNames(o.shell.fibres)})
-            shellOptions.insert(shellOptions.end(), names.begin(), names.end());
-        for (const auto& name : shellOptions) cli.RefuseIfGiven(name, "does not apply to --model thesis (it is an option of the membrane and shell models)");
-    } else {
-        for (const auto& name : OptionNames(o.thesis))
-            if (name != "--load") cli.RefuseIfGiven(name, "does not apply to " + model + " (it is an option of the thesis model)");
+// [SECTION] Each model's def on the command line. A new def adds one overload of each function of
+// this section; the functions after it visit the job's def and never test the model.
+
+// The options that set the def (--load aside: every model has it).
+std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ThesisDef&) {
+    std::vector<std::string> names = OptionNames(o.thesis);
+    std::erase(names, "--load");
+    return names;
+}
+std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ShellDef&) {
+    std::vector<std::string> names{"--material"};
+    for (const auto& part : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.solver),
+                             OptionNames(o.shell.fibres)})
+        names.insert(names.end(), part.begin(), part.end());
+    return names;
+}
+
+// A new job's def from the options.
+void FillDef(const Cli& cli, const ModelOptions& o, sim::ThesisDef& def) {
+    def.params = o.thesis;
+    if (cli.Given("--load")) def.params.load = ThesisLoad(o.load, "--load");
+}
+void FillDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def) {
+    def = o.shell;
+    def.material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+    if (cli.Given("--load")) def.load.kind = ShellLoadOf(o.load, "--load");
+    if (cli.Given("--law") && !(sim::ShearModulusKpa(def.material) > 0)) {
+        const sim::MaterialLaw law = def.material.law;
+        throw UsageError("--law " + std::string(sim::Name(law)) + " needs its constants: " +
+                         (law == sim::MaterialLaw::NeoHookean     ? "--mu-kpa"
+                          : law == sim::MaterialLaw::MooneyRivlin ? "--c10-kpa and --c01-kpa"
+                                                                  : "--c10-kpa (and --c20-kpa, --c30-kpa)") +
+                         " (the preset " + sim::Name(def.material.preset) + " has none for it)");
     }
-    if (job.model == sim::ModelKind::Thesis) {
-        if (use == ModelUse::RestShape) {
-            for (const auto& key : GivenKeys(cli, o.thesis))
-                cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (the part is the rest shape)");
-            cli.RefuseIfGiven("--load", "does not apply here: nothing is simulated (the part is the rest shape)");
-            return;
-        }
-        if (use == ModelUse::BothLoads) return;  // both loads are drawn: every constant has an effect
-        for (const auto& key : GivenKeys(cli, o.thesis))
-            if (const sim::FieldUse u = ThesisFieldUse(job.Thesis().params, key); !u.Applies())
-                throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) +
-                                 " " + u.now);
+}
+
+// The options given, written over a stored def (a design from an archive). For the rest shape only
+// what shapes the part is taken; the rest is refused by RefuseWithoutEffect or here.
+void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ThesisDef& def, ModelUse use) {
+    if (use == ModelUse::RestShape) return;
+    cli.CopyGivenFields(o.thesis, def.params);
+    if (cli.Given("--load")) def.params.load = ThesisLoad(o.load, "--load");
+}
+void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, ModelUse use) {
+    cli.CopyGivenFields(o.shell.geometry, def.geometry);
+    if (use == ModelUse::RestShape) {
+        cli.RefuseIfGiven("--material", "does not go with --from: the material comes from the archive");
+        cli.RefuseFields(o.materialFields, "does not go with --from: the material comes from the archive");
         return;
     }
+    cli.CopyGivenFields(o.shell.load, def.load);
+    cli.CopyGivenFields(o.shell.solver, def.solver);
+    // A preset given replaces the stored material (with the fields given over it); fields alone
+    // change the stored one.
+    if (cli.Given("--material"))
+        def.material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+    else
+        cli.CopyGivenFields(o.materialFields, def.material);
+    cli.CopyGivenFields(o.shell.fibres, def.fibres);
+    if (cli.Given("--load")) def.load.kind = ShellLoadOf(o.load, "--load");
+}
+
+// Refuses the def's options that are given but have no effect on it for `use`.
+void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ThesisDef& def, ModelUse use) {
+    if (use == ModelUse::RestShape) {
+        for (const auto& key : GivenKeys(cli, o.thesis))
+            cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (the part is the rest shape)");
+        cli.RefuseIfGiven("--load", "does not apply here: nothing is simulated (the part is the rest shape)");
+        return;
+    }
+    if (use == ModelUse::BothLoads) return;  // both loads are drawn: every constant has an effect
+    for (const auto& key : GivenKeys(cli, o.thesis)) RefuseWhereWithoutEffect(key, sim::ThesisFieldUse(def.params, key));
+}
+void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ShellDef& def, ModelUse use) {
     const std::string nothing = "does not apply here: nothing is simulated (the part is the rest shape, its geometry and silicone)";
     if (use == ModelUse::RestShape) {
         for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres)})
@@ -116,37 +168,65 @@ void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim
     } else {
         cli.RefuseIfGiven("--density-kg-per-m3", "applies to export (the silicone's mass); nothing here uses it");
     }
-    std::vector<std::string> keys;
     for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.solver),
                              GivenKeys(cli, o.shell.fibres)})
-        keys.insert(keys.end(), part.begin(), part.end());
-    for (const auto& key : keys)
-        if (const sim::FieldUse u = ShellFieldUse(job.Shell(), key); !u.Applies())
-            throw UsageError(OptionName(key.c_str()) + " applies to " + DeciderOption(u.decider) + " " + u.values + ", not " + DeciderOption(u.decider) + " " +
-                             u.now);
+        for (const auto& key : part) RefuseWhereWithoutEffect(key, sim::ShellFieldUse(def, key));
+}
+
+// Empty when the def can run; checked before the design is (its messages name the model).
+std::string DefError(const sim::ThesisDef& def) { return sim::SimParamsError(def.params); }
+std::string DefError(const sim::ShellDef& def) { return sim::ShellDefError(def); }
+
+// [SECTION] The job's def, whichever it is.
+
+// The models whose def is `def`'s kind, for messages: "the thesis model", "the membrane and shell models".
+std::string ModelsWithDefOf(const sim::ModelDef& def) {
+    std::vector<std::string> names;
+    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table)
+        if (sim::ModelOf(kind).defaultDef().index() == def.index()) names.emplace_back(name);
+    std::string text = "the ";
+    for (size_t i = 0; i < names.size(); ++i) text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+    return text + (names.size() == 1 ? " model" : " models");
+}
+
+// The options of every other def than the job's, each with the models it belongs to.
+void RefuseOtherModelsOptions(const Cli& cli, const ModelOptions& o, const sim::EvalJob& job) {
+    const std::vector<std::string> own = std::visit([&](const auto& def) { return DefOptionNames(o, def); }, job.def);
+    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table) {
+        const sim::ModelDef other = sim::ModelOf(kind).defaultDef();
+        if (other.index() == job.def.index()) continue;
+        for (const auto& option : std::visit([&](const auto& def) { return DefOptionNames(o, def); }, other))
+            if (std::find(own.begin(), own.end(), option) == own.end())
+                cli.RefuseIfGiven(option, "does not apply to --model " + std::string(sim::Name(job.model)) + " (it is an option of " + ModelsWithDefOf(other) + ")");
+    }
+}
+
+}  // namespace
+
+void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::EvalJob& job, ModelUse use) {
+    RefuseOtherModelsOptions(cli, o, job);
+    std::visit([&](const auto& def) { RefuseWithoutEffect(cli, o, def, use); }, job.def);
 }
 
 void ApplyModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job, ModelUse use) {
-    job.model = o.model;
-    if (o.model == sim::ModelKind::Thesis) {
-        job.Thesis().params = o.thesis;
-        if (cli.Given("--load")) job.Thesis().params.load = ThesisLoad(o.load, "--load");
-        RefuseOptionsWithoutEffect(cli, o, job, use);
-        return;
-    }
-    job.Shell() = o.shell;
-    job.Shell().material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
-    if (cli.Given("--load")) job.Shell().load.kind = ShellLoadOf(o.load, "--load");
-    if (cli.Given("--law") && !(sim::ShearModulusKpa(job.Shell().material) > 0)) {
-        const sim::MaterialLaw law = job.Shell().material.law;
-        throw UsageError("--law " + std::string(sim::Name(law)) + " needs its constants: " +
-                         (law == sim::MaterialLaw::NeoHookean     ? "--mu-kpa"
-                          : law == sim::MaterialLaw::MooneyRivlin ? "--c10-kpa and --c01-kpa"
-                                                                  : "--c10-kpa (and --c20-kpa, --c30-kpa)") +
-                         " (the preset " + sim::Name(job.Shell().material.preset) + " has none for it)");
-    }
+    job.SetModel(o.model);
+    std::visit([&](auto& def) { FillDef(cli, o, def); }, job.def);
     RefuseOptionsWithoutEffect(cli, o, job, use);
-    if (const std::string error = sim::ShellDefError(job.Shell()); !error.empty()) throw UsageError("--model " + std::string(sim::Name(o.model)) + ": " + error);
+    if (const std::string error = std::visit([](const auto& def) { return DefError(def); }, job.def); !error.empty())
+        throw UsageError("--model " + std::string(sim::Name(o.model)) + ": " + error);
+}
+
+void OverrideModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& job, ModelUse use) {
+    std::visit([&](auto& def) { OverrideDef(cli, o, def, use); }, job.def);
+    RefuseOptionsWithoutEffect(cli, o, job, use);
+}
+
+void RefuseModelOptions(const Cli& cli, const ModelOptions& o, const std::string& why) {
+    cli.RefuseIfGiven("--model", why);
+    cli.RefuseIfGiven("--load", why);
+    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table)
+        for (const auto& option : std::visit([&](const auto& def) { return DefOptionNames(o, def); }, sim::ModelOf(kind).defaultDef()))
+            cli.RefuseIfGiven(option, why);
 }
 
 }  // namespace app

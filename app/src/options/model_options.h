@@ -41,6 +41,14 @@ void ApplyModelOptions(const Cli& cli, const ModelOptions& options, sim::EvalJob
 // not --load inflate". Throws UsageError.
 void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& options, const sim::EvalJob& job, ModelUse use);
 
+// The options given written over a stored job's def (simulate and export --from: the design and
+// the model are the archive's), then RefuseOptionsWithoutEffect. Throws UsageError.
+void OverrideModelOptions(const Cli& cli, const ModelOptions& options, sim::EvalJob& job, ModelUse use);
+
+// Refuses every model option given, --model and --load included, with `why` (render --from draws
+// what was stored). Throws UsageError.
+void RefuseModelOptions(const Cli& cli, const ModelOptions& options, const std::string& why);
+
 // The load of a thesis or shell model by name; the message lists the model's choices.
 sim::Load ThesisLoad(const std::string& name, const std::string& what);
 sim::ShellLoad ShellLoadOf(const std::string& name, const std::string& what);

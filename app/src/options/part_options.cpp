@@ -34,22 +34,23 @@ std::vector<std::string> MoldOptionNames() {
     return names;
 }
 
-sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
-    if (cli.Given("--port-mm") && !o.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
-    sim::PartDef part = o.part;
-    if (job.model == sim::ModelKind::Thesis) {
-        part.radiusMm = o.unitMm;
-        part.lengthMm = o.unitMm * job.Thesis().mesh.turns;
-        part.thicknessMm = o.wallMm;
-        part.clampFraction = static_cast<double>(sim::kClampedTurns) / job.Thesis().mesh.turns;
-        part.angularSamples = 8 * ((job.Thesis().mesh.resolution * o.sampling + 7) / 8);
-        part.axialSamples = job.Thesis().mesh.turns * o.sampling + 1;
-        part.helixAngles = true;
-        return part;
-    }
+namespace {
+
+// [SECTION] Each model's part: its size from the def (a new def adds its overload). A thesis design
+// is in mesh units: --unit-mm is one of them, --wall-mm its wall.
+void SizePart(const Cli&, const PartOptions& o, const sim::ThesisDef& def, sim::PartDef& part) {
+    part.radiusMm = o.unitMm;
+    part.lengthMm = o.unitMm * def.mesh.turns;
+    part.thicknessMm = o.wallMm;
+    part.clampFraction = static_cast<double>(sim::kClampedTurns) / def.mesh.turns;
+    part.angularSamples = 8 * ((def.mesh.resolution * o.sampling + 7) / 8);
+    part.axialSamples = def.mesh.turns * o.sampling + 1;
+    part.helixAngles = true;
+}
+void SizePart(const Cli& cli, const PartOptions& o, const sim::ShellDef& def, sim::PartDef& part) {
     cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
     cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
-    const sim::GeometryDef& g = job.Shell().geometry;
+    const sim::GeometryDef& g = def.geometry;
     const int rings = sim::RingCount(g);
     part.radiusMm = g.radiusMm;
     part.lengthMm = g.lengthMm;
@@ -57,7 +58,23 @@ sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob&
     part.clampFraction = rings > 1 ? static_cast<double>(g.clampRings - 1) / (rings - 1) : 0;
     part.angularSamples = 8 * ((g.ringVertices * o.sampling + 7) / 8);
     part.axialSamples = (rings - 1) * o.sampling + 1;
+}
+
+// The silicone it is cast in: the thesis model has none of its own, so the default.
+sim::MaterialDef CastMaterial(const sim::ThesisDef&) { return sim::DefaultShellDef().material; }
+sim::MaterialDef CastMaterial(const sim::ShellDef& def) { return def.material; }
+
+}  // namespace
+
+sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
+    if (cli.Given("--port-mm") && !o.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
+    sim::PartDef part = o.part;
+    std::visit([&](const auto& def) { SizePart(cli, o, def, part); }, job.def);
     return part;
+}
+
+sim::MaterialDef CastMaterialOf(const sim::EvalJob& job) {
+    return std::visit([](const auto& def) { return CastMaterial(def); }, job.def);
 }
 
 sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold, const sim::FittingDef& fittings) {

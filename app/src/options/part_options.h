@@ -33,6 +33,10 @@ std::vector<std::string> MoldOptionNames();
 // model's mesh. Refuses the thesis-only options under the other models. Throws UsageError.
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& options, const sim::EvalJob& job);
 
+// The silicone the job's part is cast in (its mass in the manifest): the model's material, or the
+// default one for a model that has none (thesis).
+sim::MaterialDef CastMaterialOf(const sim::EvalJob& job);
+
 // The solids, or UsageError naming why the design cannot be made.
 sim::PartSolids BuildSolids(const sim::EvalJob& job, const sim::PartDef& part, const sim::MoldDef& mold, const sim::FittingDef& fittings = {});
 

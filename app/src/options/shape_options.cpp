@@ -183,20 +183,29 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o, const sim::Surface&
     return shape;
 }
 
+namespace {
+
+// [SECTION] Each model's mesh from the shape options (a new def adds its overload): the thesis
+// helix is --resolution x --turns; the shell models' ring mesh is their geometry's. Returns the
+// vertices a design sets (free-xy offsets and OBJ files count them; the caps' centres aside).
+int SetDesignMesh(const Cli&, const ShapeOptions& o, sim::ModelKind, sim::ThesisDef& def) {
+    def.mesh = o.mesh;
+    if (static_cast<long long>(def.mesh.resolution) * def.mesh.turns > sim::kMaxVertices)
+        throw UsageError("--resolution x --turns: more than " + std::to_string(sim::kMaxVertices) + " vertices");
+    return sim::VertexCount(def.mesh);
+}
+int SetDesignMesh(const Cli& cli, const ShapeOptions&, sim::ModelKind model, sim::ShellDef& def) {
+    for (const char* option : {"--resolution", "--turns"})
+        cli.RefuseIfGiven(option, std::string("is the thesis helix's; the ") + sim::Name(model) + " model's mesh is --ring-vertices and --rings");
+    return def.geometry.ringVertices * sim::RingCount(def.geometry);
+}
+
+}  // namespace
+
 sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shapeOptions, const ModelOptions& model, ModelUse use) {
     sim::EvalJob job;
     ApplyModelOptions(cli, model, job, use);
-    int vertices = 0;  // of the wall (the shell models' cap centres aside): free-xy offsets and OBJ files count them
-    if (job.model == sim::ModelKind::Thesis) {
-        job.Thesis().mesh = shapeOptions.mesh;
-        vertices = sim::VertexCount(job.Thesis().mesh);
-        if (static_cast<long long>(job.Thesis().mesh.resolution) * job.Thesis().mesh.turns > sim::kMaxVertices)
-            throw UsageError("--resolution x --turns: more than " + std::to_string(sim::kMaxVertices) + " vertices");
-    } else {
-        for (const char* option : {"--resolution", "--turns"})
-            cli.RefuseIfGiven(option, std::string("is the thesis helix's; the ") + sim::Name(job.model) + " model's mesh is --ring-vertices and --rings");
-        vertices = job.Shell().geometry.ringVertices * sim::RingCount(job.Shell().geometry);
-    }
+    const int vertices = std::visit([&](auto& def) { return SetDesignMesh(cli, shapeOptions, job.model, def); }, job.def);
     job.shape = BuildShape(cli, shapeOptions, sim::SurfaceOf(job), vertices);
     if (const std::string error = sim::JobError(job); !error.empty()) {
         const bool mesh = std::holds_alternative<sim::MeshShape>(job.shape);

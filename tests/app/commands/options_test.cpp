@@ -327,3 +327,25 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {
     };
     Check("export", exports, given, {}, true, {{"--port-mm", {"--fittings"}}});
 }
+
+// A stored membrane design re-simulated with a preset given: the preset replaces the stored
+// silicone (its fields given over it), never silently ignored; export takes the stored one.
+TEST_F(OptionsHaveAnEffectOrAreRefused, MaterialOverAStoredDesign) {
+    std::ofstream(dir_ / "m.json") << R"({"model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 12}, "load": {"steps": 2}}, "id": "m",
+        "render": {"figures": false, "thumbnails": false}, "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]}, "axes": [{"parameter": "amplitude", "values": [1.1]}]}})";
+    const std::string bin = "cd '" + dir_.string() + "' && " + std::string(ACTUATOR_BIN);
+    ASSERT_EQ(testing_support::RunShell(bin + " sweep m.json --out a", dir_).exitCode, 0);
+    const auto stored = testing_support::RunShell(bin + " simulate --from a/evaluations.capnp --index 0", dir_);
+    const auto given = testing_support::RunShell(bin + " simulate --from a/evaluations.capnp --index 0 --material dragon-skin-30", dir_);
+    ASSERT_EQ(stored.exitCode, 0);
+    ASSERT_EQ(given.exitCode, 0) << given.err;
+    const auto before = nlohmann::json::parse(stored.out), after = nlohmann::json::parse(given.out);
+    EXPECT_EQ(before["model"]["material"], "ecoflex-00-30");
+    EXPECT_EQ(after["model"]["material"], "dragon-skin-30");
+    EXPECT_GT(after["model"]["shear_modulus_kpa"].get<double>(), 5 * before["model"]["shear_modulus_kpa"].get<double>());
+    EXPECT_LT(std::abs(after["contraction_percent"].get<double>()), std::abs(before["contraction_percent"].get<double>()));  // stiffer: moves less
+    const auto exported = testing_support::RunShell(bin + " export --from a/evaluations.capnp --index 0 --material dragon-skin-30 --sampling 1 --out p", dir_);
+    EXPECT_EQ(exported.exitCode, 2);
+    EXPECT_NE(exported.err.find("--material does not go with --from"), std::string::npos) << exported.err;
+    EXPECT_FALSE(fs::exists(dir_ / "p"));
+}
