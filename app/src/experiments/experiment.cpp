@@ -20,6 +20,35 @@
 namespace app {
 namespace {
 
+// [SECTION] Each model's def in an experiment (a new def adds one overload of each): where the
+// experiment keeps it, the mesh a design is defined on, whether fibres are on the wall to be
+// searched, and how `--quick` shrinks it.
+
+void FillFromExperiment(const Experiment& e, sim::ThesisDef& def) { def = sim::ThesisDef{e.mesh, e.params}; }
+void FillFromExperiment(const Experiment& e, sim::ShellDef& def) { def = e.shell; }
+
+sim::MeshDef DesignMeshOf(const sim::ThesisDef& def) { return def.mesh; }
+sim::MeshDef DesignMeshOf(const sim::ShellDef& def) { return {def.geometry.ringVertices, sim::RingCount(def.geometry)}; }
+
+sim::FibreDef FibresOn(const sim::ThesisDef&) { return {}; }
+sim::FibreDef FibresOn(const sim::ShellDef& def) { return def.fibres; }
+
+void ShrinkForQuick(Json& document, const sim::ThesisDef& def) { document["sim"]["iterations"] = std::min(def.params.iterations, 2000); }
+void ShrinkForQuick(Json& document, const sim::ShellDef& def) {
+    // A coarse ring mesh and two load steps: the membrane and shell models' cost is in the mesh.
+    Json& model = document["model"];
+    model["load"]["steps"] = std::min(def.load.steps, 2);
+    model["geometry"]["ring_vertices"] = std::min(def.geometry.ringVertices, 12);
+    model["geometry"]["rings"] = std::min(sim::RingCount(def.geometry), 16);
+}
+
+// The experiment's def for its model.
+sim::ModelDef ModelDefOf(const Experiment& e) {
+    sim::ModelDef def = sim::ModelOf(e.model).defaultDef();
+    std::visit([&](auto& d) { FillFromExperiment(e, d); }, def);
+    return def;
+}
+
 using Json = nlohmann::ordered_json;
 
 // ---------------------------------------------------------------------------------------------
@@ -491,7 +520,8 @@ void ParseFibreGenes(ObjectReader& genome, const Experiment& e, sim::GenomeDef& 
     const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
     g.fibreAngleMin = fibreRange.first;
     g.fibreAngleMax = fibreRange.second;
-    if (g.HasFibreGenes() && (e.model == sim::ModelKind::Thesis || e.shell.fibres.layout == sim::FibreLayout::None))
+    const sim::FibreLayout fibres = std::visit([](const auto& def) { return FibresOn(def).layout; }, ModelDefOf(e));
+    if (g.HasFibreGenes() && fibres == sim::FibreLayout::None)
         genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
                     g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
 }
@@ -871,7 +901,7 @@ std::string ExperimentTitle(const Experiment& e) {
 PlotContext PlotContextOf(const Experiment& e) {
     PlotContext c;
     c.title = ExperimentTitle(e);
-    const bool thesis = e.model == sim::ModelKind::Thesis;
+    const bool thesis = !sim::ModelOf(e.model).physical;  // fitness in mesh units, after a count of iterations
     if (e.kind == ExperimentKind::Optimize) {
         const sim::Objective& o = e.optimizer.objectives[0];
         c.fitnessLabel = fmt::format("{} ({})", sim::ObjectiveUnit(o.kind), o.maximise ? "maximised" : "minimised");
@@ -891,8 +921,7 @@ sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {
     sim::EvalJob job;
     job.shape = shape;
     job.model = e.model;
-    if (e.model == sim::ModelKind::Thesis) job.def = sim::ThesisDef{e.mesh, e.params};
-    else job.def = e.shell;
+    job.def = ModelDefOf(e);
     return job;
 }
 
@@ -903,25 +932,17 @@ sim::EvalJob JobOfGenome(const Experiment& e, const sim::Genome& genome) {
 }
 
 sim::Genome GenomeOfJob(const Experiment& e, const sim::EvalJob& job) {
-    return sim::GenomeOfDesign(job.shape, ModelOf(job).physical ? job.Shell().fibres : sim::FibreDef{}, e.ga.genome);
+    return sim::GenomeOfDesign(job.shape, std::visit([](const auto& def) { return FibresOn(def); }, job.def), e.ga.genome);
 }
 
 sim::MeshDef DesignMesh(const Experiment& e) {
-    if (e.model == sim::ModelKind::Thesis) return e.mesh;
-    return {e.shell.geometry.ringVertices, sim::RingCount(e.shell.geometry)};
+    return std::visit([](const auto& def) { return DesignMeshOf(def); }, ModelDefOf(e));
 }
 
 Experiment QuickVersion(const Experiment& experiment) {
     // Shrunk through the document, so that the saved experiment re-reads as what ran (a resume).
     Json document = experiment.document;
-    if (experiment.model == sim::ModelKind::Thesis) document["sim"]["iterations"] = std::min(experiment.params.iterations, 2000);
-    else {
-        // A coarse ring mesh and two load steps: the membrane and shell models' cost is in the mesh.
-        Json& model = document["model"];
-        model["load"]["steps"] = std::min(experiment.shell.load.steps, 2);
-        model["geometry"]["ring_vertices"] = std::min(experiment.shell.geometry.ringVertices, 12);
-        model["geometry"]["rings"] = std::min(sim::RingCount(experiment.shell.geometry), 16);
-    }
+    std::visit([&](const auto& def) { ShrinkForQuick(document, def); }, ModelDefOf(experiment));
     for (size_t k = 0; k < experiment.sweep.axes.size(); ++k) {
         const auto& values = experiment.sweep.axes[k].values;
         if (values.size() <= 3) continue;
