@@ -926,7 +926,8 @@ sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {
 }
 
 sim::EvalJob JobOfGenome(const Experiment& e, const sim::Genome& genome) {
-    sim::EvalJob job = JobOf(e, sim::ShapeOfGenome(genome, e.ga.genome, DesignMesh(e)));
+    sim::EvalJob job = JobOf(e, sim::Shape{});  // its def once: the design mesh is read from it
+    job.shape = sim::ShapeOfGenome(genome, e.ga.genome, std::visit([](const auto& def) { return DesignMeshOf(def); }, job.def));
     if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(genome, e.ga.genome, e.shell.fibres);
     return job;
 }

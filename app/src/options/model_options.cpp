@@ -100,6 +100,11 @@ std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ShellD
     return names;
 }
 
+// The options' material: the preset with the material fields given over it.
+sim::MaterialDef MaterialOfOptions(const Cli& cli, const ModelOptions& o) {
+    return MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+}
+
 // A new job's def from the options.
 void FillDef(const Cli& cli, const ModelOptions& o, sim::ThesisDef& def) {
     def.params = o.thesis;
@@ -107,7 +112,7 @@ void FillDef(const Cli& cli, const ModelOptions& o, sim::ThesisDef& def) {
 }
 void FillDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def) {
     def = o.shell;
-    def.material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+    def.material = MaterialOfOptions(cli, o);
     if (cli.Given("--load")) def.load.kind = ShellLoadOf(o.load, "--load");
     if (cli.Given("--law") && !(sim::ShearModulusKpa(def.material) > 0)) {
         const sim::MaterialLaw law = def.material.law;
@@ -138,7 +143,7 @@ void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, Mode
     // A preset given replaces the stored material (with the fields given over it); fields alone
     // change the stored one.
     if (cli.Given("--material"))
-        def.material = MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+        def.material = MaterialOfOptions(cli, o);
     else
         cli.CopyGivenFields(o.materialFields, def.material);
     cli.CopyGivenFields(o.shell.fibres, def.fibres);
@@ -179,25 +184,45 @@ std::string DefError(const sim::ShellDef& def) { return sim::ShellDefError(def);
 
 // [SECTION] The job's def, whichever it is.
 
-// The models whose def is `def`'s kind, for messages: "the thesis model", "the membrane and shell models".
-std::string ModelsWithDefOf(const sim::ModelDef& def) {
-    std::vector<std::string> names;
-    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table)
-        if (sim::ModelOf(kind).defaultDef().index() == def.index()) names.emplace_back(name);
-    std::string text = "the ";
-    for (size_t i = 0; i < names.size(); ++i) text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
-    return text + (names.size() == 1 ? " model" : " models");
+// Each kind of def once (membrane and shell share one), with the models that use it, for
+// messages: "the thesis model", "the membrane and shell models".
+struct DefOfModels {
+    sim::ModelDef def;
+    std::string models;
+};
+std::vector<DefOfModels> DefsOfModels() {
+    std::vector<DefOfModels> defs;
+    std::vector<std::vector<std::string>> names;
+    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table) {
+        sim::ModelDef def = sim::ModelOf(kind).defaultDef();
+        auto same = std::find_if(defs.begin(), defs.end(), [&](const DefOfModels& d) { return d.def.index() == def.index(); });
+        if (same == defs.end()) {
+            defs.push_back({std::move(def), ""});
+            names.emplace_back();
+            same = defs.end() - 1;
+        }
+        names[same - defs.begin()].emplace_back(name);
+    }
+    for (size_t k = 0; k < defs.size(); ++k) {
+        std::string text = "the ";
+        for (size_t i = 0; i < names[k].size(); ++i) text += (i == 0 ? "" : i + 1 == names[k].size() ? " and " : ", ") + names[k][i];
+        defs[k].models = text + (names[k].size() == 1 ? " model" : " models");
+    }
+    return defs;
+}
+
+std::vector<std::string> DefOptionNamesOf(const ModelOptions& o, const sim::ModelDef& def) {
+    return std::visit([&](const auto& d) { return DefOptionNames(o, d); }, def);
 }
 
 // The options of every other def than the job's, each with the models it belongs to.
 void RefuseOtherModelsOptions(const Cli& cli, const ModelOptions& o, const sim::EvalJob& job) {
-    const std::vector<std::string> own = std::visit([&](const auto& def) { return DefOptionNames(o, def); }, job.def);
-    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table) {
-        const sim::ModelDef other = sim::ModelOf(kind).defaultDef();
-        if (other.index() == job.def.index()) continue;
-        for (const auto& option : std::visit([&](const auto& def) { return DefOptionNames(o, def); }, other))
+    const std::vector<std::string> own = DefOptionNamesOf(o, job.def);
+    for (const DefOfModels& other : DefsOfModels()) {
+        if (other.def.index() == job.def.index()) continue;
+        for (const auto& option : DefOptionNamesOf(o, other.def))
             if (std::find(own.begin(), own.end(), option) == own.end())
-                cli.RefuseIfGiven(option, "does not apply to --model " + std::string(sim::Name(job.model)) + " (it is an option of " + ModelsWithDefOf(other) + ")");
+                cli.RefuseIfGiven(option, "does not apply to --model " + std::string(sim::Name(job.model)) + " (it is an option of " + other.models + ")");
     }
 }
 
@@ -224,9 +249,8 @@ void OverrideModelOptions(const Cli& cli, const ModelOptions& o, sim::EvalJob& j
 void RefuseModelOptions(const Cli& cli, const ModelOptions& o, const std::string& why) {
     cli.RefuseIfGiven("--model", why);
     cli.RefuseIfGiven("--load", why);
-    for (const auto& [kind, name] : sim::EnumNames<sim::ModelKind>::table)
-        for (const auto& option : std::visit([&](const auto& def) { return DefOptionNames(o, def); }, sim::ModelOf(kind).defaultDef()))
-            cli.RefuseIfGiven(option, why);
+    for (const DefOfModels& each : DefsOfModels())
+        for (const auto& option : DefOptionNamesOf(o, each.def)) cli.RefuseIfGiven(option, why);
 }
 
 }  // namespace app
