@@ -56,7 +56,36 @@ py::array_t<double> Rows(const sim::Positions& p) {
     return out;
 }
 
-// The job for a shape under a model: thesis (params, mesh) or membrane/shell (the shell def's parts).
+// The keyword arguments that set a model's def; each def takes its own and refuses the others'.
+struct DefArguments {
+    std::optional<sim::SimParams> params;
+    std::optional<sim::MeshDef> mesh;
+    std::optional<sim::GeometryDef> geometry;
+    std::optional<sim::MaterialDef> material;
+    std::optional<sim::LoadDef> load;
+    std::optional<sim::SolverDef> solver;
+    std::optional<sim::FibreDef> fibres;
+};
+
+// [SECTION] Each def from the keyword arguments (a new def adds its overload).
+void FillDef(const DefArguments& a, sim::ModelKind, sim::ThesisDef& def) {
+    if (a.geometry || a.material || a.load || a.solver || a.fibres)
+        throw py::value_error("geometry, material, load, solver and fibres are the membrane and shell models'; the thesis model takes params and mesh");
+    def.params = a.params.value_or(sim::DefaultSimParams());
+    def.mesh = a.mesh.value_or(sim::DefaultMeshDef());
+}
+void FillDef(const DefArguments& a, sim::ModelKind model, sim::ShellDef& def) {
+    if (a.params || a.mesh)
+        throw py::value_error(std::string("params and mesh are the thesis model's; the ") + sim::Name(model) + " model takes geometry, material, load, solver and fibres");
+    if (a.geometry) def.geometry = *a.geometry;
+    if (a.material) def.material = *a.material;
+    if (a.load) def.load = *a.load;
+    if (a.solver) def.solver = *a.solver;
+    if (a.fibres) def.fibres = *a.fibres;
+    if (const std::string error = sim::ShellFieldsWithoutEffect(def); !error.empty()) throw py::value_error(error);
+}
+
+// The job for a shape under a model, its def from the model's default and the arguments given.
 sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std::optional<sim::SimParams>& params, const std::optional<sim::MeshDef>& mesh,
                    const std::optional<sim::GeometryDef>& geometry, const std::optional<sim::MaterialDef>& material,
                    const std::optional<sim::LoadDef>& load, const std::optional<sim::SolverDef>& solver = std::nullopt,
@@ -64,23 +93,10 @@ sim::EvalJob JobOf(const sim::Shape& shape, const std::string& model, const std:
     sim::EvalJob job;
     const auto kind = sim::FromName<sim::ModelKind>(model);
     if (!kind) throw py::value_error("model: unknown value '" + model + "' (choose " + sim::Choices<sim::ModelKind>() + ")");
-    job.model = *kind;
+    job.SetModel(*kind);
     job.shape = shape;
-    if (job.model == sim::ModelKind::Thesis) {
-        if (geometry || material || load || solver || fibres)
-            throw py::value_error("geometry, material, load, solver and fibres are the membrane and shell models'; the thesis model takes params and mesh");
-        job.Thesis().params = params.value_or(sim::DefaultSimParams());
-        job.Thesis().mesh = mesh.value_or(sim::DefaultMeshDef());
-    } else {
-        if (params || mesh) throw py::value_error(std::string("params and mesh are the thesis model's; the ") + model + " model takes geometry, material, load, solver and fibres");
-        job.Shell() = sim::DefaultShellDef();
-        if (geometry) job.Shell().geometry = *geometry;
-        if (material) job.Shell().material = *material;
-        if (load) job.Shell().load = *load;
-        if (solver) job.Shell().solver = *solver;
-        if (fibres) job.Shell().fibres = *fibres;
-        if (const std::string error = sim::ShellFieldsWithoutEffect(job.Shell()); !error.empty()) throw py::value_error(error);
-    }
+    const DefArguments arguments{params, mesh, geometry, material, load, solver, fibres};
+    std::visit([&](auto& def) { FillDef(arguments, job.model, def); }, job.def);
     if (const std::string error = sim::JobError(job); !error.empty()) throw py::value_error(error);
     return job;
 }

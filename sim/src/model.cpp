@@ -19,6 +19,7 @@ std::string ThesisError(const EvalJob& job) {
 }
 
 Surface ThesisSurface(const EvalJob& job) { return HelixSurface(job.Thesis().mesh); }
+MeshDef ThesisDesignMesh(const EvalJob& job) { return job.Thesis().mesh; }
 int ThesisVertices(const EvalJob& job) { return std::max(0, VertexCount(job.Thesis().mesh)); }
 
 // A relaxation step per vertex.
@@ -36,19 +37,20 @@ void ThesisOutputs(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
 SimResult MembraneEvaluate(const EvalJob& job) { return EvaluateShell(job.shape, job.Shell(), false); }
 SimResult ShellEvaluate(const EvalJob& job) { return EvaluateShell(job.shape, job.Shell(), true); }
 
+MeshDef ShellDesignMesh(const EvalJob& job) { return {job.Shell().geometry.ringVertices, RingCount(job.Shell().geometry)}; }
+
 std::string ShellError(const EvalJob& job) {
     if (std::string error = ShellDefError(job.Shell()); !error.empty()) return error;
     // Shapes are checked as the thesis defines them; sizes that depend on the ring mesh (free-xy,
     // mesh) are checked when the tube is built, and a design that cannot be built is the status
     // invalid-geometry, not an input error.
-    const GeometryDef& g = job.Shell().geometry;
-    const MeshDef ringMesh{g.ringVertices, RingCount(g)};
+    const MeshDef ringMesh = ShellDesignMesh(job);
     if (std::holds_alternative<FreeXYShape>(job.shape) || std::holds_alternative<MeshShape>(job.shape)) {
         const size_t n = static_cast<size_t>(ringMesh.resolution) * ringMesh.turns;
         const size_t got = std::holds_alternative<FreeXYShape>(job.shape) ? std::get<FreeXYShape>(job.shape).dx.size()
                                                                          : static_cast<size_t>(std::get<MeshShape>(job.shape).positions.Size());
         if (got != n)
-            return std::string(ShapeName(job.shape)) + " needs one entry per vertex of the " + std::to_string(g.ringVertices) + " x " +
+            return std::string(ShapeName(job.shape)) + " needs one entry per vertex of the " + std::to_string(ringMesh.resolution) + " x " +
                    std::to_string(ringMesh.turns) + " ring mesh: " + std::to_string(n) + ", got " + std::to_string(got);
         return "";
     }
@@ -83,8 +85,8 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
 Surface ShellModelSurface(const EvalJob& job) { return ShellSurface(job.Shell().geometry); }
 
 int ShellVertices(const EvalJob& job) {
-    const GeometryDef& g = job.Shell().geometry;
-    return std::max(0, g.ringVertices) * std::max(0, RingCount(g)) + 2;
+    const MeshDef rings = ShellDesignMesh(job);
+    return std::max(0, rings.resolution) * std::max(0, rings.turns) + 2;
 }
 
 // A Newton iteration (assembly and a sparse factorisation) costs about as much per vertex as ten
@@ -107,7 +109,8 @@ std::string ThesisMeshText(const EvalJob& job) {
     return std::to_string(job.Thesis().mesh.resolution) + " vertices per turn x " + std::to_string(job.Thesis().mesh.turns) + " turns, vertices in helix order";
 }
 std::string ShellMeshText(const EvalJob& job) {
-    return std::to_string(job.Shell().geometry.ringVertices) + " vertices per ring x " + std::to_string(RingCount(job.Shell().geometry)) +
+    const MeshDef rings = ShellDesignMesh(job);
+    return std::to_string(rings.resolution) + " vertices per ring x " + std::to_string(rings.turns) +
            " rings and two cap centres, millimetres";
 }
 const char* ThesisLoadName(const EvalJob& job) { return Name(job.Thesis().params.load); }
@@ -116,11 +119,11 @@ int NoCurve(const EvalJob&) { return 0; }
 int ShellCurvePoints(const EvalJob& job) { return std::max(0, job.Shell().load.steps); }
 
 const Model kModels[] = {
-    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisWork, ThesisDefault, ThesisMeshText, ThesisLoadName, NoCurve, ThesisOutputs, kThesisFitness,
+    {ModelKind::Thesis, "thesis", ThesisEvaluate, ThesisError, ThesisSurface, ThesisVertices, ThesisDesignMesh, ThesisWork, ThesisDefault, ThesisMeshText, ThesisLoadName, NoCurve, ThesisOutputs, kThesisFitness,
      "mesh units", false},
-    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellMeshText, ShellLoadName, ShellCurvePoints, ShellOutputList,
+    {ModelKind::Membrane, "membrane", MembraneEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellDesignMesh, ShellWork, ShellDefault, ShellMeshText, ShellLoadName, ShellCurvePoints, ShellOutputList,
      kContraction, "mm", true},
-    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellWork, ShellDefault, ShellMeshText, ShellLoadName, ShellCurvePoints, ShellOutputList, kContraction, "mm",
+    {ModelKind::Shell, "shell", ShellEvaluate, ShellError, ShellModelSurface, ShellVertices, ShellDesignMesh, ShellWork, ShellDefault, ShellMeshText, ShellLoadName, ShellCurvePoints, ShellOutputList, kContraction, "mm",
      true},
 };
 

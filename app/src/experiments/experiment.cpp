@@ -20,15 +20,8 @@
 namespace app {
 namespace {
 
-// [SECTION] Each model's def in an experiment (a new def adds one overload of each): where the
-// experiment keeps it, the mesh a design is defined on, whether fibres are on the wall to be
+// [SECTION] Each model's def in an experiment (a new def adds one overload of each): whether fibres are on the wall to be
 // searched, and how `--quick` shrinks it.
-
-void FillFromExperiment(const Experiment& e, sim::ThesisDef& def) { def = sim::ThesisDef{e.mesh, e.params}; }
-void FillFromExperiment(const Experiment& e, sim::ShellDef& def) { def = e.shell; }
-
-sim::MeshDef DesignMeshOf(const sim::ThesisDef& def) { return def.mesh; }
-sim::MeshDef DesignMeshOf(const sim::ShellDef& def) { return {def.geometry.ringVertices, sim::RingCount(def.geometry)}; }
 
 sim::FibreDef FibresOn(const sim::ThesisDef&) { return {}; }
 sim::FibreDef FibresOn(const sim::ShellDef& def) { return def.fibres; }
@@ -42,12 +35,6 @@ void ShrinkForQuick(Json& document, const sim::ShellDef& def) {
     model["geometry"]["rings"] = std::min(sim::RingCount(def.geometry), 16);
 }
 
-// The experiment's def for its model.
-sim::ModelDef ModelDefOf(const Experiment& e) {
-    sim::ModelDef def = sim::ModelOf(e.model).defaultDef();
-    std::visit([&](auto& d) { FillFromExperiment(e, d); }, def);
-    return def;
-}
 
 using Json = nlohmann::ordered_json;
 
@@ -398,17 +385,14 @@ void RefuseKeysWithoutEffect(ObjectReader& block, const sim::ShellDef& shell, st
 // "model": {"name": "shell", "geometry": {...}, "material": {"preset": ..., "mu_kpa": ...},
 // "load": {"kind": ..., "pressure_kpa": ...}, "solver": {...}}. The thesis model takes only its name
 // (its settings are the "sim" and "mesh" blocks).
-void ParseModel(ObjectReader model, Experiment& e) {
-    if (!model.Has("name")) model.Fail("missing (required): " + sim::Choices<sim::ModelKind>(), "name");
-    model.Enum("name", e.model);
-    if (e.model == sim::ModelKind::Thesis) {
-        for (const char* key : {"geometry", "material", "load", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
-                                "fibre_sectors_deg"})
-            if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
-        model.Finish();
-        return;
-    }
-    sim::ShellDef& shell = e.shell;
+// Each def reads the rest of the block (a new def adds its overload).
+void ParseModelBlock(ObjectReader& model, sim::ThesisDef&) {
+    for (const char* key : {"geometry", "material", "load", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
+                            "fibre_sectors_deg"})
+        if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
+    model.Finish();
+}
+void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
     if (model.Has("geometry")) {
         ObjectReader geometry = model.Object("geometry");
         geometry.Fields(shell.geometry);
@@ -466,6 +450,13 @@ void ParseModel(ObjectReader model, Experiment& e) {
     if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
 }
 
+void ParseModel(ObjectReader model, Experiment& e) {
+    if (!model.Has("name")) model.Fail("missing (required): " + sim::Choices<sim::ModelKind>(), "name");
+    model.Enum("name", e.model);
+    e.def = sim::ModelOf(e.model).defaultDef();
+    std::visit([&](auto& def) { ParseModelBlock(model, def); }, e.def);
+}
+
 // Keys whose value the experiment itself replaces have no effect, and are refused as the command
 // line refuses an option that does not apply: a model setting a sweep axis varies, the shape's
 // amplitude under an amplitude axis, fibre angles under the genome's fibre angle genes.
@@ -520,7 +511,7 @@ void ParseFibreGenes(ObjectReader& genome, const Experiment& e, sim::GenomeDef& 
     const auto fibreRange = genome.Range("fibre_angle_range", {g.fibreAngleMin, g.fibreAngleMax}, -90, 90);
     g.fibreAngleMin = fibreRange.first;
     g.fibreAngleMax = fibreRange.second;
-    const sim::FibreLayout fibres = std::visit([](const auto& def) { return FibresOn(def).layout; }, ModelDefOf(e));
+    const sim::FibreLayout fibres = std::visit([](const auto& def) { return FibresOn(def).layout; }, e.def);
     if (g.HasFibreGenes() && fibres == sim::FibreLayout::None)
         genome.Fail("fibre genes need fibres on the wall: a membrane or shell model with \"fibres\": \"braid\" (or single) in the model block",
                     g.fibreAngles > 0 ? "fibre_angles" : "fibre_switches");
@@ -777,20 +768,24 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
                                       : std::string("applies to the thesis model only: name it with \"model\": {\"name\": \"thesis\"} (without a 'model' block "
                                                     "an experiment is under the ") + sim::Name(e.model) + " model)",
                      thesisOnly);
-    if (top.Has("sim")) {
+    if (top.Has("sim")) {  // the thesis model's (refused above for the others)
+        sim::SimParams& params = std::get<sim::ThesisDef>(e.def).params;
         ObjectReader sim = top.Object("sim");
-        sim.Fields(e.params);
+        sim.Fields(params);
         sim.Finish();
-        if (const std::string error = sim::SimParamsError(e.params); !error.empty()) sim.Fail(error);
+        if (const std::string error = sim::SimParamsError(params); !error.empty()) sim.Fail(error);
     }
     if (top.Has("mesh")) {
+        sim::MeshDef& helix = std::get<sim::ThesisDef>(e.def).mesh;
         ObjectReader mesh = top.Object("mesh");
-        mesh.Fields(e.mesh);
+        mesh.Fields(helix);
         mesh.Finish();
-        if (static_cast<long long>(e.mesh.resolution) * e.mesh.turns > sim::kMaxVertices)
+        if (static_cast<long long>(helix.resolution) * helix.turns > sim::kMaxVertices)
             mesh.Fail("more than " + std::to_string(sim::kMaxVertices) + " vertices");
     }
-    if (top.Has("thesis_result")) ParseThesisResult(top.Object("thesis_result"), e.thesisResult, e.mesh);
+    // Listed shapes are checked on the thesis helix (the shell models check theirs on their rings).
+    const sim::MeshDef shapeMesh = thesisModel ? std::get<sim::ThesisDef>(e.def).mesh : sim::DefaultMeshDef();
+    if (top.Has("thesis_result")) ParseThesisResult(top.Object("thesis_result"), e.thesisResult, shapeMesh);
     if (top.Has("thesis_items")) e.thesisItems = ParseThesisItems(top);
 
     const int kinds = top.Has("sweep") + top.Has("evolve") + top.Has("evaluate") + top.Has("optimizer");
@@ -805,7 +800,7 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             ObjectReader evaluate = top.Object("evaluate");
             const Json& shapes = evaluate.Array("shapes", 1, 1000, "a list of 1 to 1000 shapes");
             for (size_t k = 0; k < shapes.size(); ++k)
-                e.shapes.push_back(ParseListedShape(ObjectReader(shapes[k], evaluate.Child("shapes") + "[" + std::to_string(k) + "]", source), k, e.mesh));
+                e.shapes.push_back(ParseListedShape(ObjectReader(shapes[k], evaluate.Child("shapes") + "[" + std::to_string(k) + "]", source), k, shapeMesh));
             if (!thesisModel)
                 for (const auto& shape : e.shapes)
                     if (const std::string error = sim::JobError(JobOf(e, shape.shape)); !error.empty()) evaluate.Fail(error);
@@ -816,14 +811,15 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
             ObjectReader sweep = top.Object("sweep");
             e.sweep.base = ParseSineBase(sweep.Object("shape"));
             const Json& axes = sweep.Array("axes", 1, 2, "a list of one or two axes");
+            const sim::FibreLayout fibreLayout = std::visit([](const auto& def) { return FibresOn(def).layout; }, e.def);
             for (size_t k = 0; k < axes.size(); ++k) {
                 e.sweep.axes.push_back(ParseAxis(ObjectReader(axes[k], sweep.Child("axes") + "[" + std::to_string(k) + "]", source)));
                 const sim::SweepParameter parameter = e.sweep.axes.back().parameter;
                 if (thesisModel && parameter == sim::SweepParameter::PressureKpa)
                     sweep.Fail("a pressure_kpa axis needs a membrane or shell model (\"model\": {\"name\": \"shell\"}); the thesis model has no pressure in kPa", "axes");
-                if (parameter == sim::SweepParameter::FibreAngleDeg && (thesisModel || e.shell.fibres.layout == sim::FibreLayout::None ||
-                                                                         e.shell.fibres.layout == sim::FibreLayout::Meridian ||
-                                                                         e.shell.fibres.layout == sim::FibreLayout::Hoop))
+                if (parameter == sim::SweepParameter::FibreAngleDeg && (fibreLayout == sim::FibreLayout::None ||
+                                                                         fibreLayout == sim::FibreLayout::Meridian ||
+                                                                         fibreLayout == sim::FibreLayout::Hoop))
                     sweep.Fail("a fibre_angle_deg axis needs fibres at an angle: a membrane or shell model with \"fibres\": \"braid\" or \"single\"", "axes");
                 for (double v : e.sweep.axes.back().values)
                     if (parameter == sim::SweepParameter::FibreAngleDeg && !(v >= -90 && v <= 90)) sweep.Fail("fibre angles lie from -90 to 90 degrees", "axes");
@@ -909,7 +905,7 @@ PlotContext PlotContextOf(const Experiment& e) {
         c.fitnessLabel = thesis ? "fitness (contraction, mesh units)" : "fitness: contraction (percent, positive = shorter)";
     }
     c.valueLabel = thesis ? "fitness" : "contraction (%)";
-    c.seriesLabel = thesis ? "fitness after " + std::to_string(e.params.iterations) + " iterations"
+    c.seriesLabel = thesis ? "fitness after " + std::to_string(std::get<sim::ThesisDef>(e.def).params.iterations) + " iterations"
                            : std::string("contraction at equilibrium, ") + sim::Name(e.model) + " model";
     c.axes = e.sweep.axes;
     for (const auto& point : e.thesisResult.points) c.thesisPoints.push_back({point.at, point.fitness});
@@ -921,14 +917,14 @@ sim::EvalJob JobOf(const Experiment& e, const sim::Shape& shape) {
     sim::EvalJob job;
     job.shape = shape;
     job.model = e.model;
-    job.def = ModelDefOf(e);
+    job.def = e.def;
     return job;
 }
 
 sim::EvalJob JobOfGenome(const Experiment& e, const sim::Genome& genome) {
     sim::EvalJob job = JobOf(e, sim::Shape{});  // its def once: the design mesh is read from it
-    job.shape = sim::ShapeOfGenome(genome, e.ga.genome, std::visit([](const auto& def) { return DesignMeshOf(def); }, job.def));
-    if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(genome, e.ga.genome, e.shell.fibres);
+    job.shape = sim::ShapeOfGenome(genome, e.ga.genome, sim::DesignMeshOf(job));
+    if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(genome, e.ga.genome, job.Shell().fibres);
     return job;
 }
 
@@ -936,14 +932,12 @@ sim::Genome GenomeOfJob(const Experiment& e, const sim::EvalJob& job) {
     return sim::GenomeOfDesign(job.shape, std::visit([](const auto& def) { return FibresOn(def); }, job.def), e.ga.genome);
 }
 
-sim::MeshDef DesignMesh(const Experiment& e) {
-    return std::visit([](const auto& def) { return DesignMeshOf(def); }, ModelDefOf(e));
-}
+sim::MeshDef DesignMesh(const Experiment& e) { return sim::DesignMeshOf(JobOf(e, sim::Shape{})); }
 
 Experiment QuickVersion(const Experiment& experiment) {
     // Shrunk through the document, so that the saved experiment re-reads as what ran (a resume).
     Json document = experiment.document;
-    std::visit([&](const auto& def) { ShrinkForQuick(document, def); }, ModelDefOf(experiment));
+    std::visit([&](const auto& def) { ShrinkForQuick(document, def); }, experiment.def);
     for (size_t k = 0; k < experiment.sweep.axes.size(); ++k) {
         const auto& values = experiment.sweep.axes[k].values;
         if (values.size() <= 3) continue;

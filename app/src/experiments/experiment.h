@@ -95,9 +95,8 @@ struct Experiment {
     ThesisResult thesisResult;
     std::vector<ThesisItem> thesisItems;  // the thesis tables and figures this experiment reproduces
     sim::ModelKind model = sim::kDefaultModel;  // the "model" block's name
-    sim::MeshDef mesh;                              // thesis model: the "mesh" block
-    sim::SimParams params;                          // thesis model: the "sim" block
-    sim::ShellDef shell = sim::DefaultShellDef();   // membrane and shell models: the "model" block
+    // The model's def: the "model" block (membrane and shell), or the thesis's "sim" and "mesh" blocks.
+    sim::ModelDef def = sim::ModelOf(sim::kDefaultModel).defaultDef();
     std::uint64_t seed = 1;
     ExperimentKind kind = ExperimentKind::Sweep;
     sim::SweepDef sweep;

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 sim::EvalJob JobOfVector(const Experiment& e, const std::vector<double>& x) {
     const sim::VectorDesign d = sim::DesignOfVector(e.optimizer.genome, x, DesignMesh(e));
     sim::EvalJob job = JobOf(e, d.shape);
-    if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(d.genome, e.ga.genome, e.shell.fibres);
+    if (e.ga.genome.HasFibreGenes()) job.Shell().fibres = sim::FibresOfGenome(d.genome, e.ga.genome, job.Shell().fibres);
     return job;
 }
 
@@ -34,19 +34,26 @@ std::string DesignKey(const Experiment& e, const sim::EvalJob& job) {
     return key;
 }
 
-// The second evaluation an objective asks for: the stretch test (thesis model), or the inflation to
-// twice the target in as many steps again.
-sim::EvalJob SecondJob(sim::SecondEvaluation second, sim::EvalJob job) {
-    if (second == sim::SecondEvaluation::StretchTest) job.Thesis().params.load = sim::Load::Stretch;
-    else {
-        job.Shell().load.pressureKpa *= 2;
-        job.Shell().load.steps *= 2;
-    }
+// [SECTION] Each def's second evaluation, the one its objectives may ask for (a new def adds its
+// overloads; ObjectiveError keeps each objective to the model that has its evaluation): the
+// thesis's stretch test; the membrane and shell models' inflation to twice the target in as many
+// steps again.
+void MakeSecond(sim::ThesisDef& def) { def.params.load = sim::Load::Stretch; }
+void MakeSecond(sim::ShellDef& def) {
+    def.load.pressureKpa *= 2;
+    def.load.steps *= 2;
+}
+bool IsSecondOf(const sim::ThesisDef& job, const sim::ThesisDef&) { return job.params.load == sim::Load::Stretch; }
+bool IsSecondOf(const sim::ShellDef& job, const sim::ShellDef& first) { return job.load.pressureKpa != first.load.pressureKpa; }
+bool IsSecondOf(const sim::ThesisDef&, const sim::ShellDef&) { return false; }
+bool IsSecondOf(const sim::ShellDef&, const sim::ThesisDef&) { return false; }
+
+sim::EvalJob SecondJob(sim::EvalJob job) {
+    std::visit([](auto& def) { MakeSecond(def); }, job.def);
     return job;
 }
 bool IsSecond(const Experiment& e, sim::SecondEvaluation second, const sim::EvalJob& job) {
-    if (second == sim::SecondEvaluation::StretchTest) return job.model == sim::ModelKind::Thesis && job.Thesis().params.load == sim::Load::Stretch;
-    return second == sim::SecondEvaluation::TwiceThePressure && job.Shell().load.pressureKpa != e.shell.load.pressureKpa;
+    return second != sim::SecondEvaluation::None && std::visit([](const auto& def, const auto& first) { return IsSecondOf(def, first); }, job.def, e.def);
 }
 
 // The objectives of a design from its inflation and, when an objective asks for one, its second
@@ -128,7 +135,7 @@ public:
                 sim::EvalJob job = JobOfVector(e, x);
                 std::string key = DesignKey(e, job);
                 std::optional<sim::EvalJob> second;
-                if (second_ != sim::SecondEvaluation::None) second = SecondJob(second_, job);
+                if (second_ != sim::SecondEvaluation::None) second = SecondJob(job);
                 requests.push_back({std::move(key), std::move(job), std::move(second), secondLabel});
             }
             std::vector<sim::DesignScore> out;

@@ -50,39 +50,41 @@ sim::SimResult ResultFromBytes(const std::string& bytes);  // throws std::runtim
 // A job into any struct that has its fields (EvalRequest on the wire, Evaluation in archives): the
 // shape, the model, and the model's settings (the thesis model's parameters and mesh size, or the
 // shell def). Records from before the shell models read as thesis jobs.
+// Each def into and out of its own struct (a new def adds its pair of overloads; without them the
+// visits below do not compile).
+template <class Builder>
+void SetDef(Builder& out, const sim::ThesisDef& def) {
+    SetParams(out.initParams(), def.params);
+    auto size = out.initMeshSize();
+    size.setResolution(static_cast<std::uint32_t>(def.mesh.resolution));
+    size.setTurns(static_cast<std::uint32_t>(def.mesh.turns));
+}
+template <class Builder>
+void SetDef(Builder& out, const sim::ShellDef& def) { SetShellDef(out.initShell(), def); }
+template <class Reader>
+void GetDef(Reader& in, sim::ThesisDef& def) {
+    def.params = GetParams(in.getParams());
+    def.mesh = sim::MeshDef{static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getResolution(), 1u << 30)),
+                            static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getTurns(), 1u << 30))};
+}
+template <class Reader>
+void GetDef(Reader& in, sim::ShellDef& def) { def = GetShellDef(in.getShell()); }
+
 template <class Builder>
 void SetJob(Builder out, const sim::EvalJob& job) {
     SetShape(out.initShape(), job.shape);
     out.setModel(static_cast<schema::ModelKind>(static_cast<int>(job.model)));
-    // Each def its own struct; a def added to sim::ModelDef without one here does not compile.
-    std::visit(
-        [&](const auto& def) {
-            using Def = std::decay_t<decltype(def)>;
-            if constexpr (std::is_same_v<Def, sim::ShellDef>) SetShellDef(out.initShell(), def);
-            else {
-                static_assert(std::is_same_v<Def, sim::ThesisDef>, "a model def without its archive struct");
-                SetParams(out.initParams(), def.params);
-                auto size = out.initMeshSize();
-                size.setResolution(static_cast<std::uint32_t>(def.mesh.resolution));
-                size.setTurns(static_cast<std::uint32_t>(def.mesh.turns));
-            }
-        },
-        job.def);
+    std::visit([&](const auto& def) { SetDef(out, def); }, job.def);
 }
 template <class Reader>
 sim::EvalJob GetJob(Reader in) {
     sim::EvalJob job;
     job.shape = GetShape(in.getShape());
     const int model = static_cast<int>(in.getModel());
-    if (model > static_cast<int>(sim::ModelKind::Shell)) throw std::runtime_error("unknown model " + std::to_string(model) + " (written by a newer version?)");
-    job.model = static_cast<sim::ModelKind>(model);
-    if (job.model != sim::ModelKind::Thesis) {
-        job.Shell() = GetShellDef(in.getShell());
-        return job;
-    }
-    job.Thesis().params = GetParams(in.getParams());
-    job.Thesis().mesh = sim::MeshDef{static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getResolution(), 1u << 30)),
-                            static_cast<int>(std::min<std::uint32_t>(in.getMeshSize().getTurns(), 1u << 30))};
+    if (model >= static_cast<int>(sim::EnumNames<sim::ModelKind>::table.size()))
+        throw std::runtime_error("unknown model " + std::to_string(model) + " (written by a newer version?)");
+    job.SetModel(static_cast<sim::ModelKind>(model));
+    std::visit([&](auto& def) { GetDef(in, def); }, job.def);
     return job;
 }
 

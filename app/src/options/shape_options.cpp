@@ -186,18 +186,15 @@ sim::Shape BuildShape(const Cli& cli, const ShapeOptions& o, const sim::Surface&
 namespace {
 
 // [SECTION] Each model's mesh from the shape options (a new def adds its overload): the thesis
-// helix is --resolution x --turns; the shell models' ring mesh is their geometry's. Returns the
-// vertices a design sets (free-xy offsets and OBJ files count them; the caps' centres aside).
-int SetDesignMesh(const Cli&, const ShapeOptions& o, sim::ModelKind, sim::ThesisDef& def) {
+// helix is --resolution x --turns; the shell models' ring mesh is their geometry's.
+void SetDesignMesh(const Cli&, const ShapeOptions& o, sim::ModelKind, sim::ThesisDef& def) {
     def.mesh = o.mesh;
     if (static_cast<long long>(def.mesh.resolution) * def.mesh.turns > sim::kMaxVertices)
         throw UsageError("--resolution x --turns: more than " + std::to_string(sim::kMaxVertices) + " vertices");
-    return sim::VertexCount(def.mesh);
 }
-int SetDesignMesh(const Cli& cli, const ShapeOptions&, sim::ModelKind model, sim::ShellDef& def) {
+void SetDesignMesh(const Cli& cli, const ShapeOptions&, sim::ModelKind model, sim::ShellDef&) {
     for (const char* option : {"--resolution", "--turns"})
         cli.RefuseIfGiven(option, std::string("is the thesis helix's; the ") + sim::Name(model) + " model's mesh is --ring-vertices and --rings");
-    return def.geometry.ringVertices * sim::RingCount(def.geometry);
 }
 
 }  // namespace
@@ -205,8 +202,9 @@ int SetDesignMesh(const Cli& cli, const ShapeOptions&, sim::ModelKind model, sim
 sim::EvalJob BuildJob(const Cli& cli, const ShapeOptions& shapeOptions, const ModelOptions& model, ModelUse use) {
     sim::EvalJob job;
     ApplyModelOptions(cli, model, job, use);
-    const int vertices = std::visit([&](auto& def) { return SetDesignMesh(cli, shapeOptions, job.model, def); }, job.def);
-    job.shape = BuildShape(cli, shapeOptions, sim::SurfaceOf(job), vertices);
+    std::visit([&](auto& def) { SetDesignMesh(cli, shapeOptions, job.model, def); }, job.def);
+    // The vertices a design sets: free-xy offsets and OBJ files count them.
+    job.shape = BuildShape(cli, shapeOptions, sim::SurfaceOf(job), sim::VertexCount(sim::DesignMeshOf(job)));
     if (const std::string error = sim::JobError(job); !error.empty()) {
         const bool mesh = std::holds_alternative<sim::MeshShape>(job.shape);
         throw UsageError((mesh ? "--mesh " + Quote(shapeOptions.meshFile) : "--shape " + std::string(sim::ShapeName(job.shape))) + ": " + error);

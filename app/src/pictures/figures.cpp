@@ -90,10 +90,11 @@ std::string ColouringError(Colouring colouring, const sim::EvalJob& job) {
 std::shared_ptr<const sim::Surface> SharedSurface(const sim::EvalJob& job) {
     // Surfaces are shared: a sweep draws thousands of meshes of one size.
     static std::mutex mutex;
-    static std::map<std::tuple<bool, int, int>, std::shared_ptr<const sim::Surface>> cache;
-    const bool thesis = job.model == sim::ModelKind::Thesis;
-    const std::tuple<bool, int, int> key = thesis ? std::tuple{true, job.Thesis().mesh.resolution, job.Thesis().mesh.turns}
-                                                  : std::tuple{false, job.Shell().geometry.ringVertices, sim::RingCount(job.Shell().geometry)};
+    // A surface is its model's drawing of its design mesh: models that draw alike share one.
+    using SurfaceFunction = sim::Surface (*)(const sim::EvalJob&);
+    static std::map<std::tuple<SurfaceFunction, int, int>, std::shared_ptr<const sim::Surface>> cache;
+    const sim::MeshDef mesh = sim::DesignMeshOf(job);
+    const std::tuple<SurfaceFunction, int, int> key{sim::ModelOf(job).surface, mesh.resolution, mesh.turns};
     std::lock_guard lock(mutex);
     auto& surface = cache[key];
     if (!surface) surface = std::make_shared<const sim::Surface>(sim::SurfaceOf(job));

@@ -25,7 +25,7 @@ using Json = nlohmann::ordered_json;
 
 sim::ObjectiveKind FitnessOf(const Experiment& e) {
     if (e.kind == ExperimentKind::Optimize) return e.optimizer.objectives[0].kind;
-    return e.model == sim::ModelKind::Thesis ? sim::ObjectiveKind::ThesisFitness : sim::ObjectiveKind::Contraction;
+    return sim::ModelOf(e.model).physical ? sim::ObjectiveKind::Contraction : sim::ObjectiveKind::ThesisFitness;  // the GA's fitness
 }
 
 std::string Label(const Experiment& e) {

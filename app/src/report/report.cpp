@@ -25,15 +25,23 @@ const char* kThesisModel =
 
 }  // namespace
 
-std::string ModelDescription(const Experiment& e) {
-    if (e.model == sim::ModelKind::Thesis) return kThesisModel;
-    const sim::ShellDef& s = e.shell;
+namespace {
+
+// [SECTION] Each def described (a new def adds its overload).
+std::string DescriptionOf(sim::ModelKind, const sim::ThesisDef&) { return kThesisModel; }
+std::string DescriptionOf(sim::ModelKind model, const sim::ShellDef& s) {
     const sim::GeometryDef& g = s.geometry;
     return fmt::format("the `{}` model of `docs/models/shell.md` ({} at equilibrium): a tube of R = {:g} mm, L = {:g} mm, wall {:g} mm, {} ({}, "
                        "shear modulus {:.3g} kPa), {} x {} ring mesh, {} to {:g} kPa in {} steps; fitness = contraction in percent at that pressure",
-                       sim::Name(e.model), e.model == sim::ModelKind::Shell ? "membrane and bending" : "membrane only", g.radiusMm, g.lengthMm,
+                       sim::Name(model), model == sim::ModelKind::Shell ? "membrane and bending" : "membrane only", g.radiusMm, g.lengthMm,
                        g.thicknessMm, sim::Name(s.material.preset), sim::Name(s.material.law), sim::ShearModulusKpa(s.material), g.ringVertices,
                        sim::RingCount(g), sim::Name(s.load.kind), s.load.pressureKpa, s.load.steps);
+}
+
+}  // namespace
+
+std::string ModelDescription(const Experiment& e) {
+    return std::visit([&](const auto& def) { return DescriptionOf(e.model, def); }, e.def);
 }
 
 namespace {

@@ -159,9 +159,10 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     if (chapter.rows.empty()) return "";
     const Experiment& first = chapter.rows.front().physical->experiment;
     const std::string model = sim::Name(first.model);
+    const sim::ShellDef& shell = std::get<sim::ShellDef>(first.def);  // the chapter is of a shell-def model
     std::string md = fmt::format("<a id=\"physical-chapter\"></a>\n\n# Part 2: the thesis's experiments under the `{}` model\n\n", model);
     md += "Model: " + ModelDescription(first) + ". The thesis's shapes map onto the tube with one radius unit = " +
-          fmt::format("{:g} mm", first.shell.geometry.radiusMm) +
+          fmt::format("{:g} mm", shell.geometry.radiusMm) +
           " (docs/models/shell.md section 1); a design whose radius reaches zero or that intersects itself is `invalid-geometry`, one past its pressure "
           "maximum `limit-point`, one stretched beyond the material's limit `over-stretched`: none of them has a fitness. The GA runs are "
           "shorter than the thesis's (see each section's settings).\n\n";
@@ -181,7 +182,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     std::string bestWhere;
     for (const ChapterRow& row : chapter.rows) {
         Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");
-        const bool fibres = row.physical->experiment.shell.fibres.layout != sim::FibreLayout::None;
+        const bool fibres = std::get<sim::ShellDef>(row.physical->experiment.def).fibres.layout != sim::FibreLayout::None;
         const int okHere = tally.statuses.count("ok") ? tally.statuses.at("ok") : 0;
         (fibres ? fibreEvaluated : evaluated) += tally.evaluated;
         (fibres ? fibreContracting : contracting) += tally.contracting;
@@ -219,7 +220,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     // The finding, from the numbers.
     md += "**Finding.** ";
     md += fmt::format("Of {} isotropic designs (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium", evaluated, model,
-                      first.shell.load.pressureKpa, ok);
+                      shell.load.pressureKpa, ok);
     if (contracting == 0)
         md += " and every one of them lengthened: none of them contracts. The thesis's premise, that shaping an isotropic tube makes a "
               "contracting actuator, is not borne out in a model with equilibrium and units: shaped tubes of one isotropic silicone balloon "

@@ -273,24 +273,29 @@ struct RangeChecker {
 };
 }  // namespace detail
 
+// Each def's fields, part by part (a new def adds its overload).
+template <class V>
+void VisitDefFields(const ThesisDef& def, V& v) {
+    VisitFields(def.mesh, v);
+    VisitFields(def.params, v);
+}
+template <class V>
+void VisitDefFields(const ShellDef& def, V& v) {
+    VisitFields(def.geometry, v);
+    VisitFields(def.material, v);
+    VisitFields(def.load, v);
+    VisitFields(def.solver, v);
+    VisitFields(def.fibres, v);
+}
+
 // Empty when every field of the job's model lies in the range the command line and experiment files
 // accept; otherwise the first that does not (for jobs that come from elsewhere: the evaluation
 // server's requests, Python).
 inline std::string JobFieldsError(const sim::EvalJob& job) {
     std::string error;
     detail::RangeChecker check{error};
-    if (job.model == sim::ModelKind::Thesis) {
-        VisitFields(job.Thesis().mesh, check);
-        VisitFields(job.Thesis().params, check);
-    } else {
-        VisitFields(job.Shell().geometry, check);
-        VisitFields(job.Shell().material, check);
-        VisitFields(job.Shell().load, check);
-        VisitFields(job.Shell().solver, check);
-        VisitFields(job.Shell().fibres, check);
-    }
+    std::visit([&](const auto& def) { VisitDefFields(def, check); }, job.def);
     return error;
 }
-
 
 }  // namespace sim

@@ -79,6 +79,7 @@ struct Model {
     std::string (*error)(const EvalJob& job);       // empty when the job can run; else why not
     Surface (*surface)(const EvalJob& job);         // what its meshes are drawn on
     int (*vertices)(const EvalJob& job);            // of its meshes
+    MeshDef (*designMesh)(const EvalJob& job);      // what a design is given on: per turn (thesis helix) or ring x turns or rings
     std::uint64_t (*work)(const EvalJob& job);      // an estimate of its cost (server limits): vertex-iterations
     ModelDef (*defaultDef)();                       // the def a job of this model starts from
     std::string (*meshText)(const EvalJob& job);    // its meshes' size and vertex order, for file headers
@@ -106,6 +107,9 @@ std::vector<std::string> OutputNames(bool withTime);
 inline SimResult Evaluate(const EvalJob& job) { return ModelOf(job).evaluate(job); }
 // Empty when the job can be evaluated; otherwise what is wrong (shape, parameters, mesh).
 std::string JobError(const EvalJob& job);
+// The mesh a job's design is given on (free-xy offsets, OBJ vertices, genomes): the thesis helix, or
+// the membrane and shell models' rings (their caps' centres aside).
+inline MeshDef DesignMeshOf(const EvalJob& job) { return ModelOf(job).designMesh(job); }
 // The triangles and edges a job's meshes are drawn with.
 inline Surface SurfaceOf(const EvalJob& job) { return ModelOf(job).surface(job); }
 

@@ -27,8 +27,8 @@ struct Fixture {
         c.seed = 5;
         c.experimentHash = app::ExperimentHash(e);
         c.experiment = e.document;
-        c.state = sim::StartEvolution(e.ga, e.mesh, c.seed, Synthetic);
-        sim::EvolveOneGeneration(e.ga, e.mesh, c.state, Synthetic);
+        c.state = sim::StartEvolution(e.ga, app::DesignMesh(e), c.seed, Synthetic);
+        sim::EvolveOneGeneration(e.ga, app::DesignMesh(e), c.state, Synthetic);
         c.archiveCount = 11;
     }
     std::string Refusal(const std::function<void(Json&)>& edit) const {

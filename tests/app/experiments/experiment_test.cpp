@@ -32,9 +32,9 @@ TEST(Experiment, DefaultsComeFromTheDefStructs) {
     EXPECT_EQ(e.ga.generations, ga.generations);
     EXPECT_EQ(e.ga.mutpb, ga.mutpb);
     EXPECT_EQ(e.ga.genome.lengthMax, ga.genome.lengthMax);
-    EXPECT_EQ(e.params.iterations, sim::DefaultSimParams().iterations);
-    EXPECT_EQ(e.params.pressureScale, sim::DefaultSimParams().pressureScale);
-    EXPECT_EQ(e.mesh.resolution, sim::DefaultMeshDef().resolution);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.iterations, sim::DefaultSimParams().iterations);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.pressureScale, sim::DefaultSimParams().pressureScale);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).mesh.resolution, sim::DefaultMeshDef().resolution);
     const app::Experiment s = app::ParseExperiment(kSweep, "x.json");
     EXPECT_EQ(std::get<sim::SineShape>(s.sweep.base).phaseEnd, sim::SineShape{}.phaseEnd);
 }
@@ -44,21 +44,21 @@ TEST(Experiment, TheSimBlockSetsEveryThesisConstant) {
         R"({"model": {"name": "thesis"}, "evolve": {"genome": {"kind": "bspline"}}, "sim": {"iterations": 500, "load": "stretch", "spring_constant": 0.02,
             "pressure_scale": "0.01", "pull_force": 0.001, "step_scale": 0.05, "divergence_limit": 100, "precision": "double"}})",
         "x.json");
-    EXPECT_EQ(e.params.iterations, 500);
-    EXPECT_EQ(e.params.load, sim::Load::Stretch);
-    EXPECT_EQ(e.params.springConstant, 0.02);
-    EXPECT_EQ(e.params.pressureScale, 0.01);
-    EXPECT_EQ(e.params.pullForce, 0.001);
-    EXPECT_EQ(e.params.stepScale, 0.05);
-    EXPECT_EQ(e.params.divergenceLimit, 100);
-    EXPECT_EQ(e.params.precision, sim::Precision::Double);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.iterations, 500);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.load, sim::Load::Stretch);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.springConstant, 0.02);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.pressureScale, 0.01);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.pullForce, 0.001);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.stepScale, 0.05);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.divergenceLimit, 100);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.precision, sim::Precision::Double);
 }
 
 TEST(Experiment, SetOverridesAnyKeyAndCreatesBlocks) {
     const app::Experiment e = app::ParseExperiment(kGa, "x.json",
                                                    {{"evolve.generations", "3"}, {"sim.pressure_scale", "0.01"}, {"seed", "7"}, {"title", "renamed"}});
     EXPECT_EQ(e.ga.generations, 3);
-    EXPECT_EQ(e.params.pressureScale, 0.01);
+    EXPECT_EQ(std::get<sim::ThesisDef>(e.def).params.pressureScale, 0.01);
     EXPECT_EQ(e.seed, 7u);
     EXPECT_EQ(e.title, "renamed");
     EXPECT_EQ(e.document["sim"]["pressure_scale"], 0.01);  // what DIR/experiment.json will hold
@@ -94,7 +94,7 @@ TEST(Experiment, HashAndDifferenceTellWhatChanged) {
 TEST(Experiment, TheQuickVersionReReadsAsWhatRan) {
     const app::Experiment quick = app::QuickVersion(app::ParseExperiment(kGa, "x.json"));
     EXPECT_EQ(quick.ga.generations, 2);
-    EXPECT_EQ(quick.params.iterations, 2000);
+    EXPECT_EQ(std::get<sim::ThesisDef>(quick.def).params.iterations, 2000);
     const app::Experiment again = app::ParseExperiment(quick.document.dump(), "x.json");
     EXPECT_EQ(app::ExperimentHash(again), app::ExperimentHash(quick));
 }
