@@ -108,6 +108,9 @@ struct ShellDef {
   fibreSectorsDeg @31 :List(Float64);
   fibrePlusOff @32 :Bool;           # a GA gene switched the +alpha family off
   fibreMinusOff @33 :Bool;          # ... or a braid's -alpha family
+  twist @34 :Text;                  # the top clamp's turn: "" (records before it could turn) is "held"
+  torqueNMm @35 :Float64;
+  heldContractionPercent @36 :Float64;
 }
 
 struct FibreBand {
@@ -138,6 +141,11 @@ struct ShellOutputs {
   maxFibreStrain @16 :Float64 = nan;
   meanFibreStrain @17 :Float64 = nan;
   fibreAngleDeg @18 :Float64 = nan;
+  twistDeg @19 :Float64 = nan;
+  twistPerLengthDegPerMm @20 :Float64 = nan;
+  torqueNMm @21 :Float64 = nan;
+  curveForceN @22 :List(Float64);
+  curveTwistDeg @23 :List(Float64);
 }
 
 struct EvalResult {

@@ -64,6 +64,9 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Number("blocking_force_n", "N", s.blockingForceN);
     v.Number("axial_stiffness_n_per_mm", "N/mm", s.axialStiffnessNPerMm);
     v.Number("displacement_mm", "mm", s.displacementMm);
+    v.Number("twist_deg", "deg", s.twistDeg);
+    v.Number("twist_per_length_deg_per_mm", "deg/mm", s.twistPerLengthDegPerMm);
+    v.Number("torque_n_mm", "N mm", s.torqueNMm);
     v.Number("rest_volume_mm3", "mm^3", s.restVolumeMm3);
     v.Number("volume_mm3", "mm^3", s.volumeMm3);
     v.Number("max_stretch", "", s.maxStretch);
@@ -80,6 +83,8 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Curve("curve_pressure_kpa", "kPa", s.curvePressureKpa);
     v.Curve("curve_contraction_percent", "%", s.curveContractionPercent);
     v.Curve("curve_volume_mm3", "mm^3", s.curveVolumeMm3);
+    v.Curve("curve_force_n", "N", s.curveForceN);
+    v.Curve("curve_twist_deg", "deg", s.curveTwistDeg);
 }
 
 Surface ShellModelSurface(const EvalJob& job) { return ShellSurface(job.Shell().geometry); }

@@ -206,6 +206,9 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setForceN(l.forceN);
     s.setVolumeRatio(l.volumeRatio);
     s.setSteps(Count(l.steps));
+    s.setTwist(sim::Name(l.twist));
+    s.setTorqueNMm(l.torqueNMm);
+    s.setHeldContractionPercent(l.heldContractionPercent);
     const sim::SolverDef& v = def.solver;
     s.setTolerance(v.tolerance);
     s.setMaxIterations(Count(v.maxIterations));
@@ -254,6 +257,10 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     l.forceN = s.getForceN();
     l.volumeRatio = s.getVolumeRatio();
     l.steps = Count(s.getSteps());
+    const std::string twist = s.getTwist();
+    l.twist = twist.empty() ? sim::TwistEnd::Held : NamedEnum<sim::TwistEnd>(twist, "twist");  // as such records were evaluated
+    l.torqueNMm = s.getTorqueNMm();
+    l.heldContractionPercent = s.getHeldContractionPercent();
     sim::SolverDef& v = def.solver;
     v.tolerance = s.getTolerance();
     v.maxIterations = Count(s.getMaxIterations());
@@ -301,6 +308,11 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setMaxFibreStrain(o.maxFibreStrain);
     s.setMeanFibreStrain(o.meanFibreStrain);
     s.setFibreAngleDeg(o.fibreAngleDeg);
+    s.setTwistDeg(o.twistDeg);
+    s.setTwistPerLengthDegPerMm(o.twistPerLengthDegPerMm);
+    s.setTorqueNMm(o.torqueNMm);
+    Fill<double>(s.initCurveForceN(static_cast<unsigned>(o.curveForceN.size())), o.curveForceN);
+    Fill<double>(s.initCurveTwistDeg(static_cast<unsigned>(o.curveTwistDeg.size())), o.curveTwistDeg);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -331,6 +343,11 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.maxFibreStrain = s.getMaxFibreStrain();
     o.meanFibreStrain = s.getMeanFibreStrain();
     o.fibreAngleDeg = s.getFibreAngleDeg();
+    o.twistDeg = s.getTwistDeg();
+    o.twistPerLengthDegPerMm = s.getTwistPerLengthDegPerMm();
+    o.torqueNMm = s.getTorqueNMm();
+    o.curveForceN = Copy(s.getCurveForceN());
+    o.curveTwistDeg = Copy(s.getCurveTwistDeg());
 }
 
 void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {

@@ -16,6 +16,9 @@ struct ShellOutputs {
     std::vector<double> curvePressureKpa;          // the load steps' pressures
     std::vector<double> curveContractionPercent;   // contraction at each (positive = shorter)
     std::vector<double> curveVolumeMm3;            // enclosed volume at each
+    std::vector<double> curveForceN;               // axial force on the top clamp at each: the held stroke's
+                                                   // reaction (blocked test; + pulls on the supports), else the load on it
+    std::vector<double> curveTwistDeg;             // the top clamp's turn at each
     double targetPressureKpa = NAN;                // the pressure the contraction is reported at
     double limitPressureKpa = NAN;                 // the pressure maximum, when met
     double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
@@ -25,6 +28,10 @@ struct ShellOutputs {
     double maxStressKpa = NAN;                     // largest principal true (Cauchy) stress
     double stretchLimit = NAN, tensileStrengthKpa = NAN;  // the material's, to compare with
     double displacementMm = NAN;                   // top clamp's axial displacement u
+    double twistDeg = NAN;                         // top clamp's turn about the axis, + right-handed about +z (clamped ends)
+    double twistPerLengthDegPerMm = NAN;           // twistDeg over the length
+    double torqueNMm = NAN;                        // about +z on the top clamp: the fixture's that holds it (twist held),
+                                                   // or the one applied (twist loaded); NaN when it turns freely
     double maxFibreStrain = NAN, meanFibreStrain = NAN;  // fibre stretch - 1 at the target (fibres only)
     double fibreAngleDeg = NAN;                    // the fibres' mean angle to the axis in the middle third
     int newtonIterations = 0;

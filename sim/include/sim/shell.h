@@ -78,11 +78,24 @@ MaterialDef MaterialPresetDef(MaterialPreset preset);
 double ShearModulusKpa(const MaterialDef& material);
 double StretchLimit(const MaterialDef& material);
 
+// How the top clamp may turn about the tube's axis (docs/models/shell.md section 12). Its lateral
+// translation and tilt are held; the bottom clamp is fixed.
+enum class TwistEnd {
+    Free,    // turns as the wall makes it (a bench's top on a bearing): the default
+    Held,    // kept from turning; the torque that holds it is an output
+    Loaded,  // a prescribed torque turns it
+};
+
 struct LoadDef {
     ShellLoad kind = ShellLoad::Inflate;
     double pressureKpa = 3;    // target gauge pressure (Inflate, Gas, Blocked); negative is vacuum
-    double forceN = 0;         // axial force on the top clamp, + pulls it up (Force)
+    double forceN = 0;         // axial force on the top clamp, + pulls it up: alone (Force), or with
+                               // the pressure or volume (Inflate, Gas, Volume: a hanging load)
     double volumeRatio = 1.5;  // target enclosed volume over the rest volume (Volume)
+    double heldContractionPercent = 0;  // Blocked: the top held this far below its rest place, % of
+                                        // the length (the isobaric test; 0: the blocking force)
+    TwistEnd twist = TwistEnd::Free;
+    double torqueNMm = 0;      // twist Loaded: torque on the top clamp, N mm, + turns it right-handed about +z
     int steps = 4;             // load steps: the contraction-pressure curve's points
 };
 
@@ -203,6 +216,11 @@ struct sim::EnumNames<sim::FibreLayout> {
                                                                                      {sim::FibreLayout::Hoop, "hoop"},
                                                                                      {sim::FibreLayout::Braid, "braid"},
                                                                                      {sim::FibreLayout::Single, "single"}}};
+};
+template <>
+struct sim::EnumNames<sim::TwistEnd> {
+    static constexpr std::array<std::pair<sim::TwistEnd, const char*>, 3> table{
+        {{sim::TwistEnd::Free, "free"}, {sim::TwistEnd::Held, "held"}, {sim::TwistEnd::Loaded, "loaded"}}};
 };
 template <>
 struct sim::EnumNames<sim::EndCondition> {

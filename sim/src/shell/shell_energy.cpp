@@ -24,7 +24,7 @@ Eigen::Vector3d At(const Positions& p, int v) { return {p.x[v], p.y[v], p.z[v]};
 // The unknown a coordinate maps to, or -1.
 int Unknown(const ShellProblem& p, int v, int c) {
     const int d = p.dofOf[3 * v + c];
-    return d >= 0 ? d : d == kAxial ? p.axial : -1;
+    return d >= 0 ? d : d == kAxial ? p.axial : d == kTwist ? p.twist : -1;
 }
 
 template <size_t N>
@@ -85,6 +85,7 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& t : p.caps) slots(UnknownsOfVertices(p, t).data(), 9, capSlots);
     for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
     slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
+    twistSlot = slot(p.twist, p.twist);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -107,6 +108,8 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     Positions x;
     PositionsOf(p, q, x);
     EnergyResult r;
+    // The clamp's turn is not linear in theta: its curvature term needs every force on the clamp.
+    wantGradient = wantGradient || (hessian && p.twist >= 0);
     if (wantGradient) {
         r.gradient = Eigen::VectorXd::Zero(p.unknowns);
         r.volumeGradient = Eigen::VectorXd::Zero(p.unknowns);
@@ -116,18 +119,44 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         values = hessian->matrix.valuePtr();
         std::fill(values, values + hessian->matrix.nonZeros(), 0.0);
     }
-    double axialForce = 0;  // dE/du, accumulated from every axial coordinate
+    double axialForce = 0;   // dE/du, accumulated from every axial coordinate
+    double twistTorque = 0;  // dE/dtheta, from every turned coordinate
+    double twistCurvature = 0;  // sum of dE/dx . d2x/dtheta2 over the turned coordinates
+    // A turned coordinate's lever dx/dtheta = e_z x x (the axis through x = y = 0), and d2x/dtheta2 = -x
+    // in the plane.
+    auto lever = [&](int v, int c) { return c == 0 ? -x.y[v] : x.x[v]; };
     auto addGradient = [&](Eigen::VectorXd& g, int v, int c, double value, double* axial) {
         const int d = p.dofOf[3 * v + c];
         if (d >= 0) g[d] += value;
         else if (d == kAxial) {
             if (p.axial >= 0) g[p.axial] += value;
             if (axial) *axial += value;
+        } else if (d == kTwist) {
+            const double torque = lever(v, c) * value;
+            if (p.twist >= 0) g[p.twist] += torque;
+            if (axial) {  // the energy's gradient (not the volume's)
+                twistTorque += torque;
+                twistCurvature -= (c == 0 ? x.x[v] : x.y[v]) * value;
+            }
         }
     };
-    auto addHessian = [&](const int* slots, const double* local, int count) {
+    // An element's Hessian over its vertices' coordinates into the unknowns': a turned coordinate's
+    // rows and columns scaled by its lever.
+    auto addHessian = [&](const int* slots, const double* local, int count, const int* vertices) {
+        bool turned = false;
+        for (int k = 0; k < count && !turned; ++k) turned = p.dofOf[3 * vertices[k / 3] + k % 3] == kTwist;
+        if (!turned) {
+            for (int i = 0; i < count * count; ++i)
+                if (slots[i] >= 0) values[slots[i]] += local[i];
+            return;
+        }
+        std::array<double, 12> scale{};  // elements only: the anchor (sliding ends) has no turned coordinates
+        for (int k = 0; k < count; ++k) {
+            const int v = vertices[k / 3], c = k % 3;
+            scale[k] = p.dofOf[3 * v + c] == kTwist ? lever(v, c) : 1.0;
+        }
         for (int i = 0; i < count * count; ++i)
-            if (slots[i] >= 0) values[slots[i]] += local[i];
+            if (slots[i] >= 0) values[slots[i]] += local[i] * scale[i / count] * scale[i % count];
     };
 
     CompensatedSum energy;
@@ -175,7 +204,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                                     for (int be = 0; be < 2; ++be) sum += rest.g[a][al] * rest.g[b][be] * hF(3 * al + i, 3 * be + j);
                                 local[(3 * a + i) * 9 + 3 * b + j] = rest.area * sum;
                             }
-                addHessian(&hessian->wallSlots[81 * t], local, 9);
+                addHessian(&hessian->wallSlots[81 * t], local, 9, tri.data());
             }
         }
     }
@@ -199,7 +228,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                 // Gauss-Newton (2k g g^T) for Newton's steps: positive semi-definite by construction.
                 Eigen::Matrix<double, 12, 12, Eigen::RowMajor> local = 2 * stiffness * gTheta * gTheta.transpose();
                 if (exactHessian) local += 2 * stiffness * d * hTheta;
-                addHessian(&hessian->hingeSlots[144 * k], local.data(), 12);
+                addHessian(&hessian->hingeSlots[144 * k], local.data(), 12, h.data());
             }
         }
     }
@@ -244,7 +273,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                         local.block<3, 3>(3 * k, 3 * next) = -pressure * -cross(*corner[last]) / 6;
                         local.block<3, 3>(3 * next, 3 * k) = -pressure * cross(*corner[last]) / 6;
                     }
-                    addHessian(caps ? &hessian->capSlots[81 * capIndex] : &hessian->wallSlots[81 * t], local.data(), 9);
+                    addHessian(caps ? &hessian->capSlots[81 * capIndex] : &hessian->wallSlots[81 * t], local.data(), 9, tri.data());
                 }
                 if (caps) ++capIndex;
             }
@@ -256,6 +285,13 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         energy.Add(-load.force * u);
         if (wantGradient && p.axial >= 0) r.gradient[p.axial] -= load.force;
         axialForce -= load.force;
+    }
+    // Torque on the top clamp: -T theta.
+    const double theta = p.twist >= 0 ? q[p.twist] : p.heldTwist;
+    if (terms.force && load.torque != 0) {
+        energy.Add(-load.torque * theta);
+        if (wantGradient && p.twist >= 0) r.gradient[p.twist] -= load.torque;
+        twistTorque -= load.torque;
     }
     // Anchor against rigid motions: (k/2)(|T|^2 + |R|^2).
     if (terms.anchor && !p.anchor.vertices.empty()) {
@@ -304,11 +340,14 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             Eigen::MatrixXd local = Eigen::MatrixXd::Zero(3 * n, 3 * n);
             for (const auto& a : rows) local += an.stiffness * a * a.transpose();
             Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rowMajor = local;
-            addHessian(hessian->anchorSlots.data(), rowMajor.data(), 3 * n);
+            addHessian(hessian->anchorSlots.data(), rowMajor.data(), 3 * n, an.vertices.data());
         }
     }
+    // The turn's own curvature: exact, or (for Newton's steps) only where it stiffens.
+    if (hessian && hessian->twistSlot >= 0) values[hessian->twistSlot] += kind == HessianKind::Exact ? twistCurvature : std::max(0.0, twistCurvature);
     r.energy = energy.Value();
     r.axialForce = axialForce;
+    r.twistTorque = twistTorque;
     return r;
 }
 

@@ -28,12 +28,14 @@ void FinishRest(ShellProblem& p) {
     p.held = p.rest;
 }
 
-// Numbers the unknowns: every coordinate not fixed or axial, then u last (when it is unknown).
-void NumberUnknowns(ShellProblem& p, bool axialUnknown) {
+// Numbers the unknowns: every coordinate not fixed, axial or twisted, then u and theta last (when
+// they are unknowns).
+void NumberUnknowns(ShellProblem& p, bool axialUnknown, bool twistUnknown = false) {
     int next = 0;
     for (int& d : p.dofOf)
         if (d >= 0 || d == -3) d = next++;
     p.axial = axialUnknown ? next++ : -1;
+    p.twist = twistUnknown ? next++ : -1;
     p.unknowns = next;
 }
 constexpr int kFree = -3;  // marks a free coordinate before numbering
@@ -197,8 +199,9 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
             const bool bottom = clamped ? j < c : j == 0, top = clamped ? j >= H - c : j == H - 1;
             if (!bottom && !top) continue;
             if (clamped) {
-                hold(v, 0, kFixed);
-                hold(v, 1, kFixed);
+                // The top clamp's rings turn with it (held or not, the torque is measured through them).
+                hold(v, 0, bottom ? kFixed : kTwist);
+                hold(v, 1, bottom ? kFixed : kTwist);
             }
             hold(v, 2, bottom ? kFixed : kAxial);
         }
@@ -211,8 +214,15 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
         p.anchor.translation[0] = p.anchor.translation[1] = true;
         p.anchor.rotation[2] = true;
     }
-    const bool blocked = def.load.kind == ShellLoad::Blocked;
-    NumberUnknowns(p, !blocked);
+    // u is an unknown (held by the solver under the blocked test, which steps it to its stroke); theta
+    // is one unless the twist is held.
+    const bool twistUnknown = clamped && def.load.twist != TwistEnd::Held;
+    NumberUnknowns(p, true, twistUnknown);
+    if (clamped) {
+        p.twistReference = (H - 1) * R;
+        p.twistLeverMm = std::hypot(p.rest.x[p.twistReference], p.rest.y[p.twistReference]);
+        if (!(p.twistLeverMm > 0)) return fail("the top clamp's ring lies on the axis");
+    }
     FinishRest(p);
     p.anchor.stiffness = MembraneMaterialShearModulus(p.material) * p.material.thicknessMm / std::max(1, R);
     for (const auto& rest : p.membrane)
@@ -308,6 +318,11 @@ ShellProblem BuildPatchProblem(const MembraneMaterial& material, double size, in
 
 Eigen::VectorXd UnknownsOf(const ShellProblem& p, const Positions& x) {
     Eigen::VectorXd q = Eigen::VectorXd::Zero(p.unknowns);
+    if (p.twist >= 0) {
+        const int v = p.twistReference;
+        const double X = p.rest.x[v], Y = p.rest.y[v];
+        q[p.twist] = std::atan2(X * x.y[v] - Y * x.x[v], X * x.x[v] + Y * x.y[v]);
+    }
     bool axialRead = false;
     for (int v = 0; v < x.Size(); ++v)
         for (int c = 0; c < 3; ++c) {
@@ -326,10 +341,17 @@ void PositionsOf(const ShellProblem& p, const Eigen::VectorXd& q, Positions& x) 
     const int n = p.rest.Size();
     if (x.Size() != n) x.Resize(n);
     const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
+    const double theta = p.twist >= 0 ? q[p.twist] : p.heldTwist;
+    const double cosine = std::cos(theta), sine = std::sin(theta);
     for (int v = 0; v < n; ++v) {
         const int* d = &p.dofOf[3 * v];
-        x.x[v] = d[0] >= 0 ? q[d[0]] : p.held.x[v];
-        x.y[v] = d[1] >= 0 ? q[d[1]] : p.held.y[v];
+        if (d[0] == kTwist) {  // x and y turn together
+            x.x[v] = cosine * p.rest.x[v] - sine * p.rest.y[v];
+            x.y[v] = sine * p.rest.x[v] + cosine * p.rest.y[v];
+        } else {
+            x.x[v] = d[0] >= 0 ? q[d[0]] : p.held.x[v];
+            x.y[v] = d[1] >= 0 ? q[d[1]] : p.held.y[v];
+        }
         x.z[v] = d[2] >= 0 ? q[d[2]] : d[2] == kAxial ? p.rest.z[v] + u : p.held.z[v];
     }
 }
@@ -354,7 +376,9 @@ std::vector<int> VertexBlockPlaces(const ShellProblem& p) {
             }
         blocks += free;
     }
-    if (p.axial >= 0) places[p.axial] = 3 * blocks;
+    int shared = 0;  // u and theta: one block of their own
+    if (p.axial >= 0) places[p.axial] = 3 * blocks + shared++;
+    if (p.twist >= 0) places[p.twist] = 3 * blocks + shared++;
     return places;
 }
 

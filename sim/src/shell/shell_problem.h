@@ -79,6 +79,8 @@ double HingeAngle(const Eigen::Matrix<double, 12, 1>& x, Eigen::Matrix<double, 1
 // Where a coordinate's value comes from.
 constexpr int kFixed = -1;  // held at its value in ShellProblem::held
 constexpr int kAxial = -2;  // the top clamp's axial translation u, added to its rest value
+constexpr int kTwist = -4;  // x or y of a top clamp vertex: its rest place turned by the clamp's twist
+                            // theta about the axis (x = 0, y = 0), docs/models/shell.md section 12
 
 // A soft anchor against rigid motions that no support prevents (sliding ends, a free sphere):
 // (k/2)(|T|^2 + |R|^2) with T = sum (x - X), R = sum X x (x - X) over the anchored vertices, for
@@ -105,7 +107,11 @@ struct ShellProblem {
     std::vector<int> dofOf;                        // per coordinate (3 v + c): unknown index, kFixed or kAxial
     int unknowns = 0;                              // free coordinates, plus u when axial >= 0
     int axial = -1;                                // index of u among the unknowns; -1: u held at heldAxial
-    double heldAxial = 0;                          // u when it is not an unknown (blocked), mm
+    double heldAxial = 0;                          // u when it is not an unknown, mm
+    int twist = -1;                                // index of theta among the unknowns; -1: theta held at heldTwist
+    double heldTwist = 0;                          // theta when it is not an unknown (twist held), radians
+    int twistReference = -1;                       // a top clamp vertex off the axis: theta is read from it
+    double twistLeverMm = 1;                       // its distance from the axis: torque over it is a force
     Anchor anchor;
     double restVolume = 0;                         // mm^3, caps included
     double meanEdgeMm = 1;                         // for the convergence tolerance
@@ -139,10 +145,11 @@ std::vector<std::array<int, 4>> HingesOf(const std::vector<std::array<int, 3>>& 
 void SetHingeRest(ShellProblem& problem);
 
 // Each unknown's place in a factorisation's 3 x 3 blocks (BlockLdlt), 3 * block + coordinate: a
-// vertex's free coordinates share a block; the clamp's axial unknown has one of its own.
+// vertex's free coordinates share a block; the clamp's axial and twist unknowns share one of their own.
 std::vector<int> VertexBlockPlaces(const ShellProblem& problem);
 
-// The unknowns' values for positions (u read from the first axial coordinate) and back.
+// The unknowns' values for positions (u read from the first axial coordinate, theta from the
+// reference vertex) and back.
 Eigen::VectorXd UnknownsOf(const ShellProblem& problem, const Positions& x);
 void PositionsOf(const ShellProblem& problem, const Eigen::VectorXd& q, Positions& x);
 
@@ -150,10 +157,11 @@ void PositionsOf(const ShellProblem& problem, const Eigen::VectorXd& q, Position
 // [SECTION] Energy and its derivatives
 // ---------------------------------------------------------------------------------------------
 
-// The load terms of the total energy E = elastic + bending - p (V - V0) - F u (+ the gas term).
+// The load terms of the total energy E = elastic + bending - p (V - V0) - F u - T theta (+ the gas term).
 struct LoadTerms {
     double pressure = 0;     // gauge pressure, MPa
     double force = 0;        // axial force on u, N
+    double torque = 0;       // torque on theta about +z, N mm
     double gasConstant = 0;  // > 0: sealed gas, p_abs V = gasConstant (N mm); `pressure` is then ignored
     double atmosphere = 0.101325;  // MPa, for the gas's gauge pressure
 };
@@ -176,12 +184,14 @@ public:
     Eigen::SparseMatrix<double> matrix;  // full symmetric pattern, values overwritten by Assemble
     std::vector<int> wallSlots, hingeSlots, capSlots;  // per element: 81, 144 or 81 value indices (-1: none)
     std::vector<int> anchorSlots;                      // the anchor's dense block
+    int twistSlot = -1;                                // (theta, theta): the clamp's turn's own curvature
 };
 
 struct EnergyResult {
     double energy = 0;
     double volume = 0;           // mm^3
     double axialForce = 0;       // dE/du: the force the actuator exerts on the top clamp (+ pulls it down), N
+    double twistTorque = 0;      // dE/dtheta: the torque about +z a fixture applies to keep the top clamp where it is, N mm
     Eigen::VectorXd gradient;    // over the unknowns
     Eigen::VectorXd volumeGradient;
 };
@@ -192,7 +202,7 @@ EnergyResult AssembleEnergy(const ShellProblem& problem, const Eigen::VectorXd& 
                             bool gradient, HessianPattern* hessian, HessianKind kind);
 
 // Minimises the total energy at `load` from q (in place) by Newton's method (docs/models/shell.md section 6).
-// With holdAxial, u stays where q has it. Returns Ok, NotConverged or NonFinite; counts its work.
+// With holdAxial, u stays where q has it (theta is held by the problem: an unknown or not). Returns Ok, NotConverged or NonFinite; counts its work.
 Status SolveStatic(const ShellProblem& problem, const LoadTerms& load, const SolverDef& solver, Eigen::VectorXd& q, bool holdAxial = false,
                    int* iterations = nullptr);
 

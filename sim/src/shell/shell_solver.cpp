@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numbers>
 
 #include "sim/batch.h"
 #include "shell/block_ldlt.h"
@@ -151,6 +152,7 @@ struct Solver {
             largest = std::max(largest, std::sqrt(sum));
         }
         if (problem.axial >= 0 && !holdAxial) largest = std::max(largest, std::fabs(g[problem.axial]));
+        if (problem.twist >= 0) largest = std::max(largest, std::fabs(g[problem.twist]) / problem.twistLeverMm);  // torque as a force at the clamp
         return largest;
     }
 
@@ -426,9 +428,9 @@ struct Solver {
     }
 
     // Bordered Newton on (q, p) for a prescribed volume: the gradient vanishes and V = target.
-    NewtonEnd AtVolume(Eigen::VectorXd& q, double& p, double target) {
+    NewtonEnd AtVolume(Eigen::VectorXd& q, double& p, double target, const LoadTerms& ends = {}) {
         for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
-            LoadTerms l;
+            LoadTerms l = ends;  // the force and torque on the top clamp
             l.pressure = p;
             EnergyResult r = AssembleEnergy(problem, q, l, terms, true, &exactPattern, HessianKind::Exact);
             ++counters.iterations;
@@ -623,18 +625,23 @@ struct TubeEvaluation {
         solver.holdAxial = load.kind == ShellLoad::Blocked;
     }
 
-    // The load parameter at fraction s of the target.
+    // The load parameter at fraction s of the target: the pressure (or gas, or volume: stepped by
+    // FollowLoadPath), with the end force and torque on the top clamp, all in proportion.
     LoadTerms LoadAt(double s) const {
         LoadTerms l;
         switch (load.kind) {
             case ShellLoad::Inflate:
             case ShellLoad::Blocked: l.pressure = s * load.pressureKpa * 1e-3; break;
             case ShellLoad::Gas: l.gasConstant = (l.atmosphere + s * load.pressureKpa * 1e-3) * problem.restVolume; break;
-            case ShellLoad::Force: l.force = s * load.forceN; break;
+            case ShellLoad::Force:
             case ShellLoad::Volume: break;
         }
+        if (load.kind != ShellLoad::Blocked) l.force = s * load.forceN;
+        if (load.twist == TwistEnd::Loaded) l.torque = s * load.torqueNMm;
         return l;
     }
+    // The held stroke at fraction s (the blocked test): u, mm (0 for the blocking force).
+    double HeldAxialAt(double s) const { return -s * load.heldContractionPercent * 1e-2 * length; }
     // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
     // current state q); a prescribed one is s times the target, exactly the target at s = 1.
     double GaugeKpa(double s) {
@@ -649,19 +656,24 @@ struct TubeEvaluation {
     double VolumeLimitAfter(double volume) const {
         return load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : kRunawayVolume * volume;
     }
-    // One point of the curve: the state q at this pressure.
-    void Record(double pressureKpa) {
+    // One point of the curve: the state q at this pressure, under load fraction s (the force on the
+    // top clamp is the held stroke's reaction under the blocked test, else the load on it).
+    void Record(double pressureKpa, double s) {
         PositionsOf(problem, q, x);
         out.curvePressureKpa.push_back(pressureKpa);
         out.curveContractionPercent.push_back(Contraction(problem, q, length));
         out.curveVolumeMm3.push_back(EnclosedVolume(problem, x));
+        out.curveForceN.push_back(load.kind == ShellLoad::Blocked ? AssembleEnergy(problem, q, LoadAt(s), solver.terms, true, nullptr, HessianKind::Exact).axialForce
+                                                                  : LoadAt(s).force);
+        out.curveTwistDeg.push_back(TwistDeg());
         out.steps.push_back(x);
     }
+    // The top clamp's turn, degrees (positive: right-handed about +z).
+    double TwistDeg() const { return (problem.twist >= 0 ? q[problem.twist] : problem.heldTwist) * 180 / std::numbers::pi; }
     // The load the end state is judged and measured under.
     LoadTerms FinalLoad() const {
-        if (load.kind != ShellLoad::Volume) return LoadAt(1.0);
-        LoadTerms l;
-        l.pressure = out.targetPressureKpa * 1e-3;
+        LoadTerms l = LoadAt(1.0);
+        if (load.kind == ShellLoad::Volume) l.pressure = out.targetPressureKpa * 1e-3;
         return l;
     }
 };
@@ -677,8 +689,8 @@ Status FollowLoadPath(TubeEvaluation& t) {
         double p = 0;
         for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
             const double target = t.problem.restVolume * (1 + (load.volumeRatio - 1) * k / load.steps);
-            const NewtonEnd end = t.solver.AtVolume(t.q, p, target);
-            if (end == NewtonEnd::Converged) t.Record(p * 1e3);
+            const NewtonEnd end = t.solver.AtVolume(t.q, p, target, t.LoadAt(double(k) / load.steps));
+            if (end == NewtonEnd::Converged) t.Record(p * 1e3, double(k) / load.steps);
             else status = end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
         }
         out.targetPressureKpa = p * 1e3;
@@ -698,6 +710,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
             const double next = std::min(goal, reached + increment);
             Eigen::VectorXd trial = t.q;
             if (predict && tangent.size() == t.q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
+            if (load.kind == ShellLoad::Blocked) trial[t.problem.axial] = t.HeldAxialAt(next);
             const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume));
             if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
             if (end == NewtonEnd::Runaway && increment <= smallest) {
@@ -744,7 +757,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
             }
             increment *= 0.5;
         }
-        if (status == Status::Ok) t.Record(t.GaugeKpa(reached));
+        if (status == Status::Ok) t.Record(t.GaugeKpa(reached), reached);
     }
     out.targetPressureKpa = t.GaugeKpa(reached);
     return status;
@@ -766,6 +779,9 @@ int SettleOnStableState(TubeEvaluation& t, const LoadTerms& finalLoad) {
         out.curvePressureKpa.back() = out.targetPressureKpa;
         out.curveContractionPercent.back() = Contraction(t.problem, t.q, t.length);
         out.curveVolumeMm3.back() = EnclosedVolume(t.problem, t.x);
+        out.curveTwistDeg.back() = t.TwistDeg();
+        if (t.load.kind == ShellLoad::Blocked)
+            out.curveForceN.back() = AssembleEnergy(t.problem, t.q, finalLoad, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce;
         out.steps.back() = t.x;
     }
     return negative;
@@ -782,6 +798,16 @@ void Measure(TubeEvaluation& t, SimResult& result) {
     out.maxStressKpa *= 1e3;
     FibreOutputs(t.problem, t.x, t.length, out);
     result.contractionPercent = Contraction(t.problem, t.q, t.length);
+    // The top clamp's turn (sliding ends have none: the anchor holds their rotation), and the torque
+    // on it: the one that holds it, or the one that turns it.
+    if (t.problem.twistReference >= 0) {
+        out.twistDeg = t.TwistDeg();
+        out.twistPerLengthDegPerMm = out.twistDeg / t.length;
+    }
+    if (t.load.twist == TwistEnd::Held && t.problem.twistReference >= 0)
+        out.torqueNMm = AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact).twistTorque;
+    else if (t.load.twist == TwistEnd::Loaded)
+        out.torqueNMm = t.load.torqueNMm;
 }
 
 // Stage: the stiffness at the free equilibrium, 1 / (K^-1)_uu of the exact Hessian (its Schur

@@ -105,8 +105,11 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     auto shell = [](const std::string& model, const std::string& rest = R"("sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]})") {
         return R"({"id": "k", "model": {"name": "shell", )" + model + "}, " + rest + "}";
     };
-    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "inflate", "force_n": 2})")),
-                HasSubstr("'model.load.force_n': has no effect here: it applies when \"kind\" is force, not inflate"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "blocked", "force_n": 2})")),
+                HasSubstr("'model.load.force_n': has no effect here: it applies when \"kind\" is inflate, gas, volume or force, not blocked"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "inflate", "held_contraction_percent": 5})")),
+                HasSubstr("'model.load.held_contraction_percent': has no effect here: it applies when \"kind\" is blocked, not inflate"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"torque_n_mm": 5})")), HasSubstr("applies when \"twist\" is loaded, not free"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "force", "pressure_kpa": 20})")), HasSubstr("\"kind\" is inflate, gas or blocked, not force"));
     EXPECT_THAT(Refusal(shell(R"("load": {"volume_ratio": 2})")), HasSubstr("'model.load.volume_ratio'"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "volume"}, "solver": {"max_bisections": 3})")), HasSubstr("'model.solver.max_bisections'"));

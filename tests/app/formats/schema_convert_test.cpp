@@ -77,7 +77,14 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     d.material.c20Kpa = 0.5;
     d.material.c30Kpa = 0.01;
     d.material.stretchLimit = 3.5;
-    d.load = {sim::ShellLoad::Gas, 12.5, -0.25, 1.75, 9};
+    d.load.kind = sim::ShellLoad::Gas;
+    d.load.pressureKpa = 12.5;
+    d.load.forceN = -0.25;
+    d.load.volumeRatio = 1.75;
+    d.load.heldContractionPercent = 7.5;
+    d.load.twist = sim::TwistEnd::Loaded;
+    d.load.torqueNMm = -3.25;
+    d.load.steps = 9;
     d.solver = {1e-9, 77, 4, false};
     capnp::MallocMessageBuilder message;
     app::SetJob(message.initRoot<app::schema::EvalRequest>(), job);
@@ -93,8 +100,10 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
                        b.material.tensileStrengthKpa, b.material.elongationAtBreak, b.material.stretchLimit, b.material.densityKgPerM3),
               std::tie(d.material.preset, d.material.law, d.material.muKpa, d.material.c10Kpa, d.material.c01Kpa, d.material.c20Kpa, d.material.c30Kpa,
                        d.material.tensileStrengthKpa, d.material.elongationAtBreak, d.material.stretchLimit, d.material.densityKgPerM3));
-    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.steps),
-              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.steps));
+    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.heldContractionPercent, b.load.twist, b.load.torqueNMm,
+                       b.load.steps),
+              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.heldContractionPercent, d.load.twist, d.load.torqueNMm,
+                       d.load.steps));
     EXPECT_EQ(std::tie(b.solver.tolerance, b.solver.maxIterations, b.solver.maxBisections, b.solver.selfContact),
               std::tie(d.solver.tolerance, d.solver.maxIterations, d.solver.maxBisections, d.solver.selfContact));
 
@@ -118,6 +127,11 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     o.displacementMm = 0.75;
     o.newtonIterations = 31;
     o.factorizations = 33;
+    o.twistDeg = 12.5;
+    o.twistPerLengthDegPerMm = 0.125;
+    o.torqueNMm = -2.5;
+    o.curveForceN = {0, 0.5, 0.75};
+    o.curveTwistDeg = {1, 2, 4};
     capnp::MallocMessageBuilder resultMessage;
     app::SetResultNumbers(resultMessage.initRoot<app::schema::EvalResult>(), r, job.model);
     sim::SimResult got;
@@ -127,6 +141,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     EXPECT_EQ(g.curvePressureKpa, o.curvePressureKpa);
     EXPECT_EQ(g.curveContractionPercent, o.curveContractionPercent);
     EXPECT_EQ(g.curveVolumeMm3, o.curveVolumeMm3);
+    EXPECT_EQ(g.curveForceN, o.curveForceN);
+    EXPECT_EQ(g.curveTwistDeg, o.curveTwistDeg);
+    EXPECT_EQ(std::tie(g.twistDeg, g.twistPerLengthDegPerMm, g.torqueNMm), std::tie(o.twistDeg, o.twistPerLengthDegPerMm, o.torqueNMm));
     EXPECT_EQ(std::tie(g.targetPressureKpa, g.limitPressureKpa, g.blockingForceN, g.axialStiffnessNPerMm, g.restVolumeMm3, g.volumeMm3, g.maxStretch,
                        g.maxStressKpa, g.stretchLimit, g.tensileStrengthKpa, g.displacementMm, g.newtonIterations, g.factorizations),
               std::tie(o.targetPressureKpa, o.limitPressureKpa, o.blockingForceN, o.axialStiffnessNPerMm, o.restVolumeMm3, o.volumeMm3, o.maxStretch,
@@ -141,6 +158,19 @@ TEST(SchemaConvert, AThesisRecordReadsAsTheThesisModel) {
     EXPECT_EQ(message.getRoot<app::schema::Evaluation>().asReader().getModel(), app::schema::ModelKind::THESIS);
     EXPECT_FALSE(message.getRoot<app::schema::Evaluation>().asReader().hasShell());
     EXPECT_EQ(app::GetJob(message.getRoot<app::schema::Evaluation>().asReader()).model, sim::ModelKind::Thesis);
+}
+
+// Records written before the top clamp could turn have no twist: they read as held, as they were
+// evaluated (a re-simulation gives their numbers again), while a new job's default is free.
+TEST(SchemaConvert, AShellRecordFromBeforeTheTwistReadsAsHeld) {
+    capnp::MallocMessageBuilder message;
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Shell);
+    ASSERT_EQ(job.Shell().load.twist, sim::TwistEnd::Free);
+    app::SetJob(message.initRoot<app::schema::EvalRequest>(), job);
+    EXPECT_EQ(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()).Shell().load.twist, sim::TwistEnd::Free);
+    message.getRoot<app::schema::EvalRequest>().getShell().disownTwist();  // as an older build wrote it
+    EXPECT_EQ(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()).Shell().load.twist, sim::TwistEnd::Held);
 }
 
 TEST(SchemaConvert, AnUnknownMaterialNameIsAnError) {
