@@ -258,4 +258,49 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
     return plots->RenderLines(title + "  -  contraction against pressure", {plot});
 }
 
+CharacteristicImages CharacteristicCurveImages(const std::string& title, const std::vector<double>& pressures,
+                                               const std::vector<std::vector<double>>& contraction, const std::vector<std::vector<double>>& force,
+                                               const sim::SimResult& isometric, const sim::SimResult& freeStroke) {
+    auto plots = MakePlots(1024, 640);
+    CharacteristicImages images;
+    // Lighter to darker with pressure.
+    auto shade = [&](size_t k) {
+        const float t = pressures.size() > 1 ? static_cast<float>(k) / static_cast<float>(pressures.size() - 1) : 1.0f;
+        return render::Rgb{0.55f - 0.45f * t, 0.65f - 0.45f * t, 0.95f - 0.25f * t};
+    };
+    render::LinePlot isobaric;
+    isobaric.xLabel = "contraction (percent of the length, positive = shorter)";
+    isobaric.yLabel = "force (N, positive = pulls on its supports)";
+    isobaric.zeroLine = true;
+    for (size_t k = 0; k < pressures.size(); ++k)
+        isobaric.series.push_back({fmt::format("{:g} kPa", pressures[k]), contraction[k], force[k], shade(k), true});
+    images.forceContraction = plots->RenderLines(title + "  -  isobaric force against contraction", {isobaric});
+
+    // Both curves start at rest: no pressure, no force, no contraction.
+    render::LinePlot isometricPlot;
+    isometricPlot.xLabel = "gauge pressure (kPa)";
+    isometricPlot.yLabel = "force with the top held at its rest place (N)";
+    isometricPlot.zeroLine = true;
+    render::LineSeries blocked{"isometric (no contraction)", {0.0}, {0.0}, {0.75f, 0.3f, 0.15f}, true};
+    for (size_t s = 0; s < isometric.shell.curvePressureKpa.size() && s < isometric.shell.curveForceN.size(); ++s) {
+        blocked.x.push_back(isometric.shell.curvePressureKpa[s]);
+        blocked.y.push_back(isometric.shell.curveForceN[s]);
+    }
+    isometricPlot.series.push_back(blocked);
+    images.forcePressure = plots->RenderLines(title + "  -  isometric force against pressure", {isometricPlot});
+
+    render::LinePlot stroke;
+    stroke.xLabel = "gauge pressure (kPa)";
+    stroke.yLabel = "free stroke (contraction, percent, positive = shorter)";
+    stroke.zeroLine = true;
+    render::LineSeries free{"free (no load on the top)", {0.0}, {0.0}, {0.13f, 0.35f, 0.75f}, true};
+    for (size_t s = 0; s < freeStroke.shell.curvePressureKpa.size() && s < freeStroke.shell.curveContractionPercent.size(); ++s) {
+        free.x.push_back(freeStroke.shell.curvePressureKpa[s]);
+        free.y.push_back(freeStroke.shell.curveContractionPercent[s]);
+    }
+    stroke.series.push_back(free);
+    images.strokePressure = plots->RenderLines(title + "  -  free stroke against pressure", {stroke});
+    return images;
+}
+
 }  // namespace app

@@ -231,3 +231,46 @@ TEST_F(ShellCli, TheGaSearchesFibreGenes) {
     ASSERT_EQ(replay.exitCode, 0) << replay.err;
     EXPECT_EQ(nlohmann::json::parse(replay.out)["model"]["fibres"], "braid");
 }
+
+// The characteristic curves, read back by column name: the isobaric force falls from the blocked
+// force (simulate's blocked test gives it, and the isometric curve ends at it) towards the free
+// stroke (simulate's free inflation); bad input is refused with nothing written.
+TEST_F(ShellCli, CharacterizeDrawsTheMusclesCurvesFromItsOwnTests) {
+    const std::string design = " --shape cylinder --fibres braid --fibre-angle-deg 30" + kSmall;
+    const Result r = Run("characterize" + design + " --pressures-kpa 5,10 --points 3 --threads 2 --out " + Path("c"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* name : {"characteristic.csv", "force_contraction.png", "force_pressure.png", "stroke_pressure.png"})
+        EXPECT_TRUE(fs::exists(dir_ / "c" / name)) << name;
+    const app::Table table = app::Table::Read(Path("c/characteristic.csv"));
+    const auto json = nlohmann::json::parse(r.out);
+    const Result blocked = Run("simulate" + design + " --load blocked --pressure-kpa 10");
+    const Result free = Run("simulate" + design + " --pressure-kpa 10");
+    ASSERT_EQ(blocked.exitCode, 0) << blocked.err;
+    ASSERT_EQ(free.exitCode, 0) << free.err;
+    const double blockedForce = nlohmann::json::parse(blocked.out)["blocking_force_n"].get<double>();
+    const double stroke = nlohmann::json::parse(free.out)["contraction_percent"].get<double>();
+    EXPECT_NEAR(json["isobaric"][1]["free_stroke_percent"].get<double>(), stroke, 1e-9);
+    EXPECT_NEAR(json["isometric_force_n"].get<double>(), blockedForce, 1e-9);
+    std::vector<double> force, contraction;
+    for (size_t row = 0; row < table.Rows(); ++row)
+        if (table.Text(row, "curve") == "isobaric" && table.Number(row, "pressure_kpa") == 10) {
+            ASSERT_EQ(table.Text(row, "status"), "ok");
+            force.push_back(table.Number(row, "force_n"));
+            contraction.push_back(table.Number(row, "contraction_percent"));
+        }
+    ASSERT_EQ(force.size(), 3u);
+    EXPECT_NEAR(force.front(), blockedForce, 1e-6 * blockedForce) << "no contraction: the blocking force";
+    EXPECT_NEAR(contraction.back(), stroke, 1e-9);
+    EXPECT_EQ(force.back(), 0) << "the curve ends at the free state, where the muscle pulls with nothing";
+    EXPECT_GT(force[0], force[1]) << "held half way to the free stroke, it pulls with less than blocked";
+    EXPECT_GT(force[1], 0) << "and still pulls";
+
+    for (const std::string& bad : {std::string("characterize --model thesis --shape sine --out ") + Path("t"),
+                                   "characterize" + design + " --pressures-kpa 10,5 --out " + Path("t"),
+                                   "characterize" + design + " --pressure-kpa 10 --out " + Path("t"), "characterize" + design}) {
+        const Result refused = Run(bad);
+        EXPECT_EQ(refused.exitCode, 2) << bad;
+        EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "t"));
+}
