@@ -110,7 +110,7 @@ struct ShellDef {
   fibreMinusOff @33 :Bool;          # ... or a braid's -alpha family
   twist @34 :Text;                  # the top clamp's turn: "" (records before it could turn) is "held"
   torqueNMm @35 :Float64;
-  heldContractionPercent @36 :Float64;
+  strokePercent @36 :Float64;
 }
 
 struct FibreBand {
@@ -146,6 +146,7 @@ struct ShellOutputs {
   torqueNMm @21 :Float64 = nan;
   curveForceN @22 :List(Float64);
   curveTwistDeg @23 :List(Float64);
+  strokeForceN @24 :Float64 = nan;
 }
 
 struct EvalResult {

@@ -1,5 +1,6 @@
 // actuator: the Actuator Workbench command line. Dispatches to subcommands; turns bad input into one
 // line on stderr and exit code 2, and output that could not be written into an error.
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -18,7 +19,9 @@ std::string MainHelp() {
     std::string text = std::string("actuator ") + app::Version() +
                        "\n\nusage: actuator COMMAND [options]\n\n"
                        "Actuator Workbench: generative design of thin-walled soft pneumatic actuators (see README.md).\n\nCommands:\n";
-    for (const app::Command& c : app::Commands()) text += "  " + std::string(c.name) + std::string(12 - std::strlen(c.name), ' ') + c.summary + "\n";
+    size_t width = 0;  // the names' column: the longest and two spaces
+    for (const app::Command& c : app::Commands()) width = std::max(width, std::strlen(c.name) + 2);
+    for (const app::Command& c : app::Commands()) text += "  " + std::string(c.name) + std::string(width - std::strlen(c.name), ' ') + c.summary + "\n";
     text += "\nRun 'actuator COMMAND --help' for a command's options and their defaults.\n"
             "Exit codes: 0 success, 2 bad input (one line on stderr says what and where), 3 every evaluation\n"
             "server (--workers) is gone, 70 an internal error (a bug: please report it), 74 the output could not\n"

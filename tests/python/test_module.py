@@ -403,8 +403,8 @@ def test_paths_are_taken_as_python_takes_them_and_wrong_types_are_type_errors(tm
 
 
 def test_a_field_without_effect_is_refused_as_on_the_command_line():
-    with pytest.raises(ValueError, match="held_contraction_percent: has no effect: it applies when kind is blocked, not inflate"):
-        actuator.evaluate(actuator.cylinder(), model="shell", load=actuator.Load(held_contraction_percent=3))
+    with pytest.raises(ValueError, match="stroke_percent: has no effect: it applies when kind is blocked, not inflate"):
+        actuator.evaluate(actuator.cylinder(), model="shell", load=actuator.Load(stroke_percent=3))
     with pytest.raises(ValueError, match="torque_n_mm: has no effect: it applies when twist is loaded, not free"):
         actuator.evaluate(actuator.cylinder(), model="shell", load=actuator.Load(torque_n_mm=3))
     with pytest.raises(ValueError, match="fibre_angle_deg: has no effect"):

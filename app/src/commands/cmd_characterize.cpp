@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <numbers>
 
 #include "commands/registry.h"
 #include "evaluation/evaluator.h"
@@ -46,10 +47,10 @@ std::vector<double> ParsePressures(const std::string& text) {
     return pressures;
 }
 
-sim::EvalJob AtLoad(sim::EvalJob job, sim::ShellLoad kind, double pressureKpa, double heldContractionPercent = 0) {
+sim::EvalJob AtLoad(sim::EvalJob job, sim::ShellLoad kind, double pressureKpa, double strokePercent = 0) {
     job.Shell().load.kind = kind;
     job.Shell().load.pressureKpa = pressureKpa;
-    job.Shell().load.heldContractionPercent = heldContractionPercent;
+    job.Shell().load.strokePercent = strokePercent;
     return job;
 }
 
@@ -81,7 +82,7 @@ static int RunCharacterize(int argc, char** argv, int first) {
     if (!cli.Parse(argc, argv, first)) return 0;
 
     if (!cli.Given("--out")) throw UsageError("--out DIR is required (where the table and the plots go)");
-    for (const char* option : {"--load", "--pressure-kpa", "--held-contraction-percent", "--volume-ratio"})
+    for (const char* option : {"--load", "--pressure-kpa", "--stroke-percent", "--volume-ratio"})
         cli.RefuseIfGiven(option, "is set by characterize at each point of its curves (give --pressures-kpa)");
     const std::vector<double> pressures = ParsePressures(pressuresText);
     const sim::EvalJob base = BuildJob(cli, shape, model, ModelUse::Simulate);
@@ -133,10 +134,10 @@ static int RunCharacterize(int argc, char** argv, int first) {
     for (size_t j = 0; j < held.size(); ++j) {
         const sim::SimResult& r = heldResults[j];
         const auto [k, contraction] = heldAt[j];
-        table.AddRow({"isobaric", CsvNumber(pressures[k]), CsvNumber(contraction), number(r, r.shell.blockingForceN), number(r, r.shell.twistDeg),
+        table.AddRow({"isobaric", CsvNumber(pressures[k]), CsvNumber(contraction), number(r, r.shell.strokeForceN), number(r, r.shell.twistDeg),
                       sim::Name(r.status)});
         curveContraction[k].push_back(contraction);
-        curveForce[k].push_back(r.status == sim::Status::Ok ? r.shell.blockingForceN : NAN);
+        curveForce[k].push_back(r.status == sim::Status::Ok ? r.shell.strokeForceN : NAN);
         const bool last = j + 1 == held.size() || heldAt[j + 1].first != k;
         if (last && contraction > 0) {  // the free state closes the curve
             const sim::SimResult& free = firstResults[k];
@@ -157,6 +158,21 @@ static int RunCharacterize(int argc, char** argv, int first) {
     if (freeAtTop.status != sim::Status::Ok) table.AddRow({"free_stroke", CsvNumber(pressures.back()), "", "0", "", sim::Name(freeAtTop.status)});
 
     const sim::FibreDef& fibres = base.Shell().fibres;
+    // A braided cylinder is an ideal muscle's real counterpart: its force beside Tondu and Lopez's,
+    // F = pi r0^2 p (3 (1 - eps)^2 / tan^2 a0 - 1 / sin^2 a0).
+    std::vector<std::vector<double>> ideal;
+    if (std::holds_alternative<sim::CylinderShape>(base.shape) && fibres.layout == sim::FibreLayout::Braid && fibres.plus && fibres.minus &&
+        fibres.bands.empty() && fibres.sectorAnglesDeg.empty() && fibres.angleDeg != 0) {
+        const double r0 = base.Shell().geometry.radiusMm, a = fibres.angleDeg * std::numbers::pi / 180;
+        for (size_t k = 0; k < pressures.size(); ++k) {
+            ideal.emplace_back();
+            for (double c : curveContraction[k]) {
+                const double eps = c / 100;
+                ideal.back().push_back(std::numbers::pi * r0 * r0 * pressures[k] * 1e-3 *
+                                       (3 * (1 - eps) * (1 - eps) / std::pow(std::tan(a), 2) - 1 / std::pow(std::sin(a), 2)));
+            }
+        }
+    }
     const std::string title = fmt::format("{}{}, {} model", ShapeTitle(base.shape),
                                           fibres.layout == sim::FibreLayout::None ? std::string()
                                           : fibres.layout == sim::FibreLayout::Braid || fibres.layout == sim::FibreLayout::Single
@@ -165,7 +181,7 @@ static int RunCharacterize(int argc, char** argv, int first) {
                                           sim::Name(base.model));
     OutputBatch batch;
     WriteFileAtomically((folder / "characteristic.csv").string(), table.Csv());
-    const CharacteristicImages images = CharacteristicCurveImages(title, pressures, curveContraction, curveForce, isometric, freeAtTop);
+    const CharacteristicImages images = CharacteristicCurveImages(title, pressures, curveContraction, curveForce, ideal, isometric, freeAtTop);
     WritePng((folder / "force_contraction.png").string(), images.forceContraction, 6);
     WritePng((folder / "force_pressure.png").string(), images.forcePressure, 6);
     WritePng((folder / "stroke_pressure.png").string(), images.strokePressure, 6);
@@ -175,10 +191,17 @@ static int RunCharacterize(int argc, char** argv, int first) {
     Json curves = Json::array();
     for (size_t k = 0; k < pressures.size(); ++k) {
         const sim::SimResult& free = firstResults[k];
+        // The work of one stroke at this pressure: the force integrated over the top's travel from
+        // rest to the free stroke (trapezoids over the curve's points), N mm = mJ.
+        double work = 0;
+        for (size_t i = 1; i < curveContraction[k].size(); ++i)
+            work += 0.5 * (curveForce[k][i] + curveForce[k][i - 1]) * (curveContraction[k][i] - curveContraction[k][i - 1]) / 100 *
+                    base.Shell().geometry.lengthMm;
         curves.push_back({{"pressure_kpa", pressures[k]},
                           {"status", sim::Name(free.status)},
                           {"free_stroke_percent", free.status == sim::Status::Ok ? Json(free.contractionPercent) : Json(nullptr)},
-                          {"force_at_no_contraction_n", curveForce[k].empty() || !std::isfinite(curveForce[k][0]) ? Json(nullptr) : Json(curveForce[k][0])}});
+                          {"force_at_no_contraction_n", curveForce[k].empty() || !std::isfinite(curveForce[k][0]) ? Json(nullptr) : Json(curveForce[k][0])},
+                          {"work_per_stroke_mj", std::isfinite(work) && curveContraction[k].size() > 1 ? Json(work) : Json(nullptr)}});
     }
     summary["isobaric"] = curves;
     summary["isometric_force_n"] = isometric.status == sim::Status::Ok ? Json(iso.blockingForceN) : Json(nullptr);

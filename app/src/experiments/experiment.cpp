@@ -415,7 +415,7 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         ObjectReader load = model.Object("load");
         load.Enum("kind", shell.load.kind);
         load.Fields(shell.load);
-        RefuseKeysWithoutEffect(load, shell, {"pressure_kpa", "force_n", "volume_ratio", "held_contraction_percent", "twist", "torque_n_mm"});
+        RefuseKeysWithoutEffect(load, shell, {"pressure_kpa", "force_n", "volume_ratio", "stroke_percent", "twist", "torque_n_mm"});
         load.Finish();
     }
     if (model.Has("solver")) {

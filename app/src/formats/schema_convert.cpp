@@ -208,7 +208,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setSteps(Count(l.steps));
     s.setTwist(sim::Name(l.twist));
     s.setTorqueNMm(l.torqueNMm);
-    s.setHeldContractionPercent(l.heldContractionPercent);
+    s.setStrokePercent(l.strokePercent);
     const sim::SolverDef& v = def.solver;
     s.setTolerance(v.tolerance);
     s.setMaxIterations(Count(v.maxIterations));
@@ -260,7 +260,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     const std::string twist = s.getTwist();
     l.twist = twist.empty() ? sim::TwistEnd::Held : NamedEnum<sim::TwistEnd>(twist, "twist");  // as such records were evaluated
     l.torqueNMm = s.getTorqueNMm();
-    l.heldContractionPercent = s.getHeldContractionPercent();
+    l.strokePercent = s.getStrokePercent();
     sim::SolverDef& v = def.solver;
     v.tolerance = s.getTolerance();
     v.maxIterations = Count(s.getMaxIterations());
@@ -311,6 +311,7 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setTwistDeg(o.twistDeg);
     s.setTwistPerLengthDegPerMm(o.twistPerLengthDegPerMm);
     s.setTorqueNMm(o.torqueNMm);
+    s.setStrokeForceN(o.strokeForceN);
     Fill<double>(s.initCurveForceN(static_cast<unsigned>(o.curveForceN.size())), o.curveForceN);
     Fill<double>(s.initCurveTwistDeg(static_cast<unsigned>(o.curveTwistDeg.size())), o.curveTwistDeg);
 }
@@ -346,6 +347,7 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.twistDeg = s.getTwistDeg();
     o.twistPerLengthDegPerMm = s.getTwistPerLengthDegPerMm();
     o.torqueNMm = s.getTorqueNMm();
+    o.strokeForceN = s.getStrokeForceN();
     o.curveForceN = Copy(s.getCurveForceN());
     o.curveTwistDeg = Copy(s.getCurveTwistDeg());
 }

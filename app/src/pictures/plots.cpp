@@ -260,7 +260,8 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
 
 CharacteristicImages CharacteristicCurveImages(const std::string& title, const std::vector<double>& pressures,
                                                const std::vector<std::vector<double>>& contraction, const std::vector<std::vector<double>>& force,
-                                               const sim::SimResult& isometric, const sim::SimResult& freeStroke) {
+                                               const std::vector<std::vector<double>>& ideal, const sim::SimResult& isometric,
+                                               const sim::SimResult& freeStroke) {
     auto plots = MakePlots(1024, 640);
     CharacteristicImages images;
     // Lighter to darker with pressure.
@@ -272,34 +273,41 @@ CharacteristicImages CharacteristicCurveImages(const std::string& title, const s
     isobaric.xLabel = "contraction (percent of the length, positive = shorter)";
     isobaric.yLabel = "force (N, positive = pulls on its supports)";
     isobaric.zeroLine = true;
-    for (size_t k = 0; k < pressures.size(); ++k)
+    render::LineSeries strokes{"free stroke", {}, {}, {0.1f, 0.1f, 0.1f}, true, false};
+    for (size_t k = 0; k < pressures.size(); ++k) {
+        if (k < ideal.size() && !ideal[k].empty()) {
+            // Grey, so that the model's lines stand out; each starts beside its curve's first point.
+            isobaric.series.push_back({k == 0 ? "ideal muscle at each pressure (Tondu and Lopez 2000)" : "", contraction[k], ideal[k], {0.72f, 0.72f, 0.72f}, false});
+        }
         isobaric.series.push_back({fmt::format("{:g} kPa", pressures[k]), contraction[k], force[k], shade(k), true});
+        if (!contraction[k].empty() && force[k].back() == 0) {  // the curve ends at the free state
+            strokes.x.push_back(contraction[k].back());
+            strokes.y.push_back(0);
+        }
+    }
+    if (!strokes.x.empty()) isobaric.series.push_back(strokes);
     images.forceContraction = plots->RenderLines(title + "  -  isobaric force against contraction", {isobaric});
 
     // Both curves start at rest: no pressure, no force, no contraction.
-    render::LinePlot isometricPlot;
-    isometricPlot.xLabel = "gauge pressure (kPa)";
-    isometricPlot.yLabel = "force with the top held at its rest place (N)";
-    isometricPlot.zeroLine = true;
-    render::LineSeries blocked{"isometric (no contraction)", {0.0}, {0.0}, {0.75f, 0.3f, 0.15f}, true};
-    for (size_t s = 0; s < isometric.shell.curvePressureKpa.size() && s < isometric.shell.curveForceN.size(); ++s) {
-        blocked.x.push_back(isometric.shell.curvePressureKpa[s]);
-        blocked.y.push_back(isometric.shell.curveForceN[s]);
-    }
-    isometricPlot.series.push_back(blocked);
-    images.forcePressure = plots->RenderLines(title + "  -  isometric force against pressure", {isometricPlot});
-
-    render::LinePlot stroke;
-    stroke.xLabel = "gauge pressure (kPa)";
-    stroke.yLabel = "free stroke (contraction, percent, positive = shorter)";
-    stroke.zeroLine = true;
-    render::LineSeries free{"free (no load on the top)", {0.0}, {0.0}, {0.13f, 0.35f, 0.75f}, true};
-    for (size_t s = 0; s < freeStroke.shell.curvePressureKpa.size() && s < freeStroke.shell.curveContractionPercent.size(); ++s) {
-        free.x.push_back(freeStroke.shell.curvePressureKpa[s]);
-        free.y.push_back(freeStroke.shell.curveContractionPercent[s]);
-    }
-    stroke.series.push_back(free);
-    images.strokePressure = plots->RenderLines(title + "  -  free stroke against pressure", {stroke});
+    auto overPressure = [&](const char* yLabel, const char* label, const std::vector<double>& values, const sim::SimResult& r, render::Rgb colour) {
+        render::LinePlot plot;
+        plot.xLabel = "gauge pressure (kPa)";
+        plot.yLabel = yLabel;
+        plot.zeroLine = true;
+        render::LineSeries curve{label, {0.0}, {0.0}, colour, true};
+        for (size_t s = 0; s < r.shell.curvePressureKpa.size() && s < values.size(); ++s) {
+            curve.x.push_back(r.shell.curvePressureKpa[s]);
+            curve.y.push_back(values[s]);
+        }
+        plot.series.push_back(curve);
+        return plot;
+    };
+    images.forcePressure = plots->RenderLines(title + "  -  isometric force against pressure",
+                                              {overPressure("force with the top held at its rest place (N)", "isometric (no contraction)",
+                                                            isometric.shell.curveForceN, isometric, {0.75f, 0.3f, 0.15f})});
+    images.strokePressure = plots->RenderLines(title + "  -  free stroke against pressure",
+                                               {overPressure("free stroke (contraction, percent, positive = shorter)", "free (no load on the top)",
+                                                             freeStroke.shell.curveContractionPercent, freeStroke, {0.13f, 0.35f, 0.75f})});
     return images;
 }
 

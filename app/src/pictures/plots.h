@@ -59,13 +59,15 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
 // A muscle's characteristic curves (actuator characterize): the isobaric force against contraction,
 // one line per pressure (contraction[k], force[k] at pressures[k], NaN where a point failed); the
 // isometric force against pressure (the blocked result's load steps); the free stroke against
-// pressure (the free result's load steps).
+// pressure (the free result's load steps). `ideal`, when not empty, is the ideal muscle's force at
+// the same points (braided cylinders), drawn faint beside each curve.
 struct CharacteristicImages {
     render::Image forceContraction, forcePressure, strokePressure;
 };
 CharacteristicImages CharacteristicCurveImages(const std::string& title, const std::vector<double>& pressures,
                                                const std::vector<std::vector<double>>& contraction, const std::vector<std::vector<double>>& force,
-                                               const sim::SimResult& isometric, const sim::SimResult& freeStroke);
+                                               const std::vector<std::vector<double>>& ideal, const sim::SimResult& isometric,
+                                               const sim::SimResult& freeStroke);
 
 // How a sweep axis is named on plots, e.g. "amplitude A".
 std::string AxisLabel(sim::SweepParameter parameter);

@@ -81,7 +81,7 @@ void VisitFields(Def& l, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("force_n", l.forceN, "axial force on the top clamp, N, + pulls it up: alone (load force) or with the pressure (inflate, gas, volume)",
              -1e6, 1e6);
     v.Number("volume_ratio", l.volumeRatio, "target enclosed volume over the rest volume (load volume)", 1e-3, 1e3);
-    v.Number("held_contraction_percent", l.heldContractionPercent,
+    v.Number("stroke_percent", l.strokePercent,
              "load blocked: the top held this far below its rest place, % of the length (0: the blocking force)", -100, 100);
     v.Enum("twist", l.twist, "the top clamp's turn about the axis: free, held (its torque reported) or loaded (torque_n_mm)");
     v.Number("torque_n_mm", l.torqueNMm, "twist loaded: torque on the top clamp, N mm, + right-handed about +z", -1e9, 1e9);
@@ -177,7 +177,7 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     using M = sim::MaterialLaw;
     if (key == "pressure_kpa") return unless(load == L::Inflate || load == L::Gas || load == L::Blocked, "kind", "inflate, gas or blocked", sim::Name(load));
     if (key == "force_n") return unless(load != L::Blocked, "kind", "inflate, gas, volume or force", sim::Name(load));
-    if (key == "held_contraction_percent") return unless(load == L::Blocked, "kind", "blocked", sim::Name(load));
+    if (key == "stroke_percent") return unless(load == L::Blocked, "kind", "blocked", sim::Name(load));
     if (key == "torque_n_mm") return unless(def.load.twist == sim::TwistEnd::Loaded, "twist", "loaded", sim::Name(def.load.twist));
     // Sliding ends hold the tube's rotation by an anchor; only clamps turn.
     if (key == "twist") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));

@@ -22,6 +22,7 @@ struct ShellOutputs {
     double targetPressureKpa = NAN;                // the pressure the contraction is reported at
     double limitPressureKpa = NAN;                 // the pressure maximum, when met
     double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
+    double strokeForceN = NAN;                     // blocked: the top held at its stroke (the isobaric test's force), likewise
     double axialStiffnessNPerMm = NAN;             // dF/du at the free equilibrium
     double restVolumeMm3 = NAN, volumeMm3 = NAN;   // enclosed, caps included
     double maxStretch = NAN;                       // largest principal stretch of the wall

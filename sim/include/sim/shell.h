@@ -92,8 +92,8 @@ struct LoadDef {
     double forceN = 0;         // axial force on the top clamp, + pulls it up: alone (Force), or with
                                // the pressure or volume (Inflate, Gas, Volume: a hanging load)
     double volumeRatio = 1.5;  // target enclosed volume over the rest volume (Volume)
-    double heldContractionPercent = 0;  // Blocked: the top held this far below its rest place, % of
-                                        // the length (the isobaric test; 0: the blocking force)
+    double strokePercent = 0;  // Blocked: the top held this far below its rest place, % of the
+                               // length (the isobaric test; 0: the blocking force)
     TwistEnd twist = TwistEnd::Free;
     double torqueNMm = 0;      // twist Loaded: torque on the top clamp, N mm, + turns it right-handed about +z
     int steps = 4;             // load steps: the contraction-pressure curve's points

@@ -89,7 +89,7 @@ std::string ShellDefError(const ShellDef& d) {
     if (!positive(l.volumeRatio)) return "the volume ratio must be positive";
     if (l.steps < 1 || l.steps > 1000) return "load steps must be between 1 and 1000";
     if (!std::isfinite(l.torqueNMm)) return "the torque must be a finite number";
-    if (!(std::isfinite(l.heldContractionPercent) && l.heldContractionPercent > -100 && l.heldContractionPercent < 100))
+    if (!(std::isfinite(l.strokePercent) && l.strokePercent > -100 && l.strokePercent < 100))
         return "the held contraction must be a percentage of the length between -100 and 100";
     if (l.twist == TwistEnd::Loaded && d.geometry.ends != EndCondition::Clamped) return "a torque needs clamped ends (sliding ends cannot turn)";
     const FibreDef& f = d.fibres;

@@ -641,7 +641,7 @@ struct TubeEvaluation {
         return l;
     }
     // The held stroke at fraction s (the blocked test): u, mm (0 for the blocking force).
-    double HeldAxialAt(double s) const { return -s * load.heldContractionPercent * 1e-2 * length; }
+    double HeldAxialAt(double s) const { return -s * load.strokePercent * 1e-2 * length; }
     // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
     // current state q); a prescribed one is s times the target, exactly the target at s = 1.
     double GaugeKpa(double s) {
@@ -827,7 +827,8 @@ Eigen::VectorXd AxialStiffness(TubeEvaluation& t, int negativePivots) {
 void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::VectorXd& axialResponse) {
     const ShellProblem& problem = t.problem;
     if (t.load.kind == ShellLoad::Blocked) {
-        t.out.blockingForceN = AssembleEnergy(problem, t.q, finalLoad, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+        t.out.strokeForceN = AssembleEnergy(problem, t.q, finalLoad, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+        if (t.load.strokePercent == 0) t.out.blockingForceN = t.out.strokeForceN;  // held at its rest place
         return;
     }
     if (t.load.kind != ShellLoad::Inflate && t.load.kind != ShellLoad::Gas) return;

@@ -418,7 +418,7 @@ TEST_F(Hardening, FlagsTakeNoValueAndOptionsWithoutEffectAreRefused) {
     ExpectRefused("render --model thesis --shape sine --video=1 --out " + Path("r"), "--video takes no value");
     EXPECT_FALSE(fs::exists(Path("r")));
     ExpectRefused("evolve " + Ga(1) + " --out " + Path("r") + " --threads 2 --workers 127.0.0.1:1", "--threads counts this machine's threads");
-    ExpectRefused("simulate --model shell --shape cylinder --held-contraction-percent 3", "--held-contraction-percent applies to --load blocked, not --load inflate");
+    ExpectRefused("simulate --model shell --shape cylinder --stroke-percent 3", "--stroke-percent applies to --load blocked, not --load inflate");
     ExpectRefused("simulate --model shell --shape cylinder --load blocked --force-n 3", "--force-n applies to --load inflate, gas, volume or force, not --load blocked");
     ExpectRefused("simulate --model shell --shape cylinder --torque-n-mm 3", "--torque-n-mm applies to --twist loaded, not --twist free");
     ExpectRefused("simulate --model shell --load force --pressure-kpa 20", "--pressure-kpa applies to --load inflate, gas or blocked, not --load force");

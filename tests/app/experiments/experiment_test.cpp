@@ -107,8 +107,8 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     };
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "blocked", "force_n": 2})")),
                 HasSubstr("'model.load.force_n': has no effect here: it applies when \"kind\" is inflate, gas, volume or force, not blocked"));
-    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "inflate", "held_contraction_percent": 5})")),
-                HasSubstr("'model.load.held_contraction_percent': has no effect here: it applies when \"kind\" is blocked, not inflate"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"kind": "inflate", "stroke_percent": 5})")),
+                HasSubstr("'model.load.stroke_percent': has no effect here: it applies when \"kind\" is blocked, not inflate"));
     EXPECT_THAT(Refusal(shell(R"("load": {"torque_n_mm": 5})")), HasSubstr("applies when \"twist\" is loaded, not free"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "force", "pressure_kpa": 20})")), HasSubstr("\"kind\" is inflate, gas or blocked, not force"));
     EXPECT_THAT(Refusal(shell(R"("load": {"volume_ratio": 2})")), HasSubstr("'model.load.volume_ratio'"));

@@ -81,7 +81,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     d.load.pressureKpa = 12.5;
     d.load.forceN = -0.25;
     d.load.volumeRatio = 1.75;
-    d.load.heldContractionPercent = 7.5;
+    d.load.strokePercent = 7.5;
     d.load.twist = sim::TwistEnd::Loaded;
     d.load.torqueNMm = -3.25;
     d.load.steps = 9;
@@ -100,9 +100,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
                        b.material.tensileStrengthKpa, b.material.elongationAtBreak, b.material.stretchLimit, b.material.densityKgPerM3),
               std::tie(d.material.preset, d.material.law, d.material.muKpa, d.material.c10Kpa, d.material.c01Kpa, d.material.c20Kpa, d.material.c30Kpa,
                        d.material.tensileStrengthKpa, d.material.elongationAtBreak, d.material.stretchLimit, d.material.densityKgPerM3));
-    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.heldContractionPercent, b.load.twist, b.load.torqueNMm,
+    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.strokePercent, b.load.twist, b.load.torqueNMm,
                        b.load.steps),
-              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.heldContractionPercent, d.load.twist, d.load.torqueNMm,
+              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.strokePercent, d.load.twist, d.load.torqueNMm,
                        d.load.steps));
     EXPECT_EQ(std::tie(b.solver.tolerance, b.solver.maxIterations, b.solver.maxBisections, b.solver.selfContact),
               std::tie(d.solver.tolerance, d.solver.maxIterations, d.solver.maxBisections, d.solver.selfContact));
@@ -130,6 +130,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     o.twistDeg = 12.5;
     o.twistPerLengthDegPerMm = 0.125;
     o.torqueNMm = -2.5;
+    o.strokeForceN = 0.375;
     o.curveForceN = {0, 0.5, 0.75};
     o.curveTwistDeg = {1, 2, 4};
     capnp::MallocMessageBuilder resultMessage;
@@ -143,7 +144,8 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     EXPECT_EQ(g.curveVolumeMm3, o.curveVolumeMm3);
     EXPECT_EQ(g.curveForceN, o.curveForceN);
     EXPECT_EQ(g.curveTwistDeg, o.curveTwistDeg);
-    EXPECT_EQ(std::tie(g.twistDeg, g.twistPerLengthDegPerMm, g.torqueNMm), std::tie(o.twistDeg, o.twistPerLengthDegPerMm, o.torqueNMm));
+    EXPECT_EQ(std::tie(g.twistDeg, g.twistPerLengthDegPerMm, g.torqueNMm, g.strokeForceN),
+              std::tie(o.twistDeg, o.twistPerLengthDegPerMm, o.torqueNMm, o.strokeForceN));
     EXPECT_EQ(std::tie(g.targetPressureKpa, g.limitPressureKpa, g.blockingForceN, g.axialStiffnessNPerMm, g.restVolumeMm3, g.volumeMm3, g.maxStretch,
                        g.maxStressKpa, g.stretchLimit, g.tensileStrengthKpa, g.displacementMm, g.newtonIterations, g.factorizations),
               std::tie(o.targetPressureKpa, o.limitPressureKpa, o.blockingForceN, o.axialStiffnessNPerMm, o.restVolumeMm3, o.volumeMm3, o.maxStretch,
