@@ -8,7 +8,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <atomic>
 #include <iostream>
+#include <thread>
 #include <numbers>
 
 #include "commands/registry.h"
@@ -109,41 +111,46 @@ static int RunCharacterize(int argc, char** argv, int first) {
     const sim::SimResult& isometric = firstResults.back();
     const sim::SimResult& freeAtTop = firstResults[pressures.size() - 1];
 
-    // Then each isobaric curve: the top held from its rest place towards the free stroke; the curve
-    // ends at the free state itself, where the muscle pulls with nothing. (The held test steps the
-    // stroke with the pressure from rest, and held at the free stroke that path can buckle the wall
-    // where inflating freely does not.)
-    std::vector<sim::EvalJob> held;
-    std::vector<std::pair<size_t, double>> heldAt;  // (pressure index, contraction %)
-    for (size_t k = 0; k < pressures.size(); ++k) {
-        const sim::SimResult& free = firstResults[k];
-        if (free.status != sim::Status::Ok) continue;
-        const double stroke = std::max(0.0, free.contractionPercent);  // a tube that lengthens has its force at no contraction only
-        for (int i = 0; i + 1 < points || (i == 0 && stroke == 0); ++i) {
-            const double contraction = stroke * i / (points - 1);
-            held.push_back(AtLoad(base, sim::ShellLoad::Blocked, pressures[k], contraction));
-            heldAt.push_back({k, contraction});
-            if (stroke == 0) break;
-        }
+    // Then each isobaric curve as a bench takes it: inflated freely, then the top held at the free
+    // stroke's fractions from the largest down to none, each held state from the last. The free
+    // state closes the curve (where the muscle pulls with nothing). One pressure per thread.
+    std::vector<double> fractions;
+    for (int i = 0; i + 1 < points; ++i) fractions.push_back(double(i) / (points - 1));
+    const bool bending = base.model == sim::ModelKind::Shell;  // the shell model is the membrane with bending
+    std::vector<std::vector<sim::IsobaricPoint>> isobaric(pressures.size());
+    {
+        std::atomic<size_t> next{0};
+        auto work = [&] {
+            for (size_t k = next++; k < pressures.size(); k = next++) {
+                const sim::EvalJob job = AtLoad(base, sim::ShellLoad::Inflate, pressures[k]);
+                isobaric[k] = sim::IsobaricForces(job.shape, job.Shell(), bending, fractions, firstResults[k]);
+            }
+        };
+        const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+        const unsigned count = std::min<unsigned>(static_cast<unsigned>(pressures.size()), threads > 0 ? static_cast<unsigned>(threads) : hardware);
+        std::vector<std::thread> pool;
+        for (unsigned w = 1; w < count; ++w) pool.emplace_back(work);
+        work();
+        for (auto& thread : pool) thread.join();
     }
-    const std::vector<sim::SimResult> heldResults = evaluator->EvaluateAll(held);
 
     Table table(std::vector<std::string>{"curve", "pressure_kpa", "contraction_percent", "force_n", "twist_deg", "status"});
-    auto number = [](const sim::SimResult& r, double value) { return r.status == sim::Status::Ok ? CsvNumber(value) : std::string(); };
     std::vector<std::vector<double>> curveContraction(pressures.size()), curveForce(pressures.size());
-    for (size_t j = 0; j < held.size(); ++j) {
-        const sim::SimResult& r = heldResults[j];
-        const auto [k, contraction] = heldAt[j];
-        table.AddRow({"isobaric", CsvNumber(pressures[k]), CsvNumber(contraction), number(r, r.shell.strokeForceN), number(r, r.shell.twistDeg),
-                      sim::Name(r.status)});
-        curveContraction[k].push_back(contraction);
-        curveForce[k].push_back(r.status == sim::Status::Ok ? r.shell.strokeForceN : NAN);
-        const bool last = j + 1 == held.size() || heldAt[j + 1].first != k;
-        if (last && contraction > 0) {  // the free state closes the curve
-            const sim::SimResult& free = firstResults[k];
+    for (size_t k = 0; k < pressures.size(); ++k) {
+        const sim::SimResult& free = firstResults[k];
+        for (const sim::IsobaricPoint& point : isobaric[k]) {
+            const bool ok = point.status == sim::Status::Ok;
+            table.AddRow({"isobaric", CsvNumber(pressures[k]), CsvNumber(point.strokePercent), ok ? CsvNumber(point.forceN) : "",
+                          ok ? CsvNumber(point.twistDeg) : "", sim::Name(point.status)});
+            curveContraction[k].push_back(point.strokePercent);
+            curveForce[k].push_back(ok ? point.forceN : NAN);
+        }
+        if (free.status == sim::Status::Ok) {  // the free state closes the curve
             table.AddRow({"isobaric", CsvNumber(pressures[k]), CsvNumber(free.contractionPercent), "0", CsvNumber(free.shell.twistDeg), "ok"});
             curveContraction[k].push_back(free.contractionPercent);
             curveForce[k].push_back(0);
+        } else {
+            table.AddRow({"isobaric", CsvNumber(pressures[k]), "", "", "", sim::Name(free.status)});
         }
     }
     const sim::ShellOutputs& iso = isometric.shell;

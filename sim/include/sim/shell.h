@@ -159,6 +159,20 @@ constexpr double kMaxEvaluationBytes = 8.0 * 1024 * 1024 * 1024;
 // A design evaluated under a shell model (bending on: `shell`; off: `membrane`). Pure and thread-safe.
 SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending);
 
+// The isobaric test as a bench does it: inflated freely to `inflate`'s pressure (`free` is that
+// evaluation, EvaluateShell's, which gives the free stroke), then the top held at fractions of the
+// free stroke in turn, from the largest down (each held state from the last), the force and twist
+// read at each. In increasing order of stroke; empty when the free inflation failed. A point that
+// fails has its status and NaN numbers.
+struct IsobaricPoint {
+    double strokePercent = 0;  // contraction held, % of the length
+    double forceN = NAN;       // the force the muscle pulls with there (+ pulls on its supports)
+    double twistDeg = NAN;
+    Status status = Status::Ok;
+};
+std::vector<IsobaricPoint> IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions,
+                                          const SimResult& free);
+
 // The wall's triangles (and caps) and edges for drawing, in the model's vertex order.
 Surface ShellSurface(const GeometryDef& geometry);
 

@@ -86,6 +86,14 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
     slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
     twistSlot = slot(p.twist, p.twist);
+    auto turned = [&](const int* vertices, int count) {
+        for (int k = 0; k < count; ++k)
+            if (p.dofOf[3 * vertices[k]] == kTwist) return char(1);
+        return char(0);
+    };
+    for (const auto& t : p.wall) wallTurned.push_back(turned(t.data(), 3));
+    for (const auto& t : p.caps) capTurned.push_back(turned(t.data(), 3));
+    for (const auto& h : p.hinges) hingeTurned.push_back(turned(h.data(), 4));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -141,10 +149,8 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         }
     };
     // An element's Hessian over its vertices' coordinates into the unknowns': a turned coordinate's
-    // rows and columns scaled by its lever.
-    auto addHessian = [&](const int* slots, const double* local, int count, const int* vertices) {
-        bool turned = false;
-        for (int k = 0; k < count && !turned; ++k) turned = p.dofOf[3 * vertices[k / 3] + k % 3] == kTwist;
+    // rows and columns scaled by its lever (`turned`: the element has one, from the pattern).
+    auto addHessian = [&](const int* slots, const double* local, int count, const int* vertices, bool turned) {
         if (!turned) {
             for (int i = 0; i < count * count; ++i)
                 if (slots[i] >= 0) values[slots[i]] += local[i];
@@ -204,7 +210,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                                     for (int be = 0; be < 2; ++be) sum += rest.g[a][al] * rest.g[b][be] * hF(3 * al + i, 3 * be + j);
                                 local[(3 * a + i) * 9 + 3 * b + j] = rest.area * sum;
                             }
-                addHessian(&hessian->wallSlots[81 * t], local, 9, tri.data());
+                addHessian(&hessian->wallSlots[81 * t], local, 9, tri.data(), hessian->wallTurned[t]);
             }
         }
     }
@@ -228,7 +234,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                 // Gauss-Newton (2k g g^T) for Newton's steps: positive semi-definite by construction.
                 Eigen::Matrix<double, 12, 12, Eigen::RowMajor> local = 2 * stiffness * gTheta * gTheta.transpose();
                 if (exactHessian) local += 2 * stiffness * d * hTheta;
-                addHessian(&hessian->hingeSlots[144 * k], local.data(), 12, h.data());
+                addHessian(&hessian->hingeSlots[144 * k], local.data(), 12, h.data(), hessian->hingeTurned[k]);
             }
         }
     }
@@ -273,7 +279,8 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                         local.block<3, 3>(3 * k, 3 * next) = -pressure * -cross(*corner[last]) / 6;
                         local.block<3, 3>(3 * next, 3 * k) = -pressure * cross(*corner[last]) / 6;
                     }
-                    addHessian(caps ? &hessian->capSlots[81 * capIndex] : &hessian->wallSlots[81 * t], local.data(), 9, tri.data());
+                    addHessian(caps ? &hessian->capSlots[81 * capIndex] : &hessian->wallSlots[81 * t], local.data(), 9, tri.data(),
+                               caps ? hessian->capTurned[capIndex] : hessian->wallTurned[t]);
                 }
                 if (caps) ++capIndex;
             }
@@ -340,7 +347,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             Eigen::MatrixXd local = Eigen::MatrixXd::Zero(3 * n, 3 * n);
             for (const auto& a : rows) local += an.stiffness * a * a.transpose();
             Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rowMajor = local;
-            addHessian(hessian->anchorSlots.data(), rowMajor.data(), 3 * n, an.vertices.data());
+            addHessian(hessian->anchorSlots.data(), rowMajor.data(), 3 * n, an.vertices.data(), false);  // sliding ends: no turned coordinates
         }
     }
     // The turn's own curvature: exact, or (for Newton's steps) only where it stiffens.

@@ -185,6 +185,7 @@ public:
     std::vector<int> wallSlots, hingeSlots, capSlots;  // per element: 81, 144 or 81 value indices (-1: none)
     std::vector<int> anchorSlots;                      // the anchor's dense block
     int twistSlot = -1;                                // (theta, theta): the clamp's turn's own curvature
+    std::vector<char> wallTurned, capTurned, hingeTurned;  // per element: a corner rides on the clamp's turn
 };
 
 struct EnergyResult {

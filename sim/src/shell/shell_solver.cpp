@@ -863,6 +863,51 @@ Status JudgeEquilibrium(TubeEvaluation& t, int negativePivots) {
 
 }  // namespace
 
+std::vector<IsobaricPoint> IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions,
+                                          const SimResult& free) {
+    std::vector<IsobaricPoint> points;
+    if (free.status != Status::Ok || inflate.load.kind != ShellLoad::Inflate) return points;
+    // Again to the free equilibrium (the evaluation keeps no solver state), then held at each stroke
+    // in turn, from the free stroke down to none: each held state starts from the last.
+    std::string error;
+    const ShellProblem problem = BuildTubeProblem(inflate, shape, bending, &error);
+    if (!error.empty()) return points;
+    ShellOutputs scratch;
+    TubeEvaluation t(inflate, problem, scratch);
+    if (FollowLoadPath(t) != Status::Ok) return points;
+    const LoadTerms finalLoad = t.FinalLoad();
+    if (SettleOnStableState(t, finalLoad) != 0) return points;
+    const double freeU = t.q[problem.axial];
+    t.solver.holdAxial = true;
+    std::vector<double> order(fractions);
+    std::sort(order.begin(), order.end(), std::greater<>());
+    for (double fraction : order) {
+        IsobaricPoint point;
+        point.strokePercent = fraction * free.contractionPercent;
+        Eigen::VectorXd held = t.q;
+        held[problem.axial] = fraction * freeU;
+        if (t.solver.Minimise(held, finalLoad) != NewtonEnd::Converged) {
+            point.status = Status::NotConverged;
+        } else {
+            Positions x;
+            PositionsOf(problem, held, x);
+            EnergyResult exact;
+            const int negative = t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, x)), &exact);
+            PositionsOf(problem, held, x);
+            if (negative != 0) point.status = Status::LimitPoint;
+            else if (inflate.solver.selfContact && SelfIntersects(problem, x)) point.status = Status::SelfIntersection;
+            else {
+                point.forceN = exact.axialForce;
+                point.twistDeg = (problem.twist >= 0 ? held[problem.twist] : problem.heldTwist) * 180 / std::numbers::pi;
+                t.q = held;  // the next stroke starts here
+            }
+        }
+        points.push_back(point);
+    }
+    std::reverse(points.begin(), points.end());  // in the order of increasing stroke, as `fractions` sorted
+    return points;
+}
+
 // The evaluation as its pipeline: build the tube, follow the load path, settle on a stable state,
 // measure, judge, stiffness and blocking force, then the stretch verdict. Each output is written by
 // one stage (the solver's counters once, at the end).
