@@ -49,10 +49,9 @@ std::vector<double> ParsePressures(const std::string& text) {
     return pressures;
 }
 
-sim::EvalJob AtLoad(sim::EvalJob job, sim::ShellLoad kind, double pressureKpa, double strokePercent = 0) {
+sim::EvalJob AtLoad(sim::EvalJob job, sim::ShellLoad kind, double pressureKpa) {
     job.Shell().load.kind = kind;
     job.Shell().load.pressureKpa = pressureKpa;
-    job.Shell().load.strokePercent = strokePercent;
     return job;
 }
 

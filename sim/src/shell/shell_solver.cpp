@@ -827,7 +827,7 @@ Eigen::VectorXd AxialStiffness(TubeEvaluation& t, int negativePivots) {
 void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::VectorXd& axialResponse) {
     const ShellProblem& problem = t.problem;
     if (t.load.kind == ShellLoad::Blocked) {
-        t.out.strokeForceN = AssembleEnergy(problem, t.q, finalLoad, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce;
+        t.out.strokeForceN = t.out.curveForceN.back();  // the end state's reaction, recorded with the curve
         if (t.load.strokePercent == 0) t.out.blockingForceN = t.out.strokeForceN;  // held at its rest place
         return;
     }
