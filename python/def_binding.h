@@ -67,16 +67,25 @@ struct FieldWriter {
     }
 };
 
+// The fields a def's Python class has: its fields, and for the load its kind, which the command line
+// takes as --load and an experiment file as "kind" (every model's --load shares one option).
+template <class Def, class Visitor>
+void VisitBoundFields(Def& def, Visitor&& v) {
+    if constexpr (std::is_same_v<std::remove_const_t<Def>, sim::LoadDef>)
+        v.Enum("kind", def.kind, "inflate, gas, volume, force or blocked: what is held and what is stepped (docs/models/shell.md sections 6 and 12)");
+    sim::VisitFields(def, v);
+}
+
 template <class Def>
 py::object GetField(const Def& def, const std::string& key) {
     py::object out;
-    sim::VisitFields(def, FieldReader{key, out});
+    VisitBoundFields(def, FieldReader{key, out});
     return out;
 }
 
 template <class Def>
 void SetField(Def& def, const std::string& key, const py::object& value) {
-    sim::VisitFields(def, FieldWriter{key, value});
+    VisitBoundFields(def, FieldWriter{key, value});
 }
 
 template <class Def>
@@ -104,7 +113,7 @@ py::class_<Def> BindDef(py::module_& m, const char* name, const char* doc, Def d
     py::class_<Def> cls(m, name, doc);
     std::vector<std::string> keys;
     Def probe = defaults;
-    sim::VisitFields(probe, FieldLister<Def>{keys, cls});
+    VisitBoundFields(probe, FieldLister<Def>{keys, cls});
     cls.def(py::init([defaults, keys](const py::kwargs& kwargs) {
         Def def = defaults;
         for (const auto& [key, value] : kwargs) {

@@ -77,7 +77,7 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     if (job.Shell().fibres.layout != FibreLayout::None) {
         v.Number("max_fibre_strain", "", s.maxFibreStrain);
         v.Number("mean_fibre_strain", "", s.meanFibreStrain);
-        v.Number("fibre_angle_deg", "deg", s.fibreAngleDeg);
+        v.Number("deformed_fibre_angle_deg", "deg", s.fibreAngleDeg);  // beside the laid angle, the setting fibre_angle_deg
     }
     v.Count("newton_iterations", s.newtonIterations);
     v.Count("factorizations", s.factorizations);
@@ -156,7 +156,7 @@ void VisitOutputs(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Number("elapsed_ms", "ms", r.elapsedMs);
 }
 
-std::vector<std::string> OutputNames(bool withTime) {
+std::vector<std::string> OutputNames(const std::vector<EvalJob>& jobs, bool withTime) {
     struct Names final : OutputVisitor {
         std::vector<std::string> names;
         bool withTime = false;
@@ -169,13 +169,18 @@ std::vector<std::string> OutputNames(bool withTime) {
         void Curve(const char*, const char*, const std::vector<double>&) override {}
     } names;
     names.withTime = withTime;
+    for (const EvalJob& job : jobs) VisitOutputs(SimResult{}, job, names);
+    return names.names;
+}
+
+std::vector<std::string> OutputNames(bool withTime) {
+    std::vector<EvalJob> jobs;
     for (const Model& model : kModels) {
-        EvalJob job;
+        EvalJob& job = jobs.emplace_back();
         job.SetModel(model.kind);
         if (auto* shell = std::get_if<ShellDef>(&job.def)) shell->fibres.layout = FibreLayout::Braid;  // every output a shell job can have
-        VisitOutputs(SimResult{}, job, names);
     }
-    return names.names;
+    return OutputNames(jobs, withTime);
 }
 
 std::string JobError(const EvalJob& job) {

@@ -413,3 +413,24 @@ def test_a_field_without_effect_is_refused_as_on_the_command_line():
     r = actuator.evaluate(actuator.cylinder(), model="shell", geometry=small, load=actuator.Load(pressure_kpa=1, steps=1),
                           fibres=actuator.Fibres(fibres="braid", fibre_angle_deg=40))
     assert r.status == "ok" and r.contraction_percent > 0
+
+
+def test_every_load_kind_runs_from_python_as_from_the_command_line():
+    small = dict(model="membrane", geometry=actuator.Geometry(ring_vertices=12, rings=16), fibres=actuator.Fibres(fibres="braid", fibre_angle_deg=30))
+    load = actuator.Load(kind="blocked", pressure_kpa=10, stroke_percent=2, steps=2)
+    assert load.kind == "blocked"
+    r = actuator.evaluate(actuator.cylinder(), load=load, **small)
+    assert r.status == "ok"
+    # The isobaric test: the braid pulls on the top held at 2 %, and more as the pressure rises.
+    forces = r.shell["curve_force_n"]
+    assert len(forces) == 2 and 0 < forces[0] < forces[1] == r.shell["stroke_force_n"]
+    out = subprocess.run([os.environ["ACTUATOR_BIN"], "simulate", "--model", "membrane", "--ring-vertices", "12", "--rings", "16",
+                          "--fibres", "braid", "--fibre-angle-deg", "30", "--load", "blocked", "--pressure-kpa", "10", "--stroke-percent", "2",
+                          "--steps", "2"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    cli = json.loads(out.stdout)
+    assert cli["stroke_force_n"] == pytest.approx(r.shell["stroke_force_n"], rel=1e-12)
+    with pytest.raises(ValueError, match="kind: unknown value 'push' \\(choose inflate, gas, volume, force or blocked\\)"):
+        actuator.Load(kind="push")
+    with pytest.raises(ValueError, match="stroke_percent: has no effect: it applies when kind is blocked, not force"):
+        actuator.evaluate(actuator.cylinder(), load=actuator.Load(kind="force", stroke_percent=5), **small)

@@ -91,6 +91,12 @@ public:
         return object_.contains(key);
     }
     std::string Child(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+    // The keys the file gives, in its order.
+    std::vector<std::string> GivenKeys() const {
+        std::vector<std::string> keys;
+        for (const auto& [key, value] : object_.items()) keys.push_back(key);
+        return keys;
+    }
     const Source& Origin() const { return source_; }
 
     [[noreturn]] void Fail(const std::string& reason, const std::string& key = "") const {
@@ -372,10 +378,10 @@ LabelledShape ParseListedShape(ObjectReader shape, size_t k, const sim::MeshDef&
 }
 
 // A given key of a shell model block that has no effect under the definition is refused, naming
-// what decides: '"kind": "force"' for the load's keys, '"law"' for the material's, and so on.
-void RefuseKeysWithoutEffect(ObjectReader& block, const sim::ShellDef& shell, std::initializer_list<const char*> keys) {
-    for (const char* key : keys) {
-        if (!block.Has(key)) continue;
+// what decides: '"kind": "force"' for the load's keys, '"law"' for the material's, and so on. The
+// rules are the def's (sim::ShellFieldUse), the same the command line and Python are held to.
+void RefuseKeysWithoutEffect(const ObjectReader& block, const sim::ShellDef& shell) {
+    for (const std::string& key : block.GivenKeys()) {
         const sim::FieldUse use = ShellFieldUse(shell, key);
         if (!use.Applies())
             block.Fail(fmt::format("has no effect here: it applies when \"{}\" is {}, not {}", use.decider, use.values, use.now), key);
@@ -396,7 +402,7 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
     if (model.Has("geometry")) {
         ObjectReader geometry = model.Object("geometry");
         geometry.Fields(shell.geometry);
-        RefuseKeysWithoutEffect(geometry, shell, {"clamp_rings"});
+        RefuseKeysWithoutEffect(geometry, shell);
         geometry.Finish();
     }
     if (model.Has("material")) {
@@ -406,7 +412,7 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         sim::MaterialDef given = shell.material;
         material.Fields(given);
         shell.material = MaterialWithOverrides(preset, given, [&](const char* key) { return material.Has(key); });
-        RefuseKeysWithoutEffect(material, shell, {"mu_kpa", "c10_kpa", "c01_kpa", "c20_kpa", "c30_kpa"});
+        RefuseKeysWithoutEffect(material, shell);
         // Experiments evaluate; nothing in them weighs the silicone (export does, from its own options).
         if (material.Has("density_kg_per_m3")) material.Fail("has no effect in an experiment: nothing here weighs the silicone", "density_kg_per_m3");
         material.Finish();
@@ -415,13 +421,13 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         ObjectReader load = model.Object("load");
         load.Enum("kind", shell.load.kind);
         load.Fields(shell.load);
-        RefuseKeysWithoutEffect(load, shell, {"pressure_kpa", "force_n", "volume_ratio", "stroke_percent", "twist", "torque_n_mm"});
+        RefuseKeysWithoutEffect(load, shell);
         load.Finish();
     }
     if (model.Has("solver")) {
         ObjectReader solver = model.Object("solver");
         solver.Fields(shell.solver);
-        RefuseKeysWithoutEffect(solver, shell, {"max_bisections"});
+        RefuseKeysWithoutEffect(solver, shell);
         solver.Finish();
     }
     // Fibres: the command line's keys, plus angles by band along the length or by sector.
@@ -441,11 +447,7 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
     if (model.Has("fibre_sectors_deg"))
         for (const auto& angle : model.Array("fibre_sectors_deg", 1, 4, "a list of 1, 2 or 4 angles (degrees)"))
             shell.fibres.sectorAnglesDeg.push_back(model.NumberValue(angle, "fibre_sectors_deg", -90, 90));
-    RefuseKeysWithoutEffect(model, shell, {"fibre_angle_deg", "fibre_stiffness_n_per_mm"});
-    if ((model.Has("fibre_bands") || model.Has("fibre_sectors_deg")) &&
-        (shell.fibres.layout != sim::FibreLayout::Braid && shell.fibres.layout != sim::FibreLayout::Single))
-        model.Fail(fmt::format("has no effect here: it applies when \"fibres\" is braid or single, not {}", sim::Name(shell.fibres.layout)),
-                   model.Has("fibre_bands") ? "fibre_bands" : "fibre_sectors_deg");
+    RefuseKeysWithoutEffect(model, shell);
     model.Finish();
     if (const std::string error = sim::ShellDefError(shell); !error.empty()) model.Fail(error);
 }

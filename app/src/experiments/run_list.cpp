@@ -1,9 +1,11 @@
 // A list of given shapes (thesis chapter 6's stretch tests): each evaluated once under the
 // experiment's load, tabulated beside the thesis's number, and pictured before and after.
 // Resumable: shapes are archived in order, so a resume continues after the last archived one.
+#include <map>
 #include <fmt/format.h>
 
 #include "formats/csv.h"
+#include "formats/evaluation_log.h"
 #include "formats/table.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
@@ -34,15 +36,22 @@ void RunList(RunContext& c) {
     });
 
     // Table and figures from the archive: the same whether the run was resumed or not.
-    Table table(std::vector<std::string>{"evaluation", "label", "fitness", "contraction_percent", "status", "iterations", "thesis_fitness"});
-    std::unique_ptr<render::MeshRenderer> renderer;
     const sim::EvalJob base = JobOf(e, sim::CylinderShape{});
+    std::vector<std::string> header{"evaluation", "label", "status"};
+    const std::vector<std::string> outputs = sim::OutputNames({base}, false);
+    header.insert(header.end(), outputs.begin(), outputs.end());
+    header.push_back("thesis_fitness");
+    Table table(header);
+    std::unique_ptr<render::MeshRenderer> renderer;
     const std::string load = sim::ModelOf(base).loadName(base);
     c.recorder.ForEachRecord(0, n, [&](ArchiveRecord&& r) {
         const LabelledShape& shape = e.shapes[r.id];
         const bool ok = r.result.status == sim::Status::Ok;
-        table.AddRow({std::to_string(r.id), shape.label, ok ? CsvNumber(r.result.fitness) : "", ok ? CsvNumber(r.result.contractionPercent) : "",
-                       sim::Name(r.result.status), std::to_string(r.result.iterationsRun), CsvNumber(shape.thesisFitness)});
+        std::vector<std::string> row{std::to_string(r.id), shape.label, sim::Name(r.result.status)};
+        std::map<std::string, std::string> cells = OutputCells(r.result, r.job);
+        for (const std::string& name : outputs) row.push_back(cells[name]);
+        row.push_back(CsvNumber(shape.thesisFitness));
+        table.AddRow(row);
         c.outcome.rows.push_back({shape.label, ok ? r.result.fitness : NAN, shape.thesisFitness});
         if (!e.render.figures) return;
         if (!renderer) renderer = MakeRenderer(1024, 768);

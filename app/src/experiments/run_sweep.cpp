@@ -1,9 +1,11 @@
 // A sweep: every point of a 1-D or 2-D grid of sine parameters (thesis chapter 4), then the designs
 // the thesis names in its tables, then the figures. Resumable: grid points are archived in order, so
 // a resume continues after the last archived one and redoes only what follows the grid.
+#include <map>
 #include <fmt/format.h>
 
 #include "formats/csv.h"
+#include "formats/evaluation_log.h"
 #include "formats/table.h"
 #include "support/errors.h"
 #include "experiments/experiment_runner.h"
@@ -77,22 +79,23 @@ void RunSweep(RunContext& c) {
     const auto& axes = e.sweep.axes;
 
     // Resume after the grid points already archived; what follows the grid is redone.
-    std::vector<double> fitness(n, NAN), contraction(n, NAN);
+    std::vector<double> fitness(n, NAN);
     std::vector<sim::Status> status(n, sim::Status::Ok);
-    std::vector<int> iterations(n, 0);
-    std::vector<std::string> warning(n);  // EscapeWarning: a mesh that left its own size
+    std::vector<std::map<std::string, std::string>> cells(n);  // each point's outputs, by name
+    std::vector<std::string> warning(n);                       // EscapeWarning: a mesh that left its own size
     size_t done = 0;
     for (const ArchiveRecord& r : c.recorder.Existing()) {
         if (done >= n || r.role != Role::Grid || r.id != done) break;
         fitness[done] = r.result.fitness;
-        contraction[done] = r.result.contractionPercent;
         status[done] = r.result.status;
-        iterations[done] = r.result.iterationsRun;
         ++done;
     }
     if (c.options.resume) c.recorder.RollBack(done);
-    // The resumed points' warnings need their meshes, which the archive's index leaves out.
-    c.recorder.ForEachRecord(0, done, [&](ArchiveRecord&& r) { warning[r.id] = EscapeWarning(r.result); });
+    // The resumed points' outputs and warnings need their whole records, which the archive's index leaves out.
+    c.recorder.ForEachRecord(0, done, [&](ArchiveRecord&& r) {
+        cells[r.id] = OutputCells(r.result, r.job);
+        warning[r.id] = EscapeWarning(r.result);
+    });
 
     Progress progress("sweep " + ExperimentTitle(e), c.options.progress);
     double bestSoFar = NAN;
@@ -107,9 +110,8 @@ void RunSweep(RunContext& c) {
     c.recorder.Evaluate(jobs, tags, [&](std::uint64_t, size_t k, sim::SimResult&& r) {
         const size_t j = done + k;
         fitness[j] = r.status == sim::Status::Ok ? r.fitness : NAN;
-        contraction[j] = r.contractionPercent;
         status[j] = r.status;
-        iterations[j] = r.iterationsRun;
+        cells[j] = OutputCells(r, grid[j]);
         warning[j] = EscapeWarning(r);
         if (r.status == sim::Status::Ok && !(r.fitness <= bestSoFar)) bestSoFar = r.fitness;
         progress.Update(static_cast<long long>(j + 1), static_cast<long long>(n), static_cast<long long>(k + 1),
@@ -118,15 +120,21 @@ void RunSweep(RunContext& c) {
 
     std::vector<std::string> header{"evaluation"};
     for (const auto& axis : axes) header.push_back(sim::Name(axis.parameter));
-    for (const char* h : {"fitness", "contraction_percent", "status", "iterations", "warning"}) header.push_back(h);
+    header.push_back("status");
+    // An output that is an axis's setting (the target pressure_kpa) is its axis's column.
+    std::vector<std::string> outputs = sim::OutputNames(grid, false);
+    for (const auto& axis : axes) std::erase(outputs, std::string(sim::Name(axis.parameter)));
+    header.insert(header.end(), outputs.begin(), outputs.end());
+    header.push_back("warning");
     Table table(header);
     int best = -1;
     for (size_t j = 0; j < n; ++j) {
         std::vector<std::string> row{std::to_string(j)};
         for (const auto& axis : axes) row.push_back(CsvNumber(sim::SweepValue(grid[j], axis.parameter)));
         const bool ok = status[j] == sim::Status::Ok;
-        row.insert(row.end(), {ok ? CsvNumber(fitness[j]) : "", ok ? CsvNumber(contraction[j]) : "", sim::Name(status[j]), std::to_string(iterations[j]),
-                               warning[j]});
+        row.push_back(sim::Name(status[j]));
+        for (const std::string& name : outputs) row.push_back(cells[j][name]);
+        row.push_back(warning[j]);
         table.AddRow(row);
         if (ok && (best < 0 || fitness[j] > fitness[static_cast<size_t>(best)])) best = static_cast<int>(j);
     }

@@ -23,11 +23,20 @@ std::vector<std::string> LogHeader() {
     return header;
 }
 
-std::string Optional(double value) { return std::isfinite(value) ? CsvNumber(value) : ""; }
-
 std::string ThumbnailName(std::uint64_t id) { return fmt::format("evaluation_{:06}.png", id); }
 
 }  // namespace
+
+std::map<std::string, std::string> OutputCells(const sim::SimResult& result, const sim::EvalJob& job) {
+    struct Cells final : sim::OutputVisitor {
+        std::map<std::string, std::string> cells;
+        void Number(const char* name, const char*, double value) override { cells[name] = std::isfinite(value) ? CsvNumber(value) : ""; }
+        void Count(const char* name, long long value) override { cells[name] = std::to_string(value); }
+        void Curve(const char*, const char*, const std::vector<double>&) override {}
+    } outputs;
+    sim::VisitOutputs(result, job, outputs);
+    return std::move(outputs.cells);
+}
 
 std::string DesignText(const sim::Shape& shape) {
     if (const auto* s = std::get_if<sim::SineShape>(&shape)) return fmt::format("amplitude={} phase={},{}", s->amplitude, s->phaseStart, s->phaseEnd);
@@ -40,26 +49,20 @@ std::string DesignText(const sim::Shape& shape) {
 EvaluationLog::EvaluationLog(fs::path path, bool thumbnails) : path_(std::move(path)), thumbnails_(thumbnails), header_(LogHeader()), log_(path_.string(), header_) {}
 
 void EvaluationLog::Append(const ArchiveRecord& r) {
-    struct Cells final : sim::OutputVisitor {
-        std::map<std::string, std::string> cells;
-        void Number(const char* name, const char*, double value) override { cells[name] = Optional(value); }
-        void Count(const char* name, long long value) override { cells[name] = std::to_string(value); }
-        void Curve(const char*, const char*, const std::vector<double>&) override {}
-    } outputs;
-    sim::VisitOutputs(r.result, r.job, outputs);
-    outputs.cells["evaluation"] = std::to_string(r.id);
-    outputs.cells["role"] = sim::Name(r.role);
-    outputs.cells["run"] = std::to_string(r.run);
-    outputs.cells["generation"] = std::to_string(r.generation);
-    outputs.cells["label"] = CsvField(r.label);
-    outputs.cells["shape"] = sim::ShapeName(r.job.shape);
-    outputs.cells["model"] = sim::Name(r.job.model);
-    outputs.cells["status"] = sim::Name(r.result.status);
-    if (const auto* shell = std::get_if<sim::ShellDef>(&r.job.def)) outputs.cells["fibres"] = sim::Name(shell->fibres.layout);
-    outputs.cells["thumbnail"] = thumbnails_ ? ThumbnailName(r.id) : "";
-    outputs.cells["design"] = CsvField(DesignText(r.job.shape));
+    std::map<std::string, std::string> cells = OutputCells(r.result, r.job);
+    cells["evaluation"] = std::to_string(r.id);
+    cells["role"] = sim::Name(r.role);
+    cells["run"] = std::to_string(r.run);
+    cells["generation"] = std::to_string(r.generation);
+    cells["label"] = CsvField(r.label);
+    cells["shape"] = sim::ShapeName(r.job.shape);
+    cells["model"] = sim::Name(r.job.model);
+    cells["status"] = sim::Name(r.result.status);
+    if (const auto* shell = std::get_if<sim::ShellDef>(&r.job.def)) cells["fibres"] = sim::Name(shell->fibres.layout);
+    cells["thumbnail"] = thumbnails_ ? ThumbnailName(r.id) : "";
+    cells["design"] = CsvField(DesignText(r.job.shape));
     std::vector<std::string> row;
-    for (const std::string& column : header_) row.push_back(outputs.cells[column]);
+    for (const std::string& column : header_) row.push_back(cells[column]);
     log_.Append(row);
 }
 

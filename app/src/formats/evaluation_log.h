@@ -4,11 +4,13 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "formats/csv.h"
 #include "formats/record_sink.h"
+#include "sim/model.h"
 #include "sim/shape.h"
 
 namespace app {
@@ -16,6 +18,10 @@ namespace app {
 // A design as one line of text: a GA genome as its genes (splines ';'-separated, as --control-points
 // takes them; free-xy offsets as dx,dy,... as --offsets takes them), a sine by its parameters.
 std::string DesignText(const sim::Shape& shape);
+
+// A result's one-number outputs as table cells by name (empty where it has none: NaN, or not
+// ok), as every table of evaluations writes them; curves are left to the archive and JSON.
+std::map<std::string, std::string> OutputCells(const sim::SimResult& result, const sim::EvalJob& job);
 
 class EvaluationLog final : public RecordSink {
 public:

@@ -9,7 +9,21 @@
 
 namespace app {
 
-Table::Table(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+namespace {
+
+// A column named twice would make a read by name mean one of two things.
+std::string ColumnNamedTwice(const std::vector<std::string>& columns) {
+    for (size_t a = 0; a < columns.size(); ++a)
+        for (size_t b = a + 1; b < columns.size(); ++b)
+            if (columns[a] == columns[b]) return columns[a];
+    return "";
+}
+
+}  // namespace
+
+Table::Table(std::vector<std::string> columns) : columns_(std::move(columns)) {
+    if (const std::string twice = ColumnNamedTwice(columns_); !twice.empty()) throw std::logic_error("a table with two columns named " + twice);
+}
 
 void Table::AddRow(std::vector<std::string> fields) {
     if (fields.size() != columns_.size())
@@ -32,6 +46,8 @@ std::string Table::Csv() const {
 Table Table::Parse(std::string_view text, const std::string& source) {
     auto rows = ParseCsv(text);
     if (rows.empty()) throw UsageError(Quote(source) + " is empty: a table needs a header row naming its columns");
+    if (const std::string twice = ColumnNamedTwice(rows.front()); !twice.empty())
+        throw UsageError(Quote(source) + " names the column " + Quote(twice) + " twice: a table is read by column name");
     Table table(std::move(rows.front()));
     table.source_ = source;
     for (size_t k = 1; k < rows.size(); ++k) {

@@ -191,6 +191,9 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     // Sliding ends hold the end rings alone; the clamp's rings are a clamp's.
     if (key == "clamp_rings") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
     if (key == "fibre_stiffness_n_per_mm") return unless(fibres != sim::FibreLayout::None, "fibres", "meridian, hoop, braid or single", sim::Name(fibres));
+    // Angles by band or sector replace a braid's or a single family's one angle.
+    if (key == "fibre_bands" || key == "fibre_sectors_deg")
+        return unless(fibres == sim::FibreLayout::Braid || fibres == sim::FibreLayout::Single, "fibres", "braid or single", sim::Name(fibres));
     if (key == "fibre_angle_deg") {
         // Meridian and hoop fibres have their angle (0 and 90 degrees); bands and sectors give their own.
         if (!def.fibres.bands.empty() || !def.fibres.sectorAnglesDeg.empty())

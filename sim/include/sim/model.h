@@ -102,6 +102,8 @@ void VisitOutputs(const SimResult& result, const EvalJob& job, OutputVisitor& vi
 // columns a table of evaluations of any model has. Timings are left out (`withTime` false) where a
 // table must read the same on every run.
 std::vector<std::string> OutputNames(bool withTime);
+// The one-number output names of these jobs' models (a table of those jobs' results), in order, each once.
+std::vector<std::string> OutputNames(const std::vector<EvalJob>& jobs, bool withTime);
 
 // The job's evaluation under its model.
 inline SimResult Evaluate(const EvalJob& job) { return ModelOf(job).evaluate(job); }
