@@ -406,7 +406,7 @@ def test_a_field_without_effect_is_refused_as_on_the_command_line():
     with pytest.raises(ValueError, match="stroke_percent: has no effect: it applies when kind is blocked, not inflate"):
         actuator.evaluate(actuator.cylinder(), model="shell", load=actuator.Load(stroke_percent=3))
     with pytest.raises(ValueError, match="torque_n_mm: has no effect: it applies when twist is loaded, not free"):
-        actuator.evaluate(actuator.cylinder(), model="shell", load=actuator.Load(torque_n_mm=3))
+        actuator.evaluate(actuator.cylinder(), model="shell", ends=actuator.Ends(torque_n_mm=3))
     with pytest.raises(ValueError, match="fibre_angle_deg: has no effect"):
         actuator.evaluate(actuator.cylinder(), model="shell", fibres=actuator.Fibres(fibre_angle_deg=40))
     small = actuator.Geometry(ring_vertices=12, rings=16)

@@ -389,11 +389,11 @@ void RefuseKeysWithoutEffect(const ObjectReader& block, const sim::ShellDef& she
 }
 
 // "model": {"name": "shell", "geometry": {...}, "material": {"preset": ..., "mu_kpa": ...},
-// "load": {"kind": ..., "pressure_kpa": ...}, "solver": {...}}. The thesis model takes only its name
+// "load": {"kind": ..., "pressure_kpa": ...}, "ends": {"twist": ...}, "solver": {...}}. The thesis model takes only its name
 // (its settings are the "sim" and "mesh" blocks).
 // Each def reads the rest of the block (a new def adds its overload).
 void ParseModelBlock(ObjectReader& model, sim::ThesisDef&) {
-    for (const char* key : {"geometry", "material", "load", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
+    for (const char* key : {"geometry", "material", "load", "ends", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
                             "fibre_sectors_deg"})
         if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
     model.Finish();
@@ -423,6 +423,12 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         load.Fields(shell.load);
         RefuseKeysWithoutEffect(load, shell);
         load.Finish();
+    }
+    if (model.Has("ends")) {
+        ObjectReader ends = model.Object("ends");
+        ends.Fields(shell.ends);
+        RefuseKeysWithoutEffect(ends, shell);
+        ends.Finish();
     }
     if (model.Has("solver")) {
         ObjectReader solver = model.Object("solver");

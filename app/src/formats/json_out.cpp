@@ -84,6 +84,7 @@ static void DefJson(const sim::ShellDef& s, Json& j) {
     j["shear_modulus_kpa"] = sim::ShearModulusKpa(s.material);
     j["load"] = sim::Name(s.load.kind);
     VisitFields(s.load, Writer{j});
+    VisitFields(s.ends, Writer{j});
     VisitFields(s.solver, Writer{j});
     VisitFields(s.fibres, Writer{j});
     if (!s.fibres.bands.empty()) {

@@ -206,8 +206,8 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setForceN(l.forceN);
     s.setVolumeRatio(l.volumeRatio);
     s.setSteps(Count(l.steps));
-    s.setTwist(sim::Name(l.twist));
-    s.setTorqueNMm(l.torqueNMm);
+    s.setTwist(sim::Name(def.ends.twist));
+    s.setTorqueNMm(def.ends.torqueNMm);
     s.setStrokePercent(l.strokePercent);
     const sim::SolverDef& v = def.solver;
     s.setTolerance(v.tolerance);
@@ -258,8 +258,8 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     l.volumeRatio = s.getVolumeRatio();
     l.steps = Count(s.getSteps());
     const std::string twist = s.getTwist();
-    l.twist = twist.empty() ? sim::TwistEnd::Held : NamedEnum<sim::TwistEnd>(twist, "twist");  // as such records were evaluated
-    l.torqueNMm = s.getTorqueNMm();
+    def.ends.twist = twist.empty() ? sim::TwistEnd::Held : NamedEnum<sim::TwistEnd>(twist, "twist");  // as such records were evaluated
+    def.ends.torqueNMm = s.getTorqueNMm();
     l.strokePercent = s.getStrokePercent();
     sim::SolverDef& v = def.solver;
     v.tolerance = s.getTolerance();

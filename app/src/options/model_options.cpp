@@ -55,6 +55,8 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Group("Membrane and shell models: load and solver");
     cli.Fields(o.shell.load);
     cli.Fields(o.shell.solver);
+    cli.Group("Membrane and shell models: the top clamp's other degrees of freedom");
+    cli.Fields(o.shell.ends);
     cli.Group("Membrane and shell models: fibres");
     cli.Fields(o.shell.fibres);
 }
@@ -94,7 +96,7 @@ std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::Thesis
 }
 std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ShellDef&) {
     std::vector<std::string> names{"--material"};
-    for (const auto& part : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.solver),
+    for (const auto& part : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.ends), OptionNames(o.shell.solver),
                              OptionNames(o.shell.fibres)})
         names.insert(names.end(), part.begin(), part.end());
     return names;
@@ -139,6 +141,7 @@ void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, Mode
         return;
     }
     cli.CopyGivenFields(o.shell.load, def.load);
+    cli.CopyGivenFields(o.shell.ends, def.ends);
     cli.CopyGivenFields(o.shell.solver, def.solver);
     // A preset given replaces the stored material (with the fields given over it); fields alone
     // change the stored one.
@@ -164,7 +167,7 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Thesi
 void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ShellDef& def, ModelUse use) {
     const std::string nothing = "does not apply here: nothing is simulated (the part is the rest shape, its geometry and silicone)";
     if (use == ModelUse::RestShape) {
-        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres)})
+        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres)})
             for (const auto& key : keys) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
         cli.RefuseIfGiven("--load", nothing);
         cli.RefuseIfGiven("--ends", nothing);
@@ -173,7 +176,7 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Shell
     } else {
         cli.RefuseIfGiven("--density-kg-per-m3", "applies to export (the silicone's mass); nothing here uses it");
     }
-    for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.solver),
+    for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver),
                              GivenKeys(cli, o.shell.fibres)})
         for (const auto& key : part) RefuseWhereWithoutEffect(key, sim::ShellFieldUse(def, key));
 }

@@ -83,9 +83,13 @@ void VisitFields(Def& l, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("volume_ratio", l.volumeRatio, "target enclosed volume over the rest volume (load volume)", 1e-3, 1e3);
     v.Number("stroke_percent", l.strokePercent,
              "load blocked: the top held this far below its rest place, % of the length (0: the blocking force)", -100, 100);
-    v.Enum("twist", l.twist, "the top clamp's turn about the axis: free, held (its torque reported) or loaded (torque_n_mm)");
-    v.Number("torque_n_mm", l.torqueNMm, "twist loaded: torque on the top clamp, N mm, + right-handed about +z", -1e9, 1e9);
     v.Integer("steps", l.steps, "load steps: points of the contraction-pressure curve", 1, 1000);
+}
+
+template <class Def, class Visitor>
+void VisitFields(Def& e, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::EndsDef> {
+    v.Enum("twist", e.twist, "the top clamp's turn about the axis: free, held (its torque reported) or loaded (torque_n_mm)");
+    v.Number("torque_n_mm", e.torqueNMm, "twist loaded: torque on the top clamp, N mm, + right-handed about +z", -1e9, 1e9);
 }
 
 template <class Def, class Visitor>
@@ -178,7 +182,7 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     if (key == "pressure_kpa") return unless(load == L::Inflate || load == L::Gas || load == L::Blocked, "kind", "inflate, gas or blocked", sim::Name(load));
     if (key == "force_n") return unless(load != L::Blocked, "kind", "inflate, gas, volume or force", sim::Name(load));
     if (key == "stroke_percent") return unless(load == L::Blocked, "kind", "blocked", sim::Name(load));
-    if (key == "torque_n_mm") return unless(def.load.twist == sim::TwistEnd::Loaded, "twist", "loaded", sim::Name(def.load.twist));
+    if (key == "torque_n_mm") return unless(def.ends.twist == sim::TwistEnd::Loaded, "twist", "loaded", sim::Name(def.ends.twist));
     // Sliding ends hold the tube's rotation by an anchor; only clamps turn.
     if (key == "twist") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
     if (key == "volume_ratio") return unless(load == L::Volume, "kind", "volume", sim::Name(load));
@@ -250,7 +254,7 @@ inline std::string ShellFieldsWithoutEffect(const sim::ShellDef& def) {
     const sim::ShellDef defaults = sim::DefaultShellDef();
     const sim::MaterialDef preset = def.material.preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(def.material.preset);
     std::vector<std::string> keys;
-    for (const auto& part : {ChangedKeys(def.geometry, defaults.geometry), ChangedKeys(def.material, preset), ChangedKeys(def.load, defaults.load),
+    for (const auto& part : {ChangedKeys(def.geometry, defaults.geometry), ChangedKeys(def.material, preset), ChangedKeys(def.load, defaults.load), ChangedKeys(def.ends, defaults.ends),
                              ChangedKeys(def.solver, defaults.solver), ChangedKeys(def.fibres, defaults.fibres)})
         keys.insert(keys.end(), part.begin(), part.end());
     for (const auto& key : keys)
@@ -296,6 +300,7 @@ void VisitDefFields(const ShellDef& def, V& v) {
     VisitFields(def.geometry, v);
     VisitFields(def.material, v);
     VisitFields(def.load, v);
+    VisitFields(def.ends, v);
     VisitFields(def.solver, v);
     VisitFields(def.fibres, v);
 }

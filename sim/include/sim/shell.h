@@ -94,8 +94,6 @@ struct LoadDef {
     double volumeRatio = 1.5;  // target enclosed volume over the rest volume (Volume)
     double strokePercent = 0;  // Blocked: the top held this far below its rest place, % of the
                                // length (the isobaric test; 0: the blocking force)
-    TwistEnd twist = TwistEnd::Free;
-    double torqueNMm = 0;      // twist Loaded: torque on the top clamp, N mm, + turns it right-handed about +z
     int steps = 4;             // load steps: the contraction-pressure curve's points
 };
 
@@ -132,10 +130,18 @@ struct SolverDef {
     bool selfContact = true;   // check every converged state for self-intersection
 };
 
+// The top clamp as a bench fixture holds it (docs/models/shell.md section 12): the axial motion is
+// the load's (free, loaded by force_n, or held at a stroke); these are its other degrees of freedom.
+struct EndsDef {
+    TwistEnd twist = TwistEnd::Free;  // a free top turns as the fibres wind it
+    double torqueNMm = 0;             // twist Loaded: torque on the top clamp, N mm, + turns it right-handed about +z
+};
+
 struct ShellDef {
     GeometryDef geometry;
     MaterialDef material = MaterialPresetDef(MaterialPreset::Ecoflex0030);
     LoadDef load;
+    EndsDef ends;
     SolverDef solver;
     FibreDef fibres;
 };

@@ -88,10 +88,10 @@ std::string ShellDefError(const ShellDef& d) {
     if (!std::isfinite(l.forceN)) return "the force must be a finite number";
     if (!positive(l.volumeRatio)) return "the volume ratio must be positive";
     if (l.steps < 1 || l.steps > 1000) return "load steps must be between 1 and 1000";
-    if (!std::isfinite(l.torqueNMm)) return "the torque must be a finite number";
     if (!(std::isfinite(l.strokePercent) && l.strokePercent > -100 && l.strokePercent < 100))
         return "the held contraction must be a percentage of the length between -100 and 100";
-    if (l.twist == TwistEnd::Loaded && d.geometry.ends != EndCondition::Clamped) return "a torque needs clamped ends (sliding ends cannot turn)";
+    if (!std::isfinite(d.ends.torqueNMm)) return "the torque must be a finite number";
+    if (d.ends.twist == TwistEnd::Loaded && d.geometry.ends != EndCondition::Clamped) return "a torque needs clamped ends (sliding ends cannot turn)";
     const FibreDef& f = d.fibres;
     auto angleOk = [](double a) { return std::isfinite(a) && a >= -90 && a <= 90; };
     if (!angleOk(f.angleDeg)) return "the fibre angle must be a number of degrees from -90 to 90";

@@ -216,7 +216,7 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
     }
     // u is an unknown (held by the solver under the blocked test, which steps it to its stroke); theta
     // is one unless the twist is held.
-    const bool twistUnknown = clamped && def.load.twist != TwistEnd::Held;
+    const bool twistUnknown = clamped && def.ends.twist != TwistEnd::Held;
     NumberUnknowns(p, true, twistUnknown);
     if (clamped) {
         p.twistReference = (H - 1) * R;

@@ -637,7 +637,7 @@ struct TubeEvaluation {
             case ShellLoad::Volume: break;
         }
         if (load.kind != ShellLoad::Blocked) l.force = s * load.forceN;
-        if (load.twist == TwistEnd::Loaded) l.torque = s * load.torqueNMm;
+        if (def.ends.twist == TwistEnd::Loaded) l.torque = s * def.ends.torqueNMm;
         return l;
     }
     // The held stroke at fraction s (the blocked test): u, mm (0 for the blocking force).
@@ -804,10 +804,10 @@ void Measure(TubeEvaluation& t, SimResult& result) {
         out.twistDeg = t.TwistDeg();
         out.twistPerLengthDegPerMm = out.twistDeg / t.length;
     }
-    if (t.load.twist == TwistEnd::Held && t.problem.twistReference >= 0)
+    if (t.def.ends.twist == TwistEnd::Held && t.problem.twistReference >= 0)
         out.torqueNMm = AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact).twistTorque;
-    else if (t.load.twist == TwistEnd::Loaded)
-        out.torqueNMm = t.load.torqueNMm;
+    else if (t.def.ends.twist == TwistEnd::Loaded)
+        out.torqueNMm = t.def.ends.torqueNMm;
 }
 
 // Stage: the stiffness at the free equilibrium, 1 / (K^-1)_uu of the exact Hessian (its Schur

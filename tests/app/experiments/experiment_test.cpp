@@ -109,7 +109,12 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
                 HasSubstr("'model.load.force_n': has no effect here: it applies when \"kind\" is inflate, gas, volume or force, not blocked"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "inflate", "stroke_percent": 5})")),
                 HasSubstr("'model.load.stroke_percent': has no effect here: it applies when \"kind\" is blocked, not inflate"));
-    EXPECT_THAT(Refusal(shell(R"("load": {"torque_n_mm": 5})")), HasSubstr("applies when \"twist\" is loaded, not free"));
+    EXPECT_THAT(Refusal(shell(R"("ends": {"torque_n_mm": 5})")),
+                HasSubstr("'model.ends.torque_n_mm': has no effect here: it applies when \"twist\" is loaded, not free"));
+    EXPECT_THAT(Refusal(shell(R"("geometry": {"ends": "sliding"}, "ends": {"twist": "held"})")), HasSubstr("'model.ends.twist'"));
+    EXPECT_THAT(Refusal(shell(R"("load": {"twist": "held"})")), HasSubstr("'model.load.twist'"));  // the top's turn is an end's, not the load's
+    EXPECT_THAT(Refusal(R"({"model": {"name": "thesis", "ends": {"twist": "held"}}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})"),
+                HasSubstr("'model.ends': does not apply to the thesis model"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "force", "pressure_kpa": 20})")), HasSubstr("\"kind\" is inflate, gas or blocked, not force"));
     EXPECT_THAT(Refusal(shell(R"("load": {"volume_ratio": 2})")), HasSubstr("'model.load.volume_ratio'"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "volume"}, "solver": {"max_bisections": 3})")), HasSubstr("'model.solver.max_bisections'"));
@@ -131,6 +136,7 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     EXPECT_THAT(Refusal(shell(R"("fibres": "braid", "fibre_angle_deg": 40)", R"("evolve": {"genome": {"kind": "bspline", "fibre_angles": 1}})")),
                 HasSubstr("the genome's fibre angle genes give the angles"));
     // What applies is accepted.
+    EXPECT_EQ(Refusal(shell(R"("load": {"kind": "blocked", "stroke_percent": 5}, "ends": {"twist": "loaded", "torque_n_mm": -2})")), "accepted");
     EXPECT_EQ(Refusal(shell(R"("load": {"kind": "force", "force_n": 0.5}, "material": {"law": "yeoh", "c10_kpa": 100, "c20_kpa": 10}, "fibres": "braid", "fibre_angle_deg": 40)")),
               "accepted");
 }

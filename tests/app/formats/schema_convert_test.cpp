@@ -82,8 +82,8 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     d.load.forceN = -0.25;
     d.load.volumeRatio = 1.75;
     d.load.strokePercent = 7.5;
-    d.load.twist = sim::TwistEnd::Loaded;
-    d.load.torqueNMm = -3.25;
+    d.ends.twist = sim::TwistEnd::Loaded;
+    d.ends.torqueNMm = -3.25;
     d.load.steps = 9;
     d.solver = {1e-9, 77, 4, false};
     capnp::MallocMessageBuilder message;
@@ -100,9 +100,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
                        b.material.tensileStrengthKpa, b.material.elongationAtBreak, b.material.stretchLimit, b.material.densityKgPerM3),
               std::tie(d.material.preset, d.material.law, d.material.muKpa, d.material.c10Kpa, d.material.c01Kpa, d.material.c20Kpa, d.material.c30Kpa,
                        d.material.tensileStrengthKpa, d.material.elongationAtBreak, d.material.stretchLimit, d.material.densityKgPerM3));
-    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.strokePercent, b.load.twist, b.load.torqueNMm,
+    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.strokePercent, b.ends.twist, b.ends.torqueNMm,
                        b.load.steps),
-              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.strokePercent, d.load.twist, d.load.torqueNMm,
+              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.strokePercent, d.ends.twist, d.ends.torqueNMm,
                        d.load.steps));
     EXPECT_EQ(std::tie(b.solver.tolerance, b.solver.maxIterations, b.solver.maxBisections, b.solver.selfContact),
               std::tie(d.solver.tolerance, d.solver.maxIterations, d.solver.maxBisections, d.solver.selfContact));
@@ -168,11 +168,11 @@ TEST(SchemaConvert, AShellRecordFromBeforeTheTwistReadsAsHeld) {
     capnp::MallocMessageBuilder message;
     sim::EvalJob job;
     job.SetModel(sim::ModelKind::Shell);
-    ASSERT_EQ(job.Shell().load.twist, sim::TwistEnd::Free);
+    ASSERT_EQ(job.Shell().ends.twist, sim::TwistEnd::Free);
     app::SetJob(message.initRoot<app::schema::EvalRequest>(), job);
-    EXPECT_EQ(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()).Shell().load.twist, sim::TwistEnd::Free);
+    EXPECT_EQ(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()).Shell().ends.twist, sim::TwistEnd::Free);
     message.getRoot<app::schema::EvalRequest>().getShell().disownTwist();  // as an older build wrote it
-    EXPECT_EQ(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()).Shell().load.twist, sim::TwistEnd::Held);
+    EXPECT_EQ(app::GetJob(message.getRoot<app::schema::EvalRequest>().asReader()).Shell().ends.twist, sim::TwistEnd::Held);
 }
 
 TEST(SchemaConvert, AnUnknownMaterialNameIsAnError) {

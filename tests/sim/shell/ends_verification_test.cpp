@@ -48,7 +48,7 @@ sim::EvalJob SingleFamily(double angleDeg, sim::TwistEnd twist = sim::TwistEnd::
     sim::EvalJob job = FibreTube(30, sim::FibreLayout::Single, angleDeg, 1.5);
     job.Shell().load.pressureKpa = 3;
     job.Shell().load.steps = 4;
-    job.Shell().load.twist = twist;
+    job.Shell().ends.twist = twist;
     return job;
 }
 
@@ -58,10 +58,10 @@ std::string Reproduce(const sim::EvalJob& job) {
                        " --length-mm " + std::to_string(d.geometry.lengthMm) + " --material custom --mu-kpa " + std::to_string(d.material.muKpa) +
                        " --elongation-at-break 100 --ring-vertices " + std::to_string(d.geometry.ringVertices) + " --rings 0 --steps " +
                        std::to_string(d.load.steps) + " --load " + sim::Name(d.load.kind) + " --pressure-kpa " + std::to_string(d.load.pressureKpa) +
-                       " --twist " + sim::Name(d.load.twist) + " --fibres " + sim::Name(d.fibres.layout) + " --fibre-angle-deg " +
+                       " --twist " + sim::Name(d.ends.twist) + " --fibres " + sim::Name(d.fibres.layout) + " --fibre-angle-deg " +
                        std::to_string(d.fibres.angleDeg) + " --fibre-stiffness-n-per-mm " + std::to_string(d.fibres.stiffnessNPerMm);
     if (d.load.kind == sim::ShellLoad::Blocked) text += " --stroke-percent " + std::to_string(d.load.strokePercent);
-    if (d.load.twist == sim::TwistEnd::Loaded) text += " --torque-n-mm " + std::to_string(d.load.torqueNMm);
+    if (d.ends.twist == sim::TwistEnd::Loaded) text += " --torque-n-mm " + std::to_string(d.ends.torqueNMm);
     if (d.load.forceN != 0) text += " --force-n " + std::to_string(d.load.forceN);
     return text;
 }
@@ -203,7 +203,7 @@ TEST(EndsClosedForms, TheHoldingTorqueAppliedUndoesTheTwist) {
     EXPECT_GT(std::fabs(h.shell.torqueNMm), 1.0) << "one family at 40 deg pulls the top round, N mm";
 
     sim::EvalJob loaded = SingleFamily(40, sim::TwistEnd::Loaded);
-    loaded.Shell().load.torqueNMm = h.shell.torqueNMm;
+    loaded.Shell().ends.torqueNMm = h.shell.torqueNMm;
     const sim::SimResult l = sim::Evaluate(loaded);
     ASSERT_EQ(l.status, sim::Status::Ok) << Reproduce(loaded);
     const sim::SimResult free = sim::Evaluate(SingleFamily(40));
@@ -211,7 +211,7 @@ TEST(EndsClosedForms, TheHoldingTorqueAppliedUndoesTheTwist) {
     EXPECT_LT(std::fabs(l.shell.twistDeg), 1e-4 * std::fabs(free.shell.twistDeg)) << "the applied torque undoes the free twist of " << free.shell.twistDeg
                                                                                   << " deg; " << Reproduce(loaded);
     EXPECT_NEAR(l.contractionPercent, h.contractionPercent, 1e-6 * std::max(1.0, std::fabs(h.contractionPercent))) << Reproduce(loaded);
-    EXPECT_EQ(l.shell.torqueNMm, loaded.Shell().load.torqueNMm) << "a loaded top reports the torque on it";
+    EXPECT_EQ(l.shell.torqueNMm, loaded.Shell().ends.torqueNMm) << "a loaded top reports the torque on it";
 }
 
 // Tondu and Lopez (2000): the ideal muscle's force at contraction eps of its length at pressure p,

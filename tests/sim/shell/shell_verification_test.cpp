@@ -28,7 +28,7 @@ Eigen::Vector3d Vertex(const sim::Positions& p, int v) { return {p.x[v], p.y[v],
 sim::ShellProblem SmallTube(sim::MaterialLaw law, bool bending, sim::EndCondition ends = sim::EndCondition::Clamped,
                            sim::TwistEnd twist = sim::TwistEnd::Free) {
     sim::ShellDef def;
-    def.load.twist = twist;
+    def.ends.twist = twist;
     def.geometry.radiusMm = 4;
     def.geometry.lengthMm = 12;
     def.geometry.ringVertices = 8;
@@ -497,7 +497,7 @@ TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
     job.Shell().fibres.layout = sim::FibreLayout::Braid;
     job.Shell().fibres.minus = false;  // one family
     job.Shell().fibres.angleDeg = 43.6062675338317;
-    job.Shell().load.twist = sim::TwistEnd::Held;  // the saddle is the held top's (free, it turns 48 deg and ends elsewhere)
+    job.Shell().ends.twist = sim::TwistEnd::Held;  // the saddle is the held top's (free, it turns 48 deg and ends elsewhere)
     const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 7,8,1,3,5,7 --model shell "
                             "--pressure-kpa 1 --fibres single --fibre-angle-deg 43.6062675338317 --twist held";
     const sim::SimResult base = sim::Evaluate(job);
@@ -522,7 +522,7 @@ TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) 
     job.Shell().fibres.layout = sim::FibreLayout::Braid;
     job.Shell().fibres.plus = false;  // one family, at -48.2 deg
     job.Shell().fibres.angleDeg = 48.20305967865278;
-    job.Shell().load.twist = sim::TwistEnd::Held;  // the saddle is the held top's
+    job.Shell().ends.twist = sim::TwistEnd::Held;  // the saddle is the held top's
     const std::string how = "reproduce: actuator simulate --shape bspline --region middle --control-points 3,4,8,3,5,6,2,2,0,7,0,0 "
                             "--model shell --pressure-kpa 1 --fibres single --fibre-angle-deg -48.20305967865278 --twist held";
     const sim::SimResult base = sim::Evaluate(job);
