@@ -652,6 +652,8 @@ void ParseOptimizer(ObjectReader block, Experiment& e) {
     block.Finish();
     e.ga.genome = g;  // JobOfGenome and GenomeOfJob read the genes from here
     if (const std::string error = sim::OptimizerDefError(o, e.model, DesignMesh(e)); !error.empty()) block.Fail(error);
+    for (const sim::Objective& objective : o.objectives)
+        if (const std::string error = sim::ObjectiveDefError(objective.kind, e.def); !error.empty()) block.Fail(error, "objectives");
 }
 
 void ParseThesisResult(ObjectReader result, ThesisResult& t, const sim::MeshDef& mesh) {

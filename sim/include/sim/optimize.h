@@ -43,6 +43,9 @@ enum class ObjectiveKind {
     VolumeChange,    // percent of the rest volume at the target pressure (membrane, shell)
     LimitMargin,     // how far the pressure maximum lies above the target, as a fraction of it, from a
                      // second inflation to twice the target: 1 when none is met by then (membrane, shell)
+    Twist,           // |the top's turn|, deg, at the target: a muscle that pulls straight (membrane, shell; a top that may turn)
+    ForceAtStroke,   // N, the isobaric force with the top held at the load's stroke_percent, + pulls on the
+                     // supports (membrane, shell; load blocked)
 };
 
 struct Objective {
@@ -52,6 +55,9 @@ struct Objective {
 bool MaximisedByDefault(ObjectiveKind kind);
 // Empty when the model produces this objective; otherwise why not.
 std::string ObjectiveError(ObjectiveKind kind, ModelKind model);
+// Empty when the study's settings give the objective a meaning; otherwise why not (force_at_stroke
+// needs the top held at a stroke, twist a top that may turn).
+std::string ObjectiveDefError(ObjectiveKind kind, const ModelDef& def);
 // The objective's value in a result (NaN when the result's status is not Ok). StretchFitness and
 // LimitMargin read `second`, the design's second evaluation (NaN without one): its stretch test, or
 // its inflation to twice the target pressure.
@@ -176,14 +182,16 @@ struct EnumNames<Algorithm> {
 };
 template <>
 struct EnumNames<ObjectiveKind> {
-    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 8> table{{{ObjectiveKind::Contraction, "contraction"},
+    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 10> table{{{ObjectiveKind::Contraction, "contraction"},
                                                                                  {ObjectiveKind::ThesisFitness, "thesis_fitness"},
                                                                                  {ObjectiveKind::StretchFitness, "stretch_fitness"},
                                                                                  {ObjectiveKind::BlockingForce, "blocking_force"},
                                                                                  {ObjectiveKind::AxialStiffness, "axial_stiffness"},
                                                                                  {ObjectiveKind::MaxStretch, "max_stretch"},
                                                                                  {ObjectiveKind::VolumeChange, "volume_change"},
-                                                                                 {ObjectiveKind::LimitMargin, "limit_margin"}}};
+                                                                                 {ObjectiveKind::LimitMargin, "limit_margin"},
+                                                                                 {ObjectiveKind::Twist, "twist"},
+                                                                                 {ObjectiveKind::ForceAtStroke, "force_at_stroke"}}};
 };
 template <>
 struct EnumNames<VectorFamily> {

@@ -14,18 +14,30 @@ bool IsMultiObjective(Algorithm algorithm) { return AlgorithmRowOf(algorithm).mu
 
 // [SECTION] Objectives ----------------------------------------------------------------------------
 
-bool MaximisedByDefault(ObjectiveKind kind) { return kind != ObjectiveKind::MaxStretch && kind != ObjectiveKind::VolumeChange; }
+bool MaximisedByDefault(ObjectiveKind kind) {
+    return kind != ObjectiveKind::MaxStretch && kind != ObjectiveKind::VolumeChange && kind != ObjectiveKind::Twist;
+}
 
 std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
     const bool thesis = model == ModelKind::Thesis;
     if ((kind == ObjectiveKind::ThesisFitness || kind == ObjectiveKind::StretchFitness) && !thesis)
         return fmt::format("objective {} is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
-                           "max_stretch, volume_change and limit_margin",
+                           "max_stretch, volume_change, limit_margin, twist and force_at_stroke",
                            Name(kind), Name(model));
     if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness && kind != ObjectiveKind::StretchFitness)
         return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness, stretch_fitness and contraction (use the "
                            "membrane or shell model)",
                            Name(kind));
+    return "";
+}
+
+std::string ObjectiveDefError(ObjectiveKind kind, const ModelDef& def) {
+    const auto* shell = std::get_if<ShellDef>(&def);
+    if (!shell) return "";
+    if (kind == ObjectiveKind::ForceAtStroke && shell->load.kind != ShellLoad::Blocked)
+        return fmt::format("objective force_at_stroke is the force with the top held at the load's stroke_percent: give the load kind blocked (now {})",
+                           Name(shell->load.kind));
+    if (kind == ObjectiveKind::Twist && shell->ends.twist == TwistEnd::Held) return "objective twist needs a top that may turn: the ends' twist is held";
     return "";
 }
 
@@ -57,6 +69,8 @@ double ObjectiveValue(ObjectiveKind kind, const SimResult& r, const SimResult* s
         case ObjectiveKind::AxialStiffness: return s.axialStiffnessNPerMm;
         case ObjectiveKind::MaxStretch: return s.maxStretch;
         case ObjectiveKind::VolumeChange: return 100.0 * (s.volumeMm3 / s.restVolumeMm3 - 1.0);
+        case ObjectiveKind::Twist: return std::fabs(s.twistDeg);
+        case ObjectiveKind::ForceAtStroke: return s.strokeForceN;
     }
     return NAN;
 }
@@ -71,6 +85,8 @@ const char* ObjectiveUnit(ObjectiveKind kind) {
         case ObjectiveKind::AxialStiffness: return "axial stiffness, N/mm";
         case ObjectiveKind::MaxStretch: return "largest stretch";
         case ObjectiveKind::VolumeChange: return "volume change, %";
+        case ObjectiveKind::Twist: return "twist magnitude, deg";
+        case ObjectiveKind::ForceAtStroke: return "force at the held stroke, N";
     }
     return "?";
 }

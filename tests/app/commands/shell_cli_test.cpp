@@ -279,3 +279,24 @@ TEST_F(ShellCli, CharacterizeDrawsTheMusclesCurvesFromItsOwnTests) {
     }
     EXPECT_FALSE(fs::exists(dir_ / "t"));
 }
+
+// The bench objectives are the evaluations' own outputs: the isobaric force at the held stroke and
+// the top's turn, each front design's values those of its row in the evaluation log.
+TEST_F(ShellCli, TheForceAtAStrokeAndTheTwistAreObjectives) {
+    Write("bench.json", R"({"id": "o", "seed": 3, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "fibres": "single",
+        "fibre_angle_deg": 30, "load": {"kind": "blocked", "pressure_kpa": 3, "stroke_percent": 2, "steps": 1}},
+        "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 2, "objectives": ["force_at_stroke", "twist"],
+                      "genome": {"family": "bspline", "control_points": 4}}, "render": {"figures": false, "thumbnails": false}})");
+    const Result r = Run("evolve " + Path("bench.json") + " --out " + Path("bench"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const app::Table front = app::Table::Read((dir_ / "bench" / "run_1" / "pareto_front.csv").string());
+    const app::Table log = app::Table::Read((dir_ / "bench" / "evaluations.csv").string());
+    ASSERT_GE(front.Rows(), 2u);
+    for (size_t k = 0; k < front.Rows(); ++k) {
+        const size_t row = static_cast<size_t>(front.Number(k, "evaluation"));
+        ASSERT_LT(row, log.Rows());
+        EXPECT_EQ(front.Number(k, "force_at_the_held_stroke_N"), log.Number(row, "stroke_force_n"));
+        EXPECT_EQ(front.Number(k, "twist_magnitude_deg"), std::fabs(log.Number(row, "twist_deg")));
+    }
+    EXPECT_GT(front.Number(0, "twist_magnitude_deg"), 1) << "one family turns the top";
+}

@@ -140,3 +140,19 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     EXPECT_EQ(Refusal(shell(R"("load": {"kind": "force", "force_n": 0.5}, "material": {"law": "yeoh", "c10_kpa": 100, "c20_kpa": 10}, "fibres": "braid", "fibre_angle_deg": 40)")),
               "accepted");
 }
+
+// The bench objectives ask the study's settings for their meaning: the force at a held stroke needs
+// the top held at one, the twist a top that may turn.
+TEST(Experiment, BenchObjectivesNeedTheEndsThatGiveThemAMeaning) {
+    auto study = [](const std::string& model, const std::string& objectives) {
+        return R"({"id": "o", "model": {"name": "membrane", "fibres": "single", )" + model + R"(}, "optimizer": {"algorithm": "nsga2", "population": 8,
+            "objectives": )" + objectives + R"(, "genome": {"family": "bspline", "control_points": 4}}})";
+    };
+    EXPECT_THAT(Refusal(study(R"("load": {"kind": "inflate"})", R"(["force_at_stroke", "max_stretch"])")),
+                HasSubstr("'optimizer.objectives': objective force_at_stroke is the force with the top held at the load's stroke_percent: give the load kind blocked (now inflate)"));
+    EXPECT_THAT(Refusal(study(R"("load": {"kind": "blocked", "stroke_percent": 5}, "ends": {"twist": "held"})", R"(["force_at_stroke", "twist"])")),
+                HasSubstr("objective twist needs a top that may turn"));
+    EXPECT_EQ(Refusal(study(R"("load": {"kind": "blocked", "stroke_percent": 5})", R"(["force_at_stroke", "twist"])")), "accepted");
+    EXPECT_THAT(Refusal(R"({"id": "o", "model": {"name": "thesis"}, "optimizer": {"algorithm": "cmaes", "population": 8, "objectives": ["twist"],
+        "genome": {"family": "sine"}}})"), HasSubstr("needs units and equilibrium"));
+}
