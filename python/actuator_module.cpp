@@ -21,6 +21,7 @@
 #include "options/cli.h"
 #include "def_binding.h"
 #include "support/errors.h"
+#include "evaluation/characterize.h"
 #include "evaluation/evaluator.h"
 #include "experiments/experiment.h"
 #include "experiments/experiment_runner.h"
@@ -451,6 +452,47 @@ PYBIND11_MODULE(actuator, m) {
         "the GIL is released), on evaluation servers (workers=['host:port', 'local', ...]), or through any map-like callable "
         "(map=builtins.map, an executor's map, a pool's map, or a Dask client), `batch` jobs at a time.");
 
+    m.def(
+        "characterize",
+        [](const Design& design, const std::vector<double>& pressuresKpa, int points, int threads, const std::string& model,
+           std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load,
+           std::optional<sim::SolverDef> solver, std::optional<sim::FibreDef> fibres, std::optional<sim::EndsDef> ends) {
+            const sim::EvalJob base = JobOf(design.shape, model, {std::nullopt, std::nullopt, geometry, material, load, ends, solver, fibres});
+            if (const std::string error = app::CharacterizeJobError(base); !error.empty()) throw py::value_error(error);
+            if (const std::string error = app::PressuresError(pressuresKpa); !error.empty()) throw py::value_error("pressures_kpa: " + error);
+            if (points < 2 || points > 100) throw py::value_error(fmt::format("points: {} is out of range (2 to 100)", points));
+            app::CharacteristicCurves curves;
+            {
+                py::gil_scoped_release release;
+                curves = app::Characterize(base, pressuresKpa, points, threads);
+            }
+            // The table by column: names and statuses as str, numbers as float arrays (NaN where a point has none).
+            const app::Table table = app::CharacteristicTable(curves);
+            py::dict columns;
+            for (const std::string& column : table.Columns()) {
+                if (column == "curve" || column == "status") {
+                    py::list text;
+                    for (size_t k = 0; k < table.Rows(); ++k) text.append(table.Text(k, column));
+                    columns[py::str(column)] = text;
+                } else {
+                    std::vector<double> values;
+                    for (size_t k = 0; k < table.Rows(); ++k) values.push_back(table.Text(k, column).empty() ? NAN : table.Number(k, column));
+                    columns[py::str(column)] = py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+                }
+            }
+            py::dict result;
+            result["summary"] = py::module_::import("json").attr("loads")(app::CharacteristicSummary(base, curves).dump());
+            result["curves"] = columns;
+            return result;
+        },
+        py::arg("shape"), py::arg("pressures_kpa") = std::vector<double>{5, 10, 20}, py::arg("points") = 6, py::arg("threads") = 0,
+        py::arg("model") = std::string(sim::Name(sim::kDefaultModel)), py::arg("geometry") = py::none(), py::arg("material") = py::none(),
+        py::arg("load") = py::none(), py::arg("solver") = py::none(), py::arg("fibres") = py::none(), py::arg("ends") = py::none(),
+        "A muscle's characteristic curves, as `actuator characterize` gives them: {'summary': per pressure the free stroke (%), the force "
+        "at no contraction (N), the work of one stroke (mJ) and per gram of silicone (mJ/g), the isometric force (N); 'curves': the "
+        "table by column (curve isobaric|isometric|free_stroke, pressure_kpa, contraction_percent, force_n, twist_deg, status)}. "
+        "The load is the muscle alone (inflate, no force_n; its steps are the isometric and free-stroke curves' points).");
+
     const char* runDoc = "Runs an experiment (a dict in the experiment-file format, or a JSON file's path) into `out` (a new or empty folder; "
                          "with resume=True, the folder an interrupted run left, which then ends exactly as an uninterrupted run) and returns "
                          "{'summary': ..., 'tables': {name: table}, 'folder': out}. Tables are pandas DataFrames when pandas is installed "
@@ -537,7 +579,7 @@ def _picklable(bound):
     function.__module__, function.__qualname__ = "actuator", bound.__name__
     return function
 
-for _name in ("cylinder", "sine", "abs_sine", "bspline", "free_xy", "evaluate", "evaluate_many", "run", "sweep", "evolve",
+for _name in ("cylinder", "sine", "abs_sine", "bspline", "free_xy", "evaluate", "evaluate_many", "characterize", "run", "sweep", "evolve",
               "optimize", "render", "open_archive"):
     globals()[_name] = _picklable(globals()[_name])
 del _name

@@ -434,3 +434,30 @@ def test_every_load_kind_runs_from_python_as_from_the_command_line():
         actuator.Load(kind="push")
     with pytest.raises(ValueError, match="stroke_percent: has no effect: it applies when kind is blocked, not force"):
         actuator.evaluate(actuator.cylinder(), load=actuator.Load(kind="force", stroke_percent=5), **small)
+
+
+def test_characterize_gives_the_command_lines_curves(tmp_path):
+    small = dict(model="membrane", geometry=actuator.Geometry(ring_vertices=12, rings=16), load=actuator.Load(steps=2),
+                 fibres=actuator.Fibres(fibres="braid", fibre_angle_deg=30))
+    got = actuator.characterize(actuator.cylinder(), pressures_kpa=[4, 8], points=3, threads=2, **small)
+    curves, summary = got["curves"], got["summary"]
+    out = subprocess.run([os.environ["ACTUATOR_BIN"], "characterize", "--model", "membrane", "--ring-vertices", "12", "--rings", "16", "--steps", "2",
+                          "--fibres", "braid", "--fibre-angle-deg", "30", "--pressures-kpa", "4,8", "--points", "3", "--threads", "1",
+                          "--out", str(tmp_path / "c")], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    cli = np.genfromtxt(tmp_path / "c" / "characteristic.csv", delimiter=",", names=True, dtype=None, encoding="utf-8")
+    assert list(curves["curve"]) == list(cli["curve"])
+    for column in ("pressure_kpa", "contraction_percent", "force_n"):
+        np.testing.assert_array_equal(curves[column], cli[column].astype(float))
+    # Each isobaric curve falls from the force at no contraction to none at the free stroke.
+    for pressure, row in zip((4, 8), summary["isobaric"]):
+        forces = [f for c, p, f in zip(curves["curve"], curves["pressure_kpa"], curves["force_n"]) if c == "isobaric" and p == pressure]
+        assert len(forces) == 3 and forces[0] == row["force_at_no_contraction_n"] > forces[1] > forces[2] == 0
+        assert row["work_per_stroke_mj"] > 0 and row["work_per_gram_mj_per_g"] == pytest.approx(row["work_per_stroke_mj"] / summary["silicone_mass_g"])
+    assert json.loads(out.stdout)["isobaric"] == summary["isobaric"]
+    with pytest.raises(ValueError, match="pressures_kpa: give the pressures in increasing order"):
+        actuator.characterize(actuator.cylinder(), pressures_kpa=[8, 4], **small)
+    with pytest.raises(ValueError, match="characterize needs the membrane or shell model"):
+        actuator.characterize(actuator.cylinder(), model="thesis")
+    with pytest.raises(ValueError, match="load blocked: characterize sets the load"):
+        actuator.characterize(actuator.cylinder(), load=actuator.Load(kind="blocked"))

@@ -173,8 +173,8 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Shell
         cli.RefuseIfGiven("--ends", nothing);
         for (const auto& key : GivenKeys(cli, o.materialFields))
             if (key != "density_kg_per_m3") cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (of the material, the part uses its density)");
-    } else {
-        cli.RefuseIfGiven("--density-kg-per-m3", "applies to export (the silicone's mass); nothing here uses it");
+    } else if (use != ModelUse::Weighed) {
+        cli.RefuseIfGiven("--density-kg-per-m3", "applies to export and characterize (the silicone's mass); nothing here uses it");
     }
     for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver),
                              GivenKeys(cli, o.shell.fibres)})

@@ -24,6 +24,7 @@ struct ModelOptions {
 // What a command does with the model, which decides the options that have an effect.
 enum class ModelUse {
     Simulate,   // one evaluation under the given load (simulate)
+    Weighed,    // evaluations whose silicone is weighed too (characterize: work per gram)
     BothLoads,  // the thesis model under inflation and the stretch test, a shell model under its load (render)
     RestShape,  // nothing simulated: the rest shape, its geometry and its silicone (export, render --solid)
 };

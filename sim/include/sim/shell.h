@@ -165,10 +165,10 @@ constexpr double kMaxEvaluationBytes = 8.0 * 1024 * 1024 * 1024;
 // A design evaluated under a shell model (bending on: `shell`; off: `membrane`). Pure and thread-safe.
 SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending);
 
-// The isobaric test as a bench does it: inflated freely to `inflate`'s pressure (`free` is that
-// evaluation, EvaluateShell's, which gives the free stroke), then the top held at fractions of the
-// free stroke in turn, from the largest down (each held state from the last), the force and twist
-// read at each. In increasing order of stroke; empty when the free inflation failed. A point that
+// The isobaric test as a bench does it: the design evaluated as EvaluateShell does under
+// `inflate` (its free stroke), then, from that free state, the top held at fractions of the free
+// stroke in turn, from the largest down (each held state from the last), the force and twist read
+// at each. Points in increasing order of stroke; none when the free inflation failed. A point that
 // fails has its status and NaN numbers.
 struct IsobaricPoint {
     double strokePercent = 0;  // contraction held, % of the length
@@ -176,8 +176,15 @@ struct IsobaricPoint {
     double twistDeg = NAN;
     Status status = Status::Ok;
 };
-std::vector<IsobaricPoint> IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions,
-                                          const SimResult& free);
+struct IsobaricCurve {
+    SimResult free;  // EvaluateShell's result under `inflate`
+    std::vector<IsobaricPoint> points;
+};
+IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions);
+
+// The silicone of the design's wall at rest, mm^3: its mid-surface's area times the wall thickness
+// (the clamps' rings included; the caps are the fixture's). NaN when the tube cannot be built.
+double WallVolumeMm3(const Shape& shape, const ShellDef& def);
 
 // The wall's triangles (and caps) and edges for drawing, in the model's vertex order.
 Surface ShellSurface(const GeometryDef& geometry);

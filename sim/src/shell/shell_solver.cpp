@@ -861,29 +861,19 @@ Status JudgeEquilibrium(TubeEvaluation& t, int negativePivots) {
     return Status::Ok;
 }
 
-}  // namespace
 
-std::vector<IsobaricPoint> IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions,
-                                          const SimResult& free) {
+// Stage (the isobaric test): from the free equilibrium, the top held at each fraction of the free
+// stroke, the largest first, each held state from the last.
+std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& finalLoad, const std::vector<double>& fractions, double freeContractionPercent) {
+    const ShellProblem& problem = t.problem;
     std::vector<IsobaricPoint> points;
-    if (free.status != Status::Ok || inflate.load.kind != ShellLoad::Inflate) return points;
-    // Again to the free equilibrium (the evaluation keeps no solver state), then held at each stroke
-    // in turn, from the free stroke down to none: each held state starts from the last.
-    std::string error;
-    const ShellProblem problem = BuildTubeProblem(inflate, shape, bending, &error);
-    if (!error.empty()) return points;
-    ShellOutputs scratch;
-    TubeEvaluation t(inflate, problem, scratch);
-    if (FollowLoadPath(t) != Status::Ok) return points;
-    const LoadTerms finalLoad = t.FinalLoad();
-    if (SettleOnStableState(t, finalLoad) != 0) return points;
     const double freeU = t.q[problem.axial];
     t.solver.holdAxial = true;
     std::vector<double> order(fractions);
     std::sort(order.begin(), order.end(), std::greater<>());
     for (double fraction : order) {
         IsobaricPoint point;
-        point.strokePercent = fraction * free.contractionPercent;
+        point.strokePercent = fraction * freeContractionPercent;
         Eigen::VectorXd held = t.q;
         held[problem.axial] = fraction * freeU;
         if (t.solver.Minimise(held, finalLoad) != NewtonEnd::Converged) {
@@ -895,7 +885,7 @@ std::vector<IsobaricPoint> IsobaricForces(const Shape& shape, const ShellDef& in
             const int negative = t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, x)), &exact);
             PositionsOf(problem, held, x);
             if (negative != 0) point.status = Status::LimitPoint;
-            else if (inflate.solver.selfContact && SelfIntersects(problem, x)) point.status = Status::SelfIntersection;
+            else if (t.def.solver.selfContact && SelfIntersects(problem, x)) point.status = Status::SelfIntersection;
             else {
                 point.forceN = exact.axialForce;
                 point.twistDeg = (problem.twist >= 0 ? held[problem.twist] : problem.heldTwist) * 180 / std::numbers::pi;
@@ -904,14 +894,16 @@ std::vector<IsobaricPoint> IsobaricForces(const Shape& shape, const ShellDef& in
         }
         points.push_back(point);
     }
+    t.solver.holdAxial = false;
     std::reverse(points.begin(), points.end());  // in the order of increasing stroke, as `fractions` sorted
     return points;
 }
 
 // The evaluation as its pipeline: build the tube, follow the load path, settle on a stable state,
-// measure, judge, stiffness and blocking force, then the stretch verdict. Each output is written by
-// one stage (the solver's counters once, at the end).
-SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
+// measure, judge, stiffness and blocking force, then the stretch verdict; for the isobaric test
+// (`fractions` given, inflation), the held strokes after. Each output is written by one stage (the
+// solver's counters once, at the end).
+SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, const std::vector<double>* fractions, std::vector<IsobaricPoint>* points) {
     const auto started = std::chrono::steady_clock::now();
     SimResult result;
     ShellOutputs& out = result.shell;
@@ -942,7 +934,28 @@ SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) {
     out.factorizations = t.solver.counters.factorizations;
     result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
     if (status == Status::Ok && out.maxStretch > out.stretchLimit) status = Status::OverStretched;
+    if (fractions && points && status == Status::Ok && def.load.kind == ShellLoad::Inflate)
+        *points = HeldStrokes(t, finalLoad, *fractions, result.contractionPercent);
     return finish(status);
+}
+
+}  // namespace
+
+SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) { return EvaluateTube(shape, def, bending, nullptr, nullptr); }
+
+double WallVolumeMm3(const Shape& shape, const ShellDef& def) {
+    std::string error;
+    const ShellProblem problem = BuildTubeProblem(def, shape, false, &error);
+    if (!error.empty()) return NAN;
+    double area = 0;
+    for (const MembraneRest& rest : problem.membrane) area += rest.area;
+    return area * def.geometry.thicknessMm;
+}
+
+IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions) {
+    IsobaricCurve curve;
+    curve.free = EvaluateTube(shape, inflate, bending, &fractions, &curve.points);
+    return curve;
 }
 
 }  // namespace sim
