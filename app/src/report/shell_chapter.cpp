@@ -252,6 +252,11 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
                               Cell(o.blockingForceN), o.maxStretch, o.stretchLimit);
             if (std::isfinite(o.fibreAngleDeg)) md += fmt::format(", braid at {:.0f} deg to the axis at that pressure, fibre strain {:.2f} %", o.fibreAngleDeg,
                                                                  100 * o.maxFibreStrain);
+            // The top's turn as the study's ends had it: free (a bench's default) or held by a torque.
+            if (const auto* def = std::get_if<sim::ShellDef>(&b.record->job.def)) {
+                if (def->ends.twist == sim::TwistEnd::Held) md += fmt::format(", its top held from turning by {} N mm", Cell(o.torqueNMm));
+                else md += fmt::format(", its top free to turn: {:+.1f} deg", o.twistDeg);
+            }
             md += ".";
         };
         describe(bestWithFibres, "fibre-reinforced");
