@@ -111,6 +111,7 @@ struct ShellDef {
   twist @34 :Text;                  # the top clamp's turn: "" (records before it could turn) is "held"
   torqueNMm @35 :Float64;
   strokePercent @36 :Float64;
+  strokeMm @37 :Float64;
 }
 
 struct FibreBand {

@@ -75,7 +75,7 @@ static int RunCharacterize(int argc, char** argv, int first) {
     if (!cli.Parse(argc, argv, first)) return 0;
 
     if (!cli.Given("--out")) throw UsageError("--out DIR is required (where the table and the plots go)");
-    for (const char* option : {"--load", "--pressure-kpa", "--stroke-percent", "--volume-ratio"})
+    for (const char* option : {"--load", "--pressure-kpa", "--stroke-percent", "--stroke-mm", "--volume-ratio"})
         cli.RefuseIfGiven(option, "is set by characterize at each point of its curves (give --pressures-kpa)");
     const std::vector<double> pressures = ParsePressures(pressuresText);
     const sim::EvalJob base = BuildJob(cli, shape, model, ModelUse::Weighed);

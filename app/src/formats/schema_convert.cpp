@@ -209,6 +209,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setTwist(sim::Name(def.ends.twist));
     s.setTorqueNMm(def.ends.torqueNMm);
     s.setStrokePercent(l.strokePercent);
+    s.setStrokeMm(l.strokeMm);
     const sim::SolverDef& v = def.solver;
     s.setTolerance(v.tolerance);
     s.setMaxIterations(Count(v.maxIterations));
@@ -261,6 +262,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     def.ends.twist = twist.empty() ? sim::TwistEnd::Held : NamedEnum<sim::TwistEnd>(twist, "twist");  // as such records were evaluated
     def.ends.torqueNMm = s.getTorqueNMm();
     l.strokePercent = s.getStrokePercent();
+    l.strokeMm = s.getStrokeMm();
     sim::SolverDef& v = def.solver;
     v.tolerance = s.getTolerance();
     v.maxIterations = Count(s.getMaxIterations());

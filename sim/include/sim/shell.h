@@ -94,6 +94,7 @@ struct LoadDef {
     double volumeRatio = 1.5;  // target enclosed volume over the rest volume (Volume)
     double strokePercent = 0;  // Blocked: the top held this far below its rest place, % of the
                                // length (the isobaric test; 0: the blocking force)
+    double strokeMm = 0;       // Blocked: the same in mm, for a bench set by its travel (one of the two, not both)
     int steps = 4;             // load steps: the contraction-pressure curve's points
 };
 

@@ -90,6 +90,9 @@ std::string ShellDefError(const ShellDef& d) {
     if (l.steps < 1 || l.steps > 1000) return "load steps must be between 1 and 1000";
     if (!(std::isfinite(l.strokePercent) && l.strokePercent > -100 && l.strokePercent < 100))
         return "the held contraction must be a percentage of the length between -100 and 100";
+    if (!std::isfinite(l.strokeMm)) return "the held stroke must be a finite number of mm";
+    if (l.strokeMm != 0 && l.strokePercent != 0) return "give the held stroke once: stroke_percent or stroke_mm";
+    if (!(std::fabs(l.strokeMm) < d.geometry.lengthMm)) return "the held stroke must be shorter than the tube";
     if (!std::isfinite(d.ends.torqueNMm)) return "the torque must be a finite number";
     if (d.ends.twist == TwistEnd::Loaded && d.geometry.ends != EndCondition::Clamped) return "a torque needs clamped ends (sliding ends cannot turn)";
     const FibreDef& f = d.fibres;

@@ -641,7 +641,7 @@ struct TubeEvaluation {
         return l;
     }
     // The held stroke at fraction s (the blocked test): u, mm (0 for the blocking force).
-    double HeldAxialAt(double s) const { return -s * load.strokePercent * 1e-2 * length; }
+    double HeldAxialAt(double s) const { return -s * (load.strokeMm != 0 ? load.strokeMm : load.strokePercent * 1e-2 * length); }
     // The gauge pressure at fraction s of the target: a sealed gas's follows its volume (of the
     // current state q); a prescribed one is s times the target, exactly the target at s = 1.
     double GaugeKpa(double s) {
@@ -828,7 +828,7 @@ void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::V
     const ShellProblem& problem = t.problem;
     if (t.load.kind == ShellLoad::Blocked) {
         t.out.strokeForceN = t.out.curveForceN.back();  // the end state's reaction, recorded with the curve
-        if (t.load.strokePercent == 0) t.out.blockingForceN = t.out.strokeForceN;  // held at its rest place
+        if (t.load.strokePercent == 0 && t.load.strokeMm == 0) t.out.blockingForceN = t.out.strokeForceN;  // held at its rest place
         return;
     }
     if (t.load.kind != ShellLoad::Inflate && t.load.kind != ShellLoad::Gas) return;

@@ -300,3 +300,16 @@ TEST_F(ShellCli, TheForceAtAStrokeAndTheTwistAreObjectives) {
     }
     EXPECT_GT(front.Number(0, "twist_magnitude_deg"), 1) << "one family turns the top";
 }
+
+// A held stroke in mm is the same test as in percent of the length; both at once is refused.
+TEST_F(ShellCli, AHeldStrokeInMillimetresIsTheSameTestAsInPercent) {
+    const std::string braid = "simulate --model membrane --shape cylinder --fibres braid --fibre-angle-deg 30 --load blocked --pressure-kpa 20" + kSmall;
+    const auto percent = nlohmann::json::parse(Run(braid + " --stroke-percent 5").out);
+    const auto mm = nlohmann::json::parse(Run(braid + " --stroke-mm " + std::to_string(0.05 * percent["model"]["length_mm"].get<double>())).out);
+    ASSERT_EQ(percent["status"], "ok");
+    EXPECT_GT(percent["stroke_force_n"].get<double>(), 0);
+    EXPECT_EQ(mm["stroke_force_n"], percent["stroke_force_n"]);
+    EXPECT_EQ(mm["curve"], percent["curve"]);  // every load step's force
+    ExpectRefused(braid + " --stroke-percent 5 --stroke-mm 7.5", "give the held stroke once");
+    ExpectRefused("simulate --model membrane --stroke-mm 7.5" + kSmall, "--stroke-mm applies to --load blocked, not --load inflate");
+}

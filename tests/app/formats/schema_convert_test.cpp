@@ -82,6 +82,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     d.load.forceN = -0.25;
     d.load.volumeRatio = 1.75;
     d.load.strokePercent = 7.5;
+    d.load.strokeMm = 2.5;  // the def's check refuses both at once; the record keeps what it is given
     d.ends.twist = sim::TwistEnd::Loaded;
     d.ends.torqueNMm = -3.25;
     d.load.steps = 9;
@@ -100,9 +101,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
                        b.material.tensileStrengthKpa, b.material.elongationAtBreak, b.material.stretchLimit, b.material.densityKgPerM3),
               std::tie(d.material.preset, d.material.law, d.material.muKpa, d.material.c10Kpa, d.material.c01Kpa, d.material.c20Kpa, d.material.c30Kpa,
                        d.material.tensileStrengthKpa, d.material.elongationAtBreak, d.material.stretchLimit, d.material.densityKgPerM3));
-    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.strokePercent, b.ends.twist, b.ends.torqueNMm,
+    EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.strokePercent, b.load.strokeMm, b.ends.twist, b.ends.torqueNMm,
                        b.load.steps),
-              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.strokePercent, d.ends.twist, d.ends.torqueNMm,
+              std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.strokePercent, d.load.strokeMm, d.ends.twist, d.ends.torqueNMm,
                        d.load.steps));
     EXPECT_EQ(std::tie(b.solver.tolerance, b.solver.maxIterations, b.solver.maxBisections, b.solver.selfContact),
               std::tie(d.solver.tolerance, d.solver.maxIterations, d.solver.maxBisections, d.solver.selfContact));
