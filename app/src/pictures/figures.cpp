@@ -117,6 +117,51 @@ void AddFibres(render::Panel& panel, const sim::ShellFields& fields, bool byStre
     }
 }
 
+// Where the top turned (|twist| of half a degree or more), the turn drawn as a bench shows it with a
+// painted stripe: a red line straight along the tube at rest (each ring's vertex nearest one angle),
+// wound into a helix by the twist, and a radius of the top cap from its centre.
+bool ShowsTwist(const sim::SimResult& r, const sim::EvalJob& job) {
+    return job.model != sim::ModelKind::Thesis && std::isfinite(r.shell.twistDeg) && std::fabs(r.shell.twistDeg) >= 0.5;
+}
+void AddTwistStripe(render::Scene& scene, render::Panel& panel, const sim::Positions& x, const sim::SimResult& r, const sim::EvalJob& job) {
+    const sim::MeshDef rings = sim::ModelOf(job).designMesh(job);  // ring vertices x rings, then the two cap centres
+    const int R = rings.resolution, H = rings.turns;
+    if (R <= 0 || H < 3 || x.Size() != R * H + 2 || r.initial.Size() != x.Size()) return;
+    // The stripe's vertex in each ring: the one nearest (at rest) to the angle where the middle of the
+    // wound stripe faces the default camera.
+    const double az = render::DefaultRenderDef().azimuthDegrees * std::numbers::pi / 180;
+    const double start = std::atan2(-std::cos(az), std::sin(az)) - 0.5 * r.shell.twistDeg * std::numbers::pi / 180;
+    const sim::Positions& rest = r.initial;
+    auto nearest = [&](int ring) {
+        int best = ring * R;
+        double gap = INFINITY;
+        for (int v = ring * R; v < (ring + 1) * R; ++v) {
+            const double d = std::fabs(std::remainder(std::atan2(rest.y[v], rest.x[v]) - start, 2 * std::numbers::pi));
+            if (d < gap) gap = d, best = v;
+        }
+        return best;
+    };
+    auto point = [&](int v, float out[3]) {
+        out[0] = static_cast<float>(x.x[v]);
+        out[1] = static_cast<float>(x.y[v]);
+        out[2] = static_cast<float>(x.z[v]);
+    };
+    for (int ring = 0; ring + 1 < H; ++ring) {
+        render::Segment segment;
+        point(nearest(ring), segment.a);
+        point(nearest(ring + 1), segment.b);
+        segment.mark = true;
+        panel.segments.push_back(segment);
+    }
+    render::Segment radius;  // the top cap's centre to the stripe's vertex of its ring
+    point(R * H + 1, radius.a);
+    point(nearest(H - 1), radius.b);
+    radius.mark = true;
+    panel.segments.push_back(radius);
+    const std::string line = fmt::format("red stripe: straight along the tube at rest; the top clamp turned {:+.1f} deg", r.shell.twistDeg);
+    if (std::find(scene.lines.begin(), scene.lines.end(), line) == scene.lines.end()) scene.lines.push_back(line);
+}
+
 // A panel of a deformed mesh coloured as asked; sets the scene's mode, label and marks.
 render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed, const sim::SimResult& r, const sim::EvalJob& job,
                             Colouring colouring, std::string caption, double rotationDegrees = 0) {
@@ -152,6 +197,7 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
     const bool fibres = !thesis && job.Shell().fibres.layout != sim::FibreLayout::None;
     if (fibres && colouring != Colouring::Stretch && colouring != Colouring::Stress)
         AddFibres(panel, sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, deformed), false);
+    if (ShowsTwist(r, job)) AddTwistStripe(scene, panel, deformed, r, job);
     return panel;
 }
 
@@ -170,6 +216,7 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
     if (job.model != sim::ModelKind::Thesis && job.Shell().fibres.layout != sim::FibreLayout::None)
         AddFibres(scene.panels.front(), sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
+    if (ShowsTwist(r, job)) AddTwistStripe(scene, scene.panels.front(), r.initial, r, job);
     scene.panels.push_back(ColouredPanel(scene, r.final, r, job, colouring, AfterCaption(r, job)));
     return scene;
 }

@@ -37,10 +37,12 @@ struct RenderDef {
 };
 RenderDef DefaultRenderDef();
 
-// A line segment drawn over the surface (fibres, cut edges), coloured by `value` on the scene's map.
+// A line segment drawn over the surface (fibres, cut edges), coloured by `value` on the scene's map,
+// or a mark (a painted stripe) drawn thick in red over everything else.
 struct Segment {
     float a[3], b[3];
     float value = 0;
+    bool mark = false;
 };
 
 struct Panel {

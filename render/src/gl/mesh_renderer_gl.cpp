@@ -414,25 +414,25 @@ Image MeshRendererGl::Render(const Scene& scene) {
             glDisableVertexAttribArray(1);
             glDisableVertexAttribArray(2);
             glBindBuffer(GL_ARRAY_BUFFER, segmentBuffer);
-            constexpr int kBands = 16;
-            std::vector<std::vector<float>> bands(kBands);
+            constexpr int kBands = 16, kMarks = kBands;  // the last band: marks
+            std::vector<std::vector<float>> bands(kBands + 1);
             for (const Segment& segment : panel.segments) {
                 const double t = std::clamp((segment.value - minValue) / (maxValue - minValue), 0.0, 1.0);
-                auto& band = bands[std::min(kBands - 1, int(t * kBands))];
+                auto& band = segment.mark ? bands[kMarks] : bands[std::min(kBands - 1, int(t * kBands))];
                 const Vec3 a = rotation * Vec3(segment.a[0], segment.a[1], segment.a[2]);
                 const Vec3 b = rotation * Vec3(segment.b[0], segment.b[1], segment.b[2]);
                 if (!a.allFinite() || !b.allFinite()) continue;
                 band.insert(band.end(), {a.x(), a.y(), a.z(), b.x(), b.y(), b.z()});
             }
             glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-            for (int band = 0; band < kBands; ++band) {
+            for (int band = 0; band <= kBands; ++band) {
                 if (bands[band].empty()) continue;
-                const Vec3 c = Viridis((band + 0.5) / kBands) * 0.85f;
+                const Vec3 c = band == kMarks ? Vec3(0.85f, 0.1f, 0.1f) : Vec3(Viridis((band + 0.5) / kBands) * 0.85f);
                 const float lineColor[4] = {c.x(), c.y(), c.z(), 1.0f};
                 glUniform4fv(glGetUniformLocation(lineProgram, "lineColor"), 1, lineColor);
                 glBufferData(GL_ARRAY_BUFFER, bands[band].size() * sizeof(float), bands[band].data(), GL_STREAM_DRAW);
                 glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-                glLineWidth(float(def.supersample));
+                glLineWidth(float(def.supersample) * (band == kMarks ? 3.0f : 1.0f));
                 glDrawArrays(GL_LINES, 0, GLsizei(bands[band].size() / 3));
             }
             glLineWidth(1.0f);

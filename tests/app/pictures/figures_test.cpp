@@ -57,3 +57,39 @@ TEST(PairsScene, EachDesignIsColouredAndGivenFibresByItsOwnJob) {
 }
 
 }  // namespace
+
+namespace {
+std::vector<render::Segment> Marks(const render::Panel& panel) {
+    std::vector<render::Segment> marks;
+    for (const render::Segment& s : panel.segments)
+        if (s.mark) marks.push_back(s);
+    return marks;
+}
+}  // namespace
+
+// Where the top turns, a stripe straight along the tube at rest is drawn wound by the twist: its top
+// end (the cap's radius) turned by the result's twist_deg. A braid, which does not turn, has none.
+TEST(BeforeAfterScene, ATurnedTopIsDrawnAsAStripeWoundByTheTwist) {
+    sim::EvalJob single = SmallShellJob(sim::CylinderShape{});
+    single.Shell().fibres.layout = sim::FibreLayout::Single;
+    single.Shell().fibres.angleDeg = 40;
+    const sim::SimResult r = sim::Evaluate(single);
+    ASSERT_EQ(r.status, sim::Status::Ok);
+    ASSERT_GT(std::fabs(r.shell.twistDeg), 5) << "one family turns the top";
+    const render::Scene scene = app::BeforeAfterScene("twist", r, single);
+    ASSERT_EQ(scene.panels.size(), 2u);
+    const auto before = Marks(scene.panels[0]), after = Marks(scene.panels[1]);
+    ASSERT_EQ(before.size(), 12u) << "one segment between each pair of rings and the top cap's radius";
+    ASSERT_EQ(after.size(), before.size());
+    auto angle = [](const float p[3]) { return std::atan2(double(p[1]), double(p[0])) * 180 / std::numbers::pi; };
+    // At rest the stripe runs along the axis: every vertex within half a ring spacing of one angle.
+    for (size_t k = 0; k + 1 < before.size(); ++k)  // the last is the cap's radius, from the axis
+        EXPECT_LT(std::fabs(std::remainder(angle(before[k].a) - angle(before.front().a), 360)), 360.0 / 12 / 2 + 1e-6);
+    EXPECT_NEAR(std::remainder(angle(after.back().b) - angle(before.back().b), 360), r.shell.twistDeg, 1e-3) << "the cap's radius turns with the top";
+
+    sim::EvalJob braid = single;
+    braid.Shell().fibres.layout = sim::FibreLayout::Braid;
+    const sim::SimResult b = sim::Evaluate(braid);
+    ASSERT_EQ(b.status, sim::Status::Ok);
+    for (const render::Panel& panel : app::BeforeAfterScene("braid", b, braid).panels) EXPECT_TRUE(Marks(panel).empty());
+}
