@@ -65,6 +65,9 @@ std::string JobTitle(const sim::EvalJob& job) {
     return fmt::format("{}  -  {} model{}", ShapeTitle(job.shape), sim::Name(job.model), fibres.empty() ? "" : ",  " + fibres);
 }
 
+// A turn of the top smaller than this is not drawn or written (a braid's numerical rest).
+constexpr double kShownTwistDeg = 0.5;
+
 std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
     if (job.model == sim::ModelKind::Thesis) {
@@ -74,6 +77,7 @@ std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     const sim::ShellOutputs& o = r.shell;
     if (std::isfinite(r.contractionPercent)) line += fmt::format("contraction {:.2f} % at {:.3g} kPa,  ", r.contractionPercent, o.targetPressureKpa);
     if (std::isfinite(o.limitPressureKpa)) line += fmt::format("limit point {:.3g} kPa,  ", o.limitPressureKpa);
+    if (std::isfinite(o.twistDeg) && std::fabs(o.twistDeg) >= kShownTwistDeg) line += fmt::format("top turned {:+.1f} deg,  ", o.twistDeg);
     if (std::isfinite(o.maxStretch)) line += fmt::format("stretch {:.2f} (limit {:.2f}),  ", o.maxStretch, o.stretchLimit);
     return line + fmt::format("{} Newton iterations,  {} x {} mesh,  {}", o.newtonIterations, job.Shell().geometry.ringVertices,
                               sim::RingCount(job.Shell().geometry), sim::Name(job.Shell().material.preset));
@@ -121,7 +125,7 @@ void AddFibres(render::Panel& panel, const sim::ShellFields& fields, bool byStre
 // painted stripe: a red line straight along the tube at rest (each ring's vertex nearest one angle),
 // wound into a helix by the twist, and a radius of the top cap from its centre.
 bool ShowsTwist(const sim::SimResult& r, const sim::EvalJob& job) {
-    return job.model != sim::ModelKind::Thesis && std::isfinite(r.shell.twistDeg) && std::fabs(r.shell.twistDeg) >= 0.5;
+    return job.model != sim::ModelKind::Thesis && std::isfinite(r.shell.twistDeg) && std::fabs(r.shell.twistDeg) >= kShownTwistDeg;
 }
 void AddTwistStripe(render::Scene& scene, render::Panel& panel, const sim::Positions& x, const sim::SimResult& r, const sim::EvalJob& job) {
     const sim::MeshDef rings = sim::ModelOf(job).designMesh(job);  // ring vertices x rings, then the two cap centres
@@ -158,7 +162,8 @@ void AddTwistStripe(render::Scene& scene, render::Panel& panel, const sim::Posit
     point(nearest(H - 1), radius.b);
     radius.mark = true;
     panel.segments.push_back(radius);
-    const std::string line = fmt::format("red stripe: straight along the tube at rest; the top clamp turned {:+.1f} deg", r.shell.twistDeg);
+    // One line for a scene of many designs; each design's turn is in its own result line.
+    const std::string line = "red stripe: straight along the tube at rest, wound by the top clamp's turn";
     if (std::find(scene.lines.begin(), scene.lines.end(), line) == scene.lines.end()) scene.lines.push_back(line);
 }
 
