@@ -458,7 +458,8 @@ PYBIND11_MODULE(actuator, m) {
            std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load,
            std::optional<sim::SolverDef> solver, std::optional<sim::FibreDef> fibres, std::optional<sim::EndsDef> ends) {
             const sim::EvalJob base = JobOf(design.shape, model, {std::nullopt, std::nullopt, geometry, material, load, ends, solver, fibres});
-            if (const std::string error = app::CharacterizeJobError(base); !error.empty()) throw py::value_error(error);
+            if (const app::CharacterizeRefusal refusal = app::CharacterizeJobError(base); !refusal.reason.empty())
+                throw py::value_error(refusal.Text(refusal.key));
             if (const std::string error = app::PressuresError(pressuresKpa); !error.empty()) throw py::value_error("pressures_kpa: " + error);
             if (points < 2 || points > 100) throw py::value_error(fmt::format("points: {} is out of range (2 to 100)", points));
             app::CharacteristicCurves curves;

@@ -8,10 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
-#include <atomic>
 #include <iostream>
-#include <thread>
-#include <numbers>
 
 #include "commands/registry.h"
 #include "evaluation/characterize.h"
@@ -79,11 +76,8 @@ static int RunCharacterize(int argc, char** argv, int first) {
         cli.RefuseIfGiven(option, "is set by characterize at each point of its curves (give --pressures-kpa)");
     const std::vector<double> pressures = ParsePressures(pressuresText);
     const sim::EvalJob base = BuildJob(cli, shape, model, ModelUse::Weighed);
-    if (std::string error = CharacterizeJobError(base); !error.empty()) {
-        // It opens with the key at fault ("model thesis", "force_n"): here an option.
-        std::replace(error.begin(), error.begin() + static_cast<long>(std::min(error.find_first_of(" :"), error.size())), '_', '-');
-        throw UsageError("--" + error);
-    }
+    if (const CharacterizeRefusal refusal = CharacterizeJobError(base); !refusal.reason.empty())
+        throw UsageError(refusal.Text(OptionName(refusal.key.c_str())));
 
     const fs::path folder = out;
     const std::vector<std::string> files{"characteristic.csv", "force_contraction.png", "force_pressure.png", "stroke_pressure.png"};

@@ -1,14 +1,13 @@
 #include "evaluation/characterize.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <numbers>
-#include <thread>
 #include <fmt/format.h>
 
 #include "formats/csv.h"
 #include "formats/json_out.h"
+#include "sim/batch.h"
 
 namespace app {
 namespace {
@@ -30,13 +29,13 @@ std::string PressuresError(const std::vector<double>& pressures) {
     return "";
 }
 
-std::string CharacterizeJobError(const sim::EvalJob& job) {
+CharacterizeRefusal CharacterizeJobError(const sim::EvalJob& job) {
     if (!sim::ModelOf(job).physical)
-        return std::string("model ") + sim::Name(job.model) + ": characterize needs the membrane or shell model (forces in newtons at equilibrium)";
+        return {"model", sim::Name(job.model), "characterize needs the membrane or shell model (forces in newtons at equilibrium)"};
     const sim::LoadDef& load = job.Shell().load;
-    if (load.kind != sim::ShellLoad::Inflate) return std::string("load ") + sim::Name(load.kind) + ": characterize sets the load at each point of its curves";
-    if (load.forceN != 0) return "force_n: the curves are of the muscle alone; the isobaric curve gives the force at each stroke";
-    return "";
+    if (load.kind != sim::ShellLoad::Inflate) return {"load", sim::Name(load.kind), "characterize sets the load at each point of its curves"};
+    if (load.forceN != 0) return {"force_n", "", "the curves are of the muscle alone; the isobaric curve gives the force at each stroke"};
+    return {};
 }
 
 CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<double>& pressuresKpa, int points, int threads) {
@@ -53,27 +52,21 @@ CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<do
     std::vector<double> fractions;
     for (int i = 0; i + 1 < points; ++i) fractions.push_back(double(i) / (points - 1));
     const bool bending = base.model == sim::ModelKind::Shell;  // the shell model is the membrane with bending
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-        // The longest tasks first (the highest pressures), so that no thread is left with one at the end.
-        for (size_t task = next++; task <= n; task = next++) {
-            const size_t k = task == 0 ? n - 1 : task == 1 ? n : n - task;  // the top pressure, the isometric test, then down
-            if (k == n) {
-                c.isometric = sim::Evaluate(AtLoad(base, sim::ShellLoad::Blocked, pressuresKpa.back()));
-                continue;
-            }
-            const sim::EvalJob job = AtLoad(base, sim::ShellLoad::Inflate, pressuresKpa[k]);
-            sim::IsobaricCurve curve = sim::IsobaricForces(job.shape, job.Shell(), bending, fractions);
-            c.free[k] = std::move(curve.free);
-            c.points[k] = std::move(curve.points);
+    const int n1 = static_cast<int>(n) + 1;
+    // The longest tasks first (the highest pressures), so that no thread is left with one at the end.
+    sim::ParallelFor(n1, threads, [&](int task) {
+        const size_t k = task == 0 ? n - 1 : task == 1 ? n : n - static_cast<size_t>(task);  // the top pressure, the isometric test, then down
+        if (k == n) {
+            c.isometric = sim::Evaluate(AtLoad(base, sim::ShellLoad::Blocked, pressuresKpa.back()));
+            return;
         }
-    };
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned count = std::min<unsigned>(static_cast<unsigned>(n + 1), threads > 0 ? static_cast<unsigned>(threads) : hardware);
-    std::vector<std::thread> pool;
-    for (unsigned w = 1; w < count; ++w) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
+        const sim::EvalJob job = AtLoad(base, sim::ShellLoad::Inflate, pressuresKpa[k]);
+        sim::IsobaricCurve curve = sim::IsobaricForces(job.shape, job.Shell(), bending, fractions);
+        c.free[k] = std::move(curve.free);
+        c.points[k] = std::move(curve.points);
+        if (c.free[k].status == sim::Status::Ok)  // the free state closes the curve: no force
+            c.points[k].push_back({c.free[k].contractionPercent, 0.0, c.free[k].shell.twistDeg, sim::Status::Ok});
+    });
 
     const double lengthMm = base.Shell().geometry.lengthMm;
     c.contractionPercent.resize(n);
@@ -82,10 +75,6 @@ CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<do
         for (const sim::IsobaricPoint& point : c.points[k]) {
             c.contractionPercent[k].push_back(point.strokePercent);
             c.forceN[k].push_back(point.status == sim::Status::Ok ? point.forceN : NAN);
-        }
-        if (c.free[k].status == sim::Status::Ok) {  // the free state closes the curve: no force
-            c.contractionPercent[k].push_back(c.free[k].contractionPercent);
-            c.forceN[k].push_back(0);
         }
         // Trapezoids over the curve's points from rest to the free stroke; NaN if a point failed.
         double work = c.contractionPercent[k].size() > 1 ? 0 : NAN;
@@ -130,11 +119,7 @@ Table CharacteristicTable(const CharacteristicCurves& c) {
             table.AddRow({"isobaric", pressure, CsvNumber(point.strokePercent), ok ? CsvNumber(point.forceN) : "", ok ? CsvNumber(point.twistDeg) : "",
                           sim::Name(point.status)});
         }
-        const sim::SimResult& free = c.free[k];
-        if (free.status == sim::Status::Ok)
-            table.AddRow({"isobaric", pressure, CsvNumber(free.contractionPercent), "0", CsvNumber(free.shell.twistDeg), "ok"});
-        else
-            table.AddRow({"isobaric", pressure, "", "", "", sim::Name(free.status)});
+        if (c.free[k].status != sim::Status::Ok) table.AddRow({"isobaric", pressure, "", "", "", sim::Name(c.free[k].status)});
     }
     const sim::ShellOutputs& iso = c.isometric.shell;
     for (size_t s = 0; s < iso.curvePressureKpa.size() && s < iso.curveForceN.size(); ++s)

@@ -18,7 +18,7 @@ struct CharacteristicCurves {
     std::vector<sim::SimResult> free;                      // per pressure: the free inflation
     std::vector<std::vector<double>> contractionPercent;   // per pressure: the isobaric curve, closed by the free state
     std::vector<std::vector<double>> forceN;               // per pressure, beside contractionPercent (NaN: a point that failed)
-    std::vector<std::vector<sim::IsobaricPoint>> points;   // per pressure: the held strokes as solved
+    std::vector<std::vector<sim::IsobaricPoint>> points;   // per pressure: the held strokes as solved, closed by the free state (no force)
     std::vector<double> workPerStrokeMj;                   // per pressure: the force integrated over the stroke, N mm = mJ (NaN: none)
     sim::SimResult isometric;                              // the top held at its rest place, to the highest pressure
     double siliconeMassG = NAN;                            // the wall's, at the material's density (NaN: no density)
@@ -28,7 +28,13 @@ struct CharacteristicCurves {
 // otherwise what is wrong. And empty when `job` can be characterized: a membrane or shell job whose
 // load is the muscle alone (characterize sets the pressure and the stroke at each point).
 std::string PressuresError(const std::vector<double>& pressuresKpa);
-std::string CharacterizeJobError(const sim::EvalJob& job);
+// The setting at fault is named by its key and value ("model", "thesis"), so the command line can
+// name its option and Python its argument.
+struct CharacterizeRefusal {
+    std::string key, value, reason;  // reason empty: none
+    std::string Text(const std::string& name) const { return name + (value.empty() ? "" : " " + value) + ": " + reason; }
+};
+CharacterizeRefusal CharacterizeJobError(const sim::EvalJob& job);
 
 // `base` is a membrane or shell job (its load is replaced); `pressuresKpa` increasing; `points` per
 // isobaric curve (2 or more); `threads` 0 for every core. The same whatever the threads.

@@ -65,8 +65,9 @@ std::string JobTitle(const sim::EvalJob& job) {
     return fmt::format("{}  -  {} model{}", ShapeTitle(job.shape), sim::Name(job.model), fibres.empty() ? "" : ",  " + fibres);
 }
 
-// A turn of the top smaller than this is not drawn or written (a braid's numerical rest).
+// A turn of the top smaller than this is not drawn (a braid's numerical rest).
 constexpr double kShownTwistDeg = 0.5;
+constexpr const char* kStripeLegend = "red stripe: straight along the tube at rest";
 
 std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     std::string line = std::string("status ") + sim::Name(r.status) + ",  ";
@@ -77,7 +78,6 @@ std::string ResultLine(const sim::SimResult& r, const sim::EvalJob& job) {
     const sim::ShellOutputs& o = r.shell;
     if (std::isfinite(r.contractionPercent)) line += fmt::format("contraction {:.2f} % at {:.3g} kPa,  ", r.contractionPercent, o.targetPressureKpa);
     if (std::isfinite(o.limitPressureKpa)) line += fmt::format("limit point {:.3g} kPa,  ", o.limitPressureKpa);
-    if (std::isfinite(o.twistDeg) && std::fabs(o.twistDeg) >= kShownTwistDeg) line += fmt::format("top turned {:+.1f} deg,  ", o.twistDeg);
     if (std::isfinite(o.maxStretch)) line += fmt::format("stretch {:.2f} (limit {:.2f}),  ", o.maxStretch, o.stretchLimit);
     return line + fmt::format("{} Newton iterations,  {} x {} mesh,  {}", o.newtonIterations, job.Shell().geometry.ringVertices,
                               sim::RingCount(job.Shell().geometry), sim::Name(job.Shell().material.preset));
@@ -136,15 +136,14 @@ void AddTwistStripe(render::Scene& scene, render::Panel& panel, const sim::Posit
     const double az = render::DefaultRenderDef().azimuthDegrees * std::numbers::pi / 180;
     const double start = std::atan2(-std::cos(az), std::sin(az)) - 0.5 * r.shell.twistDeg * std::numbers::pi / 180;
     const sim::Positions& rest = r.initial;
-    auto nearest = [&](int ring) {
-        int best = ring * R;
+    std::vector<int> stripe(static_cast<size_t>(H));
+    for (int ring = 0; ring < H; ++ring) {
         double gap = INFINITY;
         for (int v = ring * R; v < (ring + 1) * R; ++v) {
             const double d = std::fabs(std::remainder(std::atan2(rest.y[v], rest.x[v]) - start, 2 * std::numbers::pi));
-            if (d < gap) gap = d, best = v;
+            if (d < gap) gap = d, stripe[ring] = v;
         }
-        return best;
-    };
+    }
     auto point = [&](int v, float out[3]) {
         out[0] = static_cast<float>(x.x[v]);
         out[1] = static_cast<float>(x.y[v]);
@@ -152,19 +151,19 @@ void AddTwistStripe(render::Scene& scene, render::Panel& panel, const sim::Posit
     };
     for (int ring = 0; ring + 1 < H; ++ring) {
         render::Segment segment;
-        point(nearest(ring), segment.a);
-        point(nearest(ring + 1), segment.b);
+        point(stripe[ring], segment.a);
+        point(stripe[ring + 1], segment.b);
         segment.mark = true;
         panel.segments.push_back(segment);
     }
     render::Segment radius;  // the top cap's centre to the stripe's vertex of its ring
     point(R * H + 1, radius.a);
-    point(nearest(H - 1), radius.b);
+    point(stripe[H - 1], radius.b);
     radius.mark = true;
     panel.segments.push_back(radius);
-    // One line for a scene of many designs; each design's turn is in its own result line.
-    const std::string line = "red stripe: straight along the tube at rest, wound by the top clamp's turn";
-    if (std::find(scene.lines.begin(), scene.lines.end(), line) == scene.lines.end()) scene.lines.push_back(line);
+    // Its legend once a scene (a one-design scene has already named the turn).
+    const bool named = std::any_of(scene.lines.begin(), scene.lines.end(), [](const std::string& l) { return l.rfind(kStripeLegend, 0) == 0; });
+    if (!named) scene.lines.push_back(kStripeLegend + std::string(", wound by the top clamp's turn"));
 }
 
 // A panel of a deformed mesh coloured as asked; sets the scene's mode, label and marks.
@@ -221,7 +220,10 @@ render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r
     scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
     if (job.model != sim::ModelKind::Thesis && job.Shell().fibres.layout != sim::FibreLayout::None)
         AddFibres(scene.panels.front(), sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
-    if (ShowsTwist(r, job)) AddTwistStripe(scene, scene.panels.front(), r.initial, r, job);
+    if (ShowsTwist(r, job)) {
+        scene.lines.push_back(fmt::format("{}; the top clamp turned {:+.1f} deg", kStripeLegend, r.shell.twistDeg));
+        AddTwistStripe(scene, scene.panels.front(), r.initial, r, job);
+    }
     scene.panels.push_back(ColouredPanel(scene, r.final, r, job, colouring, AfterCaption(r, job)));
     return scene;
 }

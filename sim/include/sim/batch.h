@@ -25,4 +25,8 @@ std::vector<SimResult> EvaluateBatch(const std::vector<EvalJob>& jobs, int threa
 
 int HardwareThreads();
 
+// Runs task(i) for every i in [0, count) on `threads` workers (0: one per core; the calling thread is
+// one), each index once, in no fixed order: a task writes only its own index's result.
+void ParallelFor(int count, int threads, const std::function<void(int)>& task);
+
 }  // namespace sim

@@ -861,7 +861,6 @@ Status JudgeEquilibrium(TubeEvaluation& t, int negativePivots) {
     return Status::Ok;
 }
 
-
 // Stage (the isobaric test): from the free equilibrium, the top held at each fraction of the free
 // stroke, the largest first, each held state from the last.
 std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& finalLoad, const std::vector<double>& fractions, double freeContractionPercent) {
