@@ -276,8 +276,10 @@ CharacteristicImages CharacteristicCurveImages(const std::string& title, const s
     render::LineSeries strokes{"free stroke", {}, {}, {0.1f, 0.1f, 0.1f}, true, false};
     for (size_t k = 0; k < pressures.size(); ++k) {
         if (k < ideal.size() && !ideal[k].empty()) {
-            // Grey, so that the model's lines stand out; each starts beside its curve's first point.
-            isobaric.series.push_back({k == 0 ? "ideal muscle at each pressure (Tondu and Lopez 2000)" : "", contraction[k], ideal[k], {0.72f, 0.72f, 0.72f}, false});
+            // Dashed in its pressure's colour, as muscle papers set theory beside measurement.
+            render::LineSeries theory{k == 0 ? "ideal muscle at each pressure, dashed (Tondu and Lopez 2000)" : "", contraction[k], ideal[k], shade(k), false};
+            theory.dashed = true;
+            isobaric.series.push_back(theory);
         }
         isobaric.series.push_back({fmt::format("{:g} kPa", pressures[k]), contraction[k], force[k], shade(k), true});
         if (!contraction[k].empty() && force[k].back() == 0) {  // the curve ends at the free state

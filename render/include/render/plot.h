@@ -18,6 +18,7 @@ struct LineSeries {
     Rgb color;
     bool markers = false;
     bool lines = true;                    // false: markers alone (a scatter plot)
+    bool dashed = false;                  // lines drawn dashed, e.g. a theory beside the model
     float alpha = 1;                      // < 1: faint, e.g. every design behind a Pareto front
     std::vector<std::string> pointLabels{}; // drawn beside the markers (e.g. front numbers); may be shorter than x
 };

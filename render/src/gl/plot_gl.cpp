@@ -23,6 +23,20 @@ namespace render {
 namespace {
 
 ImU32 Color(const Rgb& c, float alpha = 1) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, alpha)); }
+
+// A dashed segment from a to b: dashes `dash` long with `gap` between them (pixels), starting `phase`
+// pixels into the pattern. Returns the phase at b, for the next segment of the same polyline.
+float AddDashedLine(ImDrawList* draw, ImVec2 a, ImVec2 b, ImU32 color, float width, float dash, float gap, float phase) {
+    const float period = dash + gap;
+    const float length = std::hypot(b.x - a.x, b.y - a.y);
+    if (!(length > 0)) return phase;
+    const ImVec2 unit((b.x - a.x) / length, (b.y - a.y) / length);
+    for (float s = -phase; s < length; s += period) {
+        const float from = std::max(s, 0.0f), to = std::min(s + dash, length);
+        if (to > from) draw->AddLine(ImVec2(a.x + unit.x * from, a.y + unit.y * from), ImVec2(a.x + unit.x * to, a.y + unit.y * to), color, width);
+    }
+    return std::fmod(phase + length, period);
+}
 const ImU32 kInk = IM_COL32(30, 30, 30, 255);
 const ImU32 kGrid = IM_COL32(225, 225, 225, 255);
 
@@ -174,10 +188,13 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
             }
         draw->Flags = flags;
         for (const LineSeries& series : plot.series) {
-            for (size_t i = 1; series.lines && i < series.x.size(); ++i)
-                if (std::isfinite(series.y[i - 1]) && std::isfinite(series.y[i]))
-                    draw->AddLine(ImVec2(axes.X(series.x[i - 1]), axes.Y(series.y[i - 1])), ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])),
-                                  Color(series.color), fs * 0.16f);
+            float dashPhase = 0;  // carried along the polyline, so that dashes do not restart at every point
+            for (size_t i = 1; series.lines && i < series.x.size(); ++i) {
+                if (!std::isfinite(series.y[i - 1]) || !std::isfinite(series.y[i])) continue;
+                const ImVec2 a(axes.X(series.x[i - 1]), axes.Y(series.y[i - 1])), b(axes.X(series.x[i]), axes.Y(series.y[i]));
+                if (series.dashed) dashPhase = AddDashedLine(draw, a, b, Color(series.color), fs * 0.16f, fs * 0.7f, fs * 0.45f, dashPhase);
+                else draw->AddLine(a, b, Color(series.color), fs * 0.16f);
+            }
             if (series.markers)
                 for (size_t i = 0; i < series.x.size(); ++i)
                     if (std::isfinite(series.y[i])) draw->AddCircleFilled(ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])), fs * 0.22f, Color(series.color, series.alpha));
@@ -214,14 +231,14 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
         struct Entry {
             std::string label;
             ImU32 color;
-            int kind;  // 0 line, 1 filled, 2 dot
+            int kind;  // 0 line, 1 filled, 2 dot, 3 dashed line
             float width;
         };
         std::vector<Entry> entries;
         auto add = [&](const std::string& label, ImU32 color, int kind) {
             if (!label.empty()) entries.push_back({label, color, kind, fs * 3.8f + o.TextFont()->CalcTextSizeA(fs * 0.9f, FLT_MAX, 0, label.c_str()).x});
         };
-        for (const auto& series : plots[0].series) add(series.label, Color(series.color, std::max(series.alpha, 0.5f)), series.lines ? 0 : 2);
+        for (const auto& series : plots[0].series) add(series.label, Color(series.color, std::max(series.alpha, 0.5f)), !series.lines ? 2 : series.dashed ? 3 : 0);
         for (const auto& band : plots[0].bands) add(band.label, Color(band.color, 0.35f), 1);
         float total = 0;
         for (const Entry& e : entries) total += e.width;
@@ -234,6 +251,7 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
             }
             if (e.kind == 1) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), e.color);
             else if (e.kind == 2) draw->AddCircleFilled(ImVec2(x + fs * 0.8f, y + fs * 0.5f), fs * 0.3f, e.color);
+            else if (e.kind == 3) AddDashedLine(draw, ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), e.color, fs * 0.18f, fs * 0.5f, fs * 0.3f, 0);
             else draw->AddLine(ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), e.color, fs * 0.18f);
             draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(x + fs * 2.0f, y), kInk, e.label.c_str());
             x += e.width;

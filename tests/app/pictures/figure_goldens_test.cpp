@@ -123,6 +123,38 @@ TEST(FigureGoldens, ContactSheetOnTheSweepAxes) {
     ExpectMatchesGolden("contact_sheet_axes", image);
 }
 
+// `characterize`'s force-contraction chart: one line per pressure with the free stroke marked, and
+// the ideal muscle's lines dashed beside them (fixed data: a muscle a little weaker than the ideal).
+TEST(FigureGoldens, CharacteristicCurvesWithTheIdealMuscleDashed) {
+    const double pi = 3.141592653589793, radiusMm = 5, alpha = 30 * pi / 180;
+    const std::vector<double> pressures{5, 10, 20};
+    std::vector<std::vector<double>> contraction, force, ideal;
+    for (double p : pressures) {
+        const double stroke = 0.93 * (1 - 1 / (std::sqrt(3.0) * std::cos(alpha)));  // a little short of the ideal free stroke, 1/3
+        std::vector<double> eps, modelled, theory;
+        for (int k = 0; k < 6; ++k) {
+            const double e = stroke * k / 5;
+            const double ideal = pi * radiusMm * radiusMm * p * 1e-3 * (3 * (1 - e) * (1 - e) / std::pow(std::tan(alpha), 2) - 1 / std::pow(std::sin(alpha), 2));
+            eps.push_back(100 * e);
+            theory.push_back(ideal);
+            modelled.push_back(k == 5 ? 0 : 0.9 * ideal * (1 - e / stroke * 0.3));
+        }
+        contraction.push_back(eps);
+        force.push_back(modelled);
+        ideal.push_back(theory);
+    }
+    sim::SimResult isometric, freeStroke;
+    for (double p : {0.0, 5.0, 10.0, 15.0, 20.0}) {
+        isometric.shell.curvePressureKpa.push_back(p);
+        isometric.shell.curveForceN.push_back(0.4 * p);
+        freeStroke.shell.curvePressureKpa.push_back(p);
+        freeStroke.shell.curveContractionPercent.push_back(20 * (1 - std::exp(-p / 6)));
+    }
+    const app::CharacteristicImages images =
+        app::CharacteristicCurveImages("golden braid at 30 deg", pressures, contraction, force, ideal, isometric, freeStroke);
+    ExpectMatchesGolden("characteristic_force_contraction", images.forceContraction);
+}
+
 // The exported solids as `render --solid` draws them: a short sine tube cut along its axis, and its
 // mold pulled apart.
 sim::PartSolids GoldenSolids() {
