@@ -112,6 +112,7 @@ struct ShellDef {
   torqueNMm @35 :Float64;
   strokePercent @36 :Float64;
   strokeMm @37 :Float64;
+  isobaricPoints @38 :UInt32;     # inflate: held strokes after the free inflation (0: none)
 }
 
 struct FibreBand {
@@ -148,6 +149,10 @@ struct ShellOutputs {
   curveForceN @22 :List(Float64);
   curveTwistDeg @23 :List(Float64);
   strokeForceN @24 :Float64 = nan;
+  isobaricContractionPercent @25 :List(Float64);
+  isobaricForceN @26 :List(Float64);
+  workPerStrokeMj @27 :Float64 = nan;
+  workPerGramMjPerG @28 :Float64 = nan;
 }
 
 struct EvalResult {

@@ -68,6 +68,8 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Number("twist_deg", "deg", s.twistDeg);
     v.Number("twist_per_length_deg_per_mm", "deg/mm", s.twistPerLengthDegPerMm);
     v.Number("torque_n_mm", "N mm", s.torqueNMm);
+    v.Number("work_per_stroke_mj", "mJ", s.workPerStrokeMj);
+    v.Number("work_per_gram_mj_per_g", "mJ/g", s.workPerGramMjPerG);
     v.Number("rest_volume_mm3", "mm^3", s.restVolumeMm3);
     v.Number("volume_mm3", "mm^3", s.volumeMm3);
     v.Number("max_stretch", "", s.maxStretch);
@@ -86,6 +88,8 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Curve("curve_volume_mm3", "mm^3", s.curveVolumeMm3);
     v.Curve("curve_force_n", "N", s.curveForceN);
     v.Curve("curve_twist_deg", "deg", s.curveTwistDeg);
+    v.Curve("isobaric_contraction_percent", "%", s.isobaricContractionPercent);
+    v.Curve("isobaric_force_n", "N", s.isobaricForceN);
 }
 
 Surface ShellModelSurface(const EvalJob& job) { return ShellSurface(job.Shell().geometry); }

@@ -13,6 +13,7 @@
 #include "commands/registry.h"
 #include "evaluation/characterize.h"
 #include "formats/csv.h"
+#include "formats/evaluation_log.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
 #include "formats/table.h"
@@ -52,7 +53,8 @@ static int RunCharacterize(int argc, char** argv, int first) {
             "contraction, from none to its free stroke (the isobaric test: the top held at each contraction); the force with the top held at "
             "its rest place against pressure (isometric); and the free stroke against pressure. The top may turn as the design's --twist "
             "says (free by default, as on a bench). Writes DIR/characteristic.csv, DIR/force_contraction.png, DIR/force_pressure.png and "
-            "DIR/stroke_pressure.png, and prints a JSON summary. Forces in N (positive = the muscle pulls on its supports), contraction in "
+            "DIR/stroke_pressure.png; every evaluation behind them in DIR/evaluations.capnp (for inspect, render and simulate --from) and in "
+            "DIR/evaluations.csv, and prints a JSON summary. Forces in N (positive = the muscle pulls on its supports), contraction in "
             "percent of the length (positive = shorter), pressures in kPa.");
     ShapeOptions shape;
     ModelOptions model;
@@ -65,14 +67,16 @@ static int RunCharacterize(int argc, char** argv, int first) {
         ->type_name("LIST");
     cli.Integer("--points", points, "points of each isobaric curve, from no contraction to the free stroke", 2, 100);
     cli.Integer("--threads", threads, "evaluation threads (0: every core); results do not depend on it", 0, 1024)->default_str("0 (every core)");
-    cli.Text("--out", out, "folder for the table and the plots (created if missing); required")->type_name("DIR");
+    bool overwrite = false;
+    cli.Text("--out", out, "folder for the table, the plots and the archive (created if missing); required")->type_name("DIR");
+    cli.Flag("--overwrite", overwrite, "replace the files of an earlier characterize in --out");
     cli.Examples(
         "  actuator characterize --shape cylinder --fibres braid --fibre-angle-deg 30 --out curves/braid\n"
         "  actuator characterize --shape sine --amplitude 1.3 --fibres single --fibre-angle-deg 40 --twist held --pressures-kpa 2,4 --out curves/held\n");
     if (!cli.Parse(argc, argv, first)) return 0;
 
     if (!cli.Given("--out")) throw UsageError("--out DIR is required (where the table and the plots go)");
-    for (const char* option : {"--load", "--pressure-kpa", "--stroke-percent", "--stroke-mm", "--volume-ratio"})
+    for (const char* option : {"--load", "--pressure-kpa", "--stroke-percent", "--stroke-mm", "--volume-ratio", "--isobaric-points"})
         cli.RefuseIfGiven(option, "is set by characterize at each point of its curves (give --pressures-kpa)");
     const std::vector<double> pressures = ParsePressures(pressuresText);
     const sim::EvalJob base = BuildJob(cli, shape, model, ModelUse::Weighed);
@@ -80,7 +84,11 @@ static int RunCharacterize(int argc, char** argv, int first) {
         throw UsageError(refusal.Text(OptionName(refusal.key.c_str())));
 
     const fs::path folder = out;
-    const std::vector<std::string> files{"characteristic.csv", "force_contraction.png", "force_pressure.png", "stroke_pressure.png"};
+    const std::vector<std::string> files{"characteristic.csv", "force_contraction.png", "force_pressure.png", "stroke_pressure.png",
+                                         "evaluations.capnp", "evaluations.csv"};
+    for (const auto& name : files)
+        if (!overwrite && fs::exists(fs::symlink_status(folder / name)))
+            throw UsageError(Quote(out) + " already holds " + name + " (an earlier characterize?); add --overwrite to replace its files, or give another --out");
     CreatedFolders folders;
     folders.Create(folder, "--out");
     for (const auto& name : files) {
@@ -104,6 +112,9 @@ static int RunCharacterize(int argc, char** argv, int first) {
     WritePng((folder / "force_contraction.png").string(), images.forceContraction, 6);
     WritePng((folder / "force_pressure.png").string(), images.forcePressure, 6);
     WritePng((folder / "stroke_pressure.png").string(), images.strokePressure, 6);
+    const std::vector<ArchiveRecord> records = CharacteristicRecords(base, curves);
+    WriteFileAtomically((folder / "evaluations.capnp").string(), ArchiveBytes(records));
+    WriteFileAtomically((folder / "evaluations.csv").string(), EvaluationTable(records).Csv());
     batch.Commit();
 
     Json summary = CharacteristicSummary(base, curves);

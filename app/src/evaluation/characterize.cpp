@@ -35,6 +35,7 @@ CharacterizeRefusal CharacterizeJobError(const sim::EvalJob& job) {
     const sim::LoadDef& load = job.Shell().load;
     if (load.kind != sim::ShellLoad::Inflate) return {"load", sim::Name(load.kind), "characterize sets the load at each point of its curves"};
     if (load.forceN != 0) return {"force_n", "", "the curves are of the muscle alone; the isobaric curve gives the force at each stroke"};
+    if (load.isobaricPoints != 0) return {"isobaric_points", "", "characterize sets each isobaric curve's points (give its points)"};
     return {};
 }
 
@@ -42,6 +43,7 @@ CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<do
     CharacteristicCurves c;
     const size_t n = pressuresKpa.size();
     c.pressuresKpa = pressuresKpa;
+    c.pointsPerCurve = points;
     c.free.resize(n);
     c.points.resize(n);
     // Each isobaric curve as a bench takes it: inflated freely (the free stroke; the highest
@@ -49,8 +51,6 @@ CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<do
     // fractions from the largest down to none, each held state from the last. Beside them the
     // isometric test at the highest pressure (its load steps are the isometric curve). One task
     // per thread; each result has its own place, so the threads change nothing.
-    std::vector<double> fractions;
-    for (int i = 0; i + 1 < points; ++i) fractions.push_back(double(i) / (points - 1));
     const bool bending = base.model == sim::ModelKind::Shell;  // the shell model is the membrane with bending
     const int n1 = static_cast<int>(n) + 1;
     // The longest tasks first (the highest pressures), so that no thread is left with one at the end.
@@ -60,27 +60,21 @@ CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<do
             c.isometric = sim::Evaluate(AtLoad(base, sim::ShellLoad::Blocked, pressuresKpa.back()));
             return;
         }
-        const sim::EvalJob job = AtLoad(base, sim::ShellLoad::Inflate, pressuresKpa[k]);
-        sim::IsobaricCurve curve = sim::IsobaricForces(job.shape, job.Shell(), bending, fractions);
+        sim::EvalJob job = AtLoad(base, sim::ShellLoad::Inflate, pressuresKpa[k]);
+        job.Shell().load.isobaricPoints = points;
+        sim::IsobaricCurve curve = sim::IsobaricForces(job.shape, job.Shell(), bending);
         c.free[k] = std::move(curve.free);
         c.points[k] = std::move(curve.points);
         if (c.free[k].status == sim::Status::Ok)  // the free state closes the curve: no force
             c.points[k].push_back({c.free[k].contractionPercent, 0.0, c.free[k].shell.twistDeg, sim::Status::Ok});
     });
 
-    const double lengthMm = base.Shell().geometry.lengthMm;
     c.contractionPercent.resize(n);
     c.forceN.resize(n);
     for (size_t k = 0; k < n; ++k) {
-        for (const sim::IsobaricPoint& point : c.points[k]) {
-            c.contractionPercent[k].push_back(point.strokePercent);
-            c.forceN[k].push_back(point.status == sim::Status::Ok ? point.forceN : NAN);
-        }
-        // Trapezoids over the curve's points from rest to the free stroke; NaN if a point failed.
-        double work = c.contractionPercent[k].size() > 1 ? 0 : NAN;
-        for (size_t i = 1; i < c.contractionPercent[k].size(); ++i)
-            work += 0.5 * (c.forceN[k][i] + c.forceN[k][i - 1]) * (c.contractionPercent[k][i] - c.contractionPercent[k][i - 1]) / 100 * lengthMm;
-        c.workPerStrokeMj.push_back(work);
+        c.contractionPercent[k] = c.free[k].shell.isobaricContractionPercent;
+        c.forceN[k] = c.free[k].shell.isobaricForceN;
+        c.workPerStrokeMj.push_back(c.free[k].shell.workPerStrokeMj);
     }
     const double density = base.Shell().material.densityKgPerM3;
     if (density > 0) c.siliconeMassG = sim::WallVolumeMm3(base.shape, base.Shell()) * density * 1e-6;  // kg/m^3 = 1e-6 g/mm^3
@@ -108,6 +102,28 @@ Json CharacteristicSummary(const sim::EvalJob& base, const CharacteristicCurves&
     summary["shape"] = ShapeJson(base.shape);
     summary["model"] = ModelJson(base);
     return summary;
+}
+
+std::vector<ArchiveRecord> CharacteristicRecords(const sim::EvalJob& base, const CharacteristicCurves& c) {
+    std::vector<ArchiveRecord> records;
+    auto add = [&](sim::EvalJob job, const sim::SimResult& result, std::string label) {
+        records.push_back({records.size(), "characterize", 0, -1, Role::Characteristic, std::move(label), std::move(job), result});
+    };
+    for (size_t k = 0; k < c.pressuresKpa.size(); ++k) {
+        const double p = c.pressuresKpa[k];
+        sim::EvalJob free = AtLoad(base, sim::ShellLoad::Inflate, p);
+        free.Shell().load.isobaricPoints = c.pointsPerCurve;  // replays with its curve
+        add(std::move(free), c.free[k], fmt::format("free inflation at {:g} kPa with its isobaric curve", p));
+        for (const sim::IsobaricPoint& point : c.points[k]) {
+            if (point.state.initial.Size() == 0) continue;  // the free state that closes the curve: archived above
+            sim::EvalJob held = AtLoad(base, sim::ShellLoad::Blocked, p);
+            held.Shell().load.strokePercent = point.strokePercent;
+            add(std::move(held), point.state, fmt::format("held at {:.4g} % contraction at {:g} kPa", point.strokePercent, p));
+        }
+    }
+    add(AtLoad(base, sim::ShellLoad::Blocked, c.pressuresKpa.back()), c.isometric,
+        fmt::format("isometric (the top held at its rest place) to {:g} kPa", c.pressuresKpa.back()));
+    return records;
 }
 
 Table CharacteristicTable(const CharacteristicCurves& c) {

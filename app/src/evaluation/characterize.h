@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "formats/archive.h"
 #include "formats/json_out.h"
 #include "formats/table.h"
 #include "sim/model.h"
@@ -15,6 +16,7 @@ namespace app {
 
 struct CharacteristicCurves {
     std::vector<double> pressuresKpa;
+    int pointsPerCurve = 0;                                // each isobaric curve's, the free state included
     std::vector<sim::SimResult> free;                      // per pressure: the free inflation
     std::vector<std::vector<double>> contractionPercent;   // per pressure: the isobaric curve, closed by the free state
     std::vector<std::vector<double>> forceN;               // per pressure, beside contractionPercent (NaN: a point that failed)
@@ -43,6 +45,12 @@ CharacteristicCurves Characterize(const sim::EvalJob& base, const std::vector<do
 // Per pressure the free stroke, the force at no contraction, the work of one stroke (mJ) and per
 // gram of silicone (mJ/g); the isometric force (N), the silicone's mass (g), the design and model.
 Json CharacteristicSummary(const sim::EvalJob& base, const CharacteristicCurves& curves);
+
+// Every evaluation behind the curves, as records of DIR/evaluations.capnp (role characteristic, in
+// this order): per pressure its free inflation, then its held strokes from the smallest up; last the
+// isometric test. Each job is the one `simulate --from` re-runs: a held stroke as the blocked test at
+// that contraction.
+std::vector<ArchiveRecord> CharacteristicRecords(const sim::EvalJob& base, const CharacteristicCurves& curves);
 
 // curve (isobaric, isometric or free_stroke), pressure_kpa, contraction_percent, force_n, twist_deg, status.
 Table CharacteristicTable(const CharacteristicCurves& curves);

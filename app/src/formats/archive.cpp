@@ -109,10 +109,13 @@ ArchiveWriter::~ArchiveWriter() {
     if (fd_ >= 0) ::close(fd_);
 }
 
-std::uint64_t ArchiveWriter::Append(const ArchiveRecord& r) {
+namespace {
+
+// One record's frame: payload length, its CRC-32, the packed payload, under evaluation id `index`.
+std::vector<kj::byte> RecordFrame(const ArchiveRecord& r, std::uint64_t index) {
     capnp::MallocMessageBuilder message;
     auto e = message.initRoot<schema::Evaluation>();
-    e.setIndex(next_);
+    e.setIndex(index);
     e.setExperiment(r.experiment);
     e.setRun(static_cast<std::uint32_t>(r.run));
     e.setGeneration(r.generation);
@@ -122,8 +125,6 @@ std::uint64_t ArchiveWriter::Append(const ArchiveRecord& r) {
     SetMesh(e.initInitial(), r.result.initial);
     SetMesh(e.initFinal(), r.result.final);
     SetResultNumbers(e.initResult(), r.result, r.job.model);
-
-    // Frame in memory, then one write: a kill leaves the whole frame or a torn tail.
     kj::VectorOutputStream payload;
     capnp::writePackedMessage(payload, message);
     const auto bytes = payload.getArray();
@@ -131,8 +132,25 @@ std::uint64_t ArchiveWriter::Append(const ArchiveRecord& r) {
     PutU32(frame.data(), static_cast<std::uint32_t>(bytes.size()));
     PutU32(frame.data() + 4, Crc(bytes.begin(), bytes.size()));
     std::memcpy(frame.data() + 8, bytes.begin(), bytes.size());
+    return frame;
+}
+
+}  // namespace
+
+std::uint64_t ArchiveWriter::Append(const ArchiveRecord& r) {
+    // Frame in memory, then one write: a kill leaves the whole frame or a torn tail.
+    const std::vector<kj::byte> frame = RecordFrame(r, next_);
     AppendAll(fd_, frame.data(), frame.size(), path_);
     return next_++;
+}
+
+std::string ArchiveBytes(const std::vector<ArchiveRecord>& records) {
+    std::string bytes(kMagic, sizeof kMagic);
+    for (size_t id = 0; id < records.size(); ++id) {
+        const std::vector<kj::byte> frame = RecordFrame(records[id], id);
+        bytes.append(reinterpret_cast<const char*>(frame.data()), frame.size());
+    }
+    return bytes;
 }
 
 ArchiveScan ScanArchive(const std::string& path, bool withMeshes, const std::function<bool(ArchiveRecord&&)>& visit, ArchivePlace from) {

@@ -27,6 +27,7 @@ enum class Role {
     Individual,    // a GA individual
     ThesisGenome,  // a genome the thesis reports, evaluated in this model
     Figure,        // a re-simulation for a figure (the best design under the other load)
+    Characteristic,  // a point of `characterize`'s curves: a free inflation, a held stroke, the isometric test
 };
 
 struct ArchiveRecord {
@@ -59,6 +60,10 @@ private:
     int fd_ = -1;
     std::uint64_t next_ = 0;
 };
+
+// A whole archive's bytes holding `records` under ids 0, 1, ... (their own id fields are not read),
+// for a command that writes its archive once, with its other files (WriteFileAtomically in a batch).
+std::string ArchiveBytes(const std::vector<ArchiveRecord>& records);
 
 // The archive as a record sink (formats/record_sink.h): records appended under their ids; on resume
 // cut back to the first `keep` and opened after them.
@@ -102,12 +107,13 @@ void TruncateArchive(const std::string& path, std::uint64_t keep);
 
 template <>
 struct sim::EnumNames<app::Role> {
-    static constexpr std::array<std::pair<app::Role, const char*>, 6> table{{
+    static constexpr std::array<std::pair<app::Role, const char*>, 7> table{{
         {app::Role::Grid, "grid"},
         {app::Role::ThesisPoint, "thesis-point"},
         {app::Role::Shape, "shape"},
         {app::Role::Individual, "individual"},
         {app::Role::ThesisGenome, "thesis-genome"},
         {app::Role::Figure, "figure"},
+        {app::Role::Characteristic, "characteristic"},
     }};
 };

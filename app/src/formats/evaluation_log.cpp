@@ -48,21 +48,38 @@ std::string DesignText(const sim::Shape& shape) {
 
 EvaluationLog::EvaluationLog(fs::path path, bool thumbnails) : path_(std::move(path)), thumbnails_(thumbnails), header_(LogHeader()), log_(path_.string(), header_) {}
 
-void EvaluationLog::Append(const ArchiveRecord& r) {
+namespace {
+
+// A record's row under LogHeader, each field as it reads back (not yet quoted for CSV).
+std::vector<std::string> LogRow(const ArchiveRecord& r, bool thumbnails, const std::vector<std::string>& header) {
     std::map<std::string, std::string> cells = OutputCells(r.result, r.job);
     cells["evaluation"] = std::to_string(r.id);
     cells["role"] = sim::Name(r.role);
     cells["run"] = std::to_string(r.run);
     cells["generation"] = std::to_string(r.generation);
-    cells["label"] = CsvField(r.label);
+    cells["label"] = r.label;
     cells["shape"] = sim::ShapeName(r.job.shape);
     cells["model"] = sim::Name(r.job.model);
     cells["status"] = sim::Name(r.result.status);
     if (const auto* shell = std::get_if<sim::ShellDef>(&r.job.def)) cells["fibres"] = sim::Name(shell->fibres.layout);
-    cells["thumbnail"] = thumbnails_ ? ThumbnailName(r.id) : "";
-    cells["design"] = CsvField(DesignText(r.job.shape));
+    cells["thumbnail"] = thumbnails ? ThumbnailName(r.id) : "";
+    cells["design"] = DesignText(r.job.shape);
     std::vector<std::string> row;
-    for (const std::string& column : header_) row.push_back(cells[column]);
+    for (const std::string& column : header) row.push_back(cells[column]);
+    return row;
+}
+
+}  // namespace
+
+Table EvaluationTable(const std::vector<ArchiveRecord>& records) {
+    Table table(LogHeader());
+    for (const ArchiveRecord& r : records) table.AddRow(LogRow(r, false, table.Columns()));
+    return table;
+}
+
+void EvaluationLog::Append(const ArchiveRecord& r) {
+    std::vector<std::string> row = LogRow(r, thumbnails_, header_);
+    for (std::string& field : row) field = CsvField(field);
     log_.Append(row);
 }
 

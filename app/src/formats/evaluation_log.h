@@ -10,6 +10,7 @@
 
 #include "formats/csv.h"
 #include "formats/record_sink.h"
+#include "formats/table.h"
 #include "sim/model.h"
 #include "sim/shape.h"
 
@@ -22,6 +23,10 @@ std::string DesignText(const sim::Shape& shape);
 // A result's one-number outputs as table cells by name (empty where it has none: NaN, or not
 // ok), as every table of evaluations writes them; curves are left to the archive and JSON.
 std::map<std::string, std::string> OutputCells(const sim::SimResult& result, const sim::EvalJob& job);
+
+// The rows the log would hold for these records (ids as given, no thumbnails), for a command that
+// writes its evaluations once.
+Table EvaluationTable(const std::vector<ArchiveRecord>& records);
 
 class EvaluationLog final : public RecordSink {
 public:

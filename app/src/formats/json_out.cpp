@@ -103,20 +103,28 @@ Json ModelJson(const sim::EvalJob& job) {
 }
 
 Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
-    // The outputs as they are visited; the load steps' curves as one list of points, before the time.
+    // The outputs as they are visited; curves of one kind as one list of points, named by the part
+    // of their names before the first '_' ("curve": the load steps; "isobaric": the held strokes),
+    // where the visit put them. A kind whose curves are all empty is left out.
     struct Writer final : sim::OutputVisitor {
         Json j;
-        std::vector<std::pair<std::string, const std::vector<double>*>> curves;
+        std::vector<std::pair<std::string, const std::vector<double>*>> curves;  // full names, in visit order
         void Flush() {
-            if (curves.empty()) return;
-            Json curve = Json::array();
-            for (size_t k = 0; k < curves.front().second->size(); ++k) {
-                Json point = Json::object();
-                for (const auto& [name, values] : curves) point[name] = NumberJson(k < values->size() ? (*values)[k] : NAN);
-                curve.push_back(point);
+            while (!curves.empty()) {
+                const std::string kind = curves.front().first.substr(0, curves.front().first.find('_'));
+                size_t length = 0;
+                for (const auto& [name, values] : curves)
+                    if (name.rfind(kind + "_", 0) == 0) length = std::max(length, values->size());
+                Json list = Json::array();
+                for (size_t k = 0; k < length; ++k) {
+                    Json point = Json::object();
+                    for (const auto& [name, values] : curves)
+                        if (name.rfind(kind + "_", 0) == 0) point[name.substr(kind.size() + 1)] = NumberJson(k < values->size() ? (*values)[k] : NAN);
+                    list.push_back(point);
+                }
+                if (length > 0 || kind == "curve") j[kind] = list;  // the load steps' curve is always given
+                std::erase_if(curves, [&](const auto& c) { return c.first.rfind(kind + "_", 0) == 0; });
             }
-            j["curve"] = curve;
-            curves.clear();
         }
         // The curves, as one list, where the visit put them: before the next single number.
         void Number(const char* name, const char*, double value) override {
@@ -128,7 +136,7 @@ Json ResultNumbersJson(const sim::SimResult& r, const sim::EvalJob& job) {
             j[name] = value;
         }
         void Curve(const char* name, const char*, const std::vector<double>& values) override {
-            curves.push_back({std::string(name).substr(std::string("curve_").size()), &values});
+            curves.push_back({name, &values});
         }
     } writer;
     writer.j = Json{{"status", sim::Name(r.status)}};

@@ -210,6 +210,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setTorqueNMm(def.ends.torqueNMm);
     s.setStrokePercent(l.strokePercent);
     s.setStrokeMm(l.strokeMm);
+    s.setIsobaricPoints(Count(l.isobaricPoints));
     const sim::SolverDef& v = def.solver;
     s.setTolerance(v.tolerance);
     s.setMaxIterations(Count(v.maxIterations));
@@ -263,6 +264,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     def.ends.torqueNMm = s.getTorqueNMm();
     l.strokePercent = s.getStrokePercent();
     l.strokeMm = s.getStrokeMm();
+    l.isobaricPoints = Count(s.getIsobaricPoints());
     sim::SolverDef& v = def.solver;
     v.tolerance = s.getTolerance();
     v.maxIterations = Count(s.getMaxIterations());
@@ -316,6 +318,10 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setStrokeForceN(o.strokeForceN);
     Fill<double>(s.initCurveForceN(static_cast<unsigned>(o.curveForceN.size())), o.curveForceN);
     Fill<double>(s.initCurveTwistDeg(static_cast<unsigned>(o.curveTwistDeg.size())), o.curveTwistDeg);
+    Fill<double>(s.initIsobaricContractionPercent(static_cast<unsigned>(o.isobaricContractionPercent.size())), o.isobaricContractionPercent);
+    Fill<double>(s.initIsobaricForceN(static_cast<unsigned>(o.isobaricForceN.size())), o.isobaricForceN);
+    s.setWorkPerStrokeMj(o.workPerStrokeMj);
+    s.setWorkPerGramMjPerG(o.workPerGramMjPerG);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -352,6 +358,10 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.strokeForceN = s.getStrokeForceN();
     o.curveForceN = Copy(s.getCurveForceN());
     o.curveTwistDeg = Copy(s.getCurveTwistDeg());
+    o.isobaricContractionPercent = Copy(s.getIsobaricContractionPercent());
+    o.isobaricForceN = Copy(s.getIsobaricForceN());
+    o.workPerStrokeMj = s.getWorkPerStrokeMj();
+    o.workPerGramMjPerG = s.getWorkPerGramMjPerG();
 }
 
 void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {

@@ -85,6 +85,10 @@ void VisitFields(Def& l, Visitor&& v) requires std::is_same_v<std::remove_const_
              "load blocked: the top held this far below its rest place, % of the length (0: the blocking force)", -100, 100);
     v.Number("stroke_mm", l.strokeMm, "load blocked: the same in mm (give stroke_percent or stroke_mm)", -1e6, 1e6);
     v.Integer("steps", l.steps, "load steps: points of the contraction-pressure curve", 1, 1000);
+    v.Integer("isobaric_points", l.isobaricPoints,
+              "load inflate: after the free inflation, the top held at this many strokes from none to the free stroke: the isobaric curve "
+              "and the work of one stroke (0: none)",
+              0, 100);
 }
 
 template <class Def, class Visitor>
@@ -183,6 +187,7 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     if (key == "pressure_kpa") return unless(load == L::Inflate || load == L::Gas || load == L::Blocked, "kind", "inflate, gas or blocked", sim::Name(load));
     if (key == "force_n") return unless(load != L::Blocked, "kind", "inflate, gas, volume or force", sim::Name(load));
     if (key == "stroke_percent" || key == "stroke_mm") return unless(load == L::Blocked, "kind", "blocked", sim::Name(load));
+    if (key == "isobaric_points") return unless(load == L::Inflate, "kind", "inflate", sim::Name(load));
     if (key == "torque_n_mm") return unless(def.ends.twist == sim::TwistEnd::Loaded, "twist", "loaded", sim::Name(def.ends.twist));
     // Sliding ends hold the tube's rotation by an anchor; only clamps turn.
     if (key == "twist") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));

@@ -46,6 +46,8 @@ enum class ObjectiveKind {
     Twist,           // |the top's turn|, deg, at the target: a muscle that pulls straight (membrane, shell; a top that may turn)
     ForceAtStroke,   // N, the isobaric force with the top held at the load's stroke_percent, + pulls on the
                      // supports (membrane, shell; load blocked)
+    WorkPerGram,     // mJ/g, the work of one stroke at the target pressure (the isobaric curve's area) per gram
+                     // of the wall's silicone (membrane, shell; load inflate with isobaric points, a density)
 };
 
 struct Objective {
@@ -182,7 +184,7 @@ struct EnumNames<Algorithm> {
 };
 template <>
 struct EnumNames<ObjectiveKind> {
-    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 10> table{{{ObjectiveKind::Contraction, "contraction"},
+    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 11> table{{{ObjectiveKind::Contraction, "contraction"},
                                                                                  {ObjectiveKind::ThesisFitness, "thesis_fitness"},
                                                                                  {ObjectiveKind::StretchFitness, "stretch_fitness"},
                                                                                  {ObjectiveKind::BlockingForce, "blocking_force"},
@@ -191,7 +193,8 @@ struct EnumNames<ObjectiveKind> {
                                                                                  {ObjectiveKind::VolumeChange, "volume_change"},
                                                                                  {ObjectiveKind::LimitMargin, "limit_margin"},
                                                                                  {ObjectiveKind::Twist, "twist"},
-                                                                                 {ObjectiveKind::ForceAtStroke, "force_at_stroke"}}};
+                                                                                 {ObjectiveKind::ForceAtStroke, "force_at_stroke"},
+                                                                                 {ObjectiveKind::WorkPerGram, "work_per_gram"}}};
 };
 template <>
 struct EnumNames<VectorFamily> {

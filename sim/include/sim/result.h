@@ -19,6 +19,10 @@ struct ShellOutputs {
     std::vector<double> curveForceN;               // axial force on the top clamp at each: the held stroke's
                                                    // reaction (blocked test; + pulls on the supports), else the load on it
     std::vector<double> curveTwistDeg;             // the top clamp's turn at each
+    std::vector<double> isobaricContractionPercent;  // inflate with isobaric points: the held strokes, none to the free stroke
+    std::vector<double> isobaricForceN;            // the force at each (NaN: a point that failed; 0 at the free stroke)
+    double workPerStrokeMj = NAN;                  // the isobaric force integrated over the stroke, mJ
+    double workPerGramMjPerG = NAN;                // the same per gram of the wall's silicone (NaN: no density)
     double targetPressureKpa = NAN;                // the pressure the contraction is reported at
     double limitPressureKpa = NAN;                 // the pressure maximum, when met
     double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports

@@ -96,6 +96,8 @@ struct LoadDef {
                                // length (the isobaric test; 0: the blocking force)
     double strokeMm = 0;       // Blocked: the same in mm, for a bench set by its travel (one of the two, not both)
     int steps = 4;             // load steps: the contraction-pressure curve's points
+    int isobaricPoints = 0;    // Inflate: after the free inflation, the top held at this many strokes from none
+                               // to the free stroke (the isobaric curve and the work of one stroke); 0: none
 };
 
 // Stiff threads on the wall (docs/models/shell.md section 7): fibre families as directions in the rest tangent
@@ -176,12 +178,21 @@ struct IsobaricPoint {
     double forceN = NAN;       // the force the muscle pulls with there (+ pulls on its supports)
     double twistDeg = NAN;
     Status status = Status::Ok;
+    // The held state measured as an evaluation of the blocked test at this stroke would measure it
+    // (its meshes and every output, for archives and pictures); for a point that failed, its status
+    // on the rest shape. A held state that stretches the wall past its limit is over-stretched.
+    SimResult state;
 };
 struct IsobaricCurve {
-    SimResult free;  // EvaluateShell's result under `inflate`
+    SimResult free;  // EvaluateShell's result under `inflate` with the isobaric outputs
     std::vector<IsobaricPoint> points;
 };
-IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions);
+// `inflate`'s load is inflation with its isobaricPoints (2 or more) set.
+IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending);
+
+// The work of one stroke, mJ (N mm): the isobaric force integrated over the contraction by
+// trapezoids, from no contraction to the free stroke; NaN when a point failed or there is none.
+double StrokeWorkMj(const std::vector<double>& contractionPercent, const std::vector<double>& forceN, double lengthMm);
 
 // The silicone of the design's wall at rest, mm^3: its mid-surface's area times the wall thickness
 // (the clamps' rings included; the caps are the fixture's). NaN when the tube cannot be built.

@@ -22,7 +22,7 @@ std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
     const bool thesis = model == ModelKind::Thesis;
     if ((kind == ObjectiveKind::ThesisFitness || kind == ObjectiveKind::StretchFitness) && !thesis)
         return fmt::format("objective {} is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
-                           "max_stretch, volume_change, limit_margin, twist and force_at_stroke",
+                           "max_stretch, volume_change, limit_margin, twist, force_at_stroke and work_per_gram",
                            Name(kind), Name(model));
     if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness && kind != ObjectiveKind::StretchFitness)
         return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness, stretch_fitness and contraction (use the "
@@ -38,6 +38,13 @@ std::string ObjectiveDefError(ObjectiveKind kind, const ModelDef& def) {
         return fmt::format("objective force_at_stroke is the force with the top held at the load's stroke_percent: give the load kind blocked (now {})",
                            Name(shell->load.kind));
     if (kind == ObjectiveKind::Twist && shell->ends.twist == TwistEnd::Held) return "objective twist needs a top that may turn: the ends' twist is held";
+    if (kind == ObjectiveKind::WorkPerGram) {
+        if (shell->load.kind != ShellLoad::Inflate || shell->load.isobaricPoints < 2)
+            return fmt::format("objective work_per_gram is the isobaric curve's area per gram: give the load kind inflate (now {}) with isobaric_points "
+                               "(2 to 100; 6 as characterize draws it, now {})",
+                               Name(shell->load.kind), shell->load.isobaricPoints);
+        if (!(shell->material.densityKgPerM3 > 0)) return "objective work_per_gram needs the material's density_kg_per_m3 (the silicone's mass)";
+    }
     return "";
 }
 
@@ -71,6 +78,7 @@ double ObjectiveValue(ObjectiveKind kind, const SimResult& r, const SimResult* s
         case ObjectiveKind::VolumeChange: return 100.0 * (s.volumeMm3 / s.restVolumeMm3 - 1.0);
         case ObjectiveKind::Twist: return std::fabs(s.twistDeg);
         case ObjectiveKind::ForceAtStroke: return s.strokeForceN;
+        case ObjectiveKind::WorkPerGram: return s.workPerGramMjPerG;
     }
     return NAN;
 }
@@ -87,6 +95,7 @@ const char* ObjectiveUnit(ObjectiveKind kind) {
         case ObjectiveKind::VolumeChange: return "volume change, %";
         case ObjectiveKind::Twist: return "twist magnitude, deg";
         case ObjectiveKind::ForceAtStroke: return "force at the held stroke, N";
+        case ObjectiveKind::WorkPerGram: return "work per stroke per gram, mJ/g";
     }
     return "?";
 }

@@ -91,6 +91,8 @@ std::string ShellDefError(const ShellDef& d) {
     if (!(std::isfinite(l.strokePercent) && l.strokePercent > -100 && l.strokePercent < 100))
         return "the held contraction must be a percentage of the length between -100 and 100";
     if (!std::isfinite(l.strokeMm)) return "the held stroke must be a finite number of mm";
+    if (l.isobaricPoints == 1 || l.isobaricPoints < 0 || l.isobaricPoints > 100)
+        return "the isobaric curve needs 2 to 100 points (from no contraction to the free stroke), or 0 for none";
     if (l.strokeMm != 0 && l.strokePercent != 0) return "give the held stroke once: stroke_percent or stroke_mm";
     if (!(std::fabs(l.strokeMm) < d.geometry.lengthMm)) return "the held stroke must be shorter than the tube";
     if (!std::isfinite(d.ends.torqueNMm)) return "the torque must be a finite number";

@@ -861,6 +861,26 @@ Status JudgeEquilibrium(TubeEvaluation& t, int negativePivots) {
     return Status::Ok;
 }
 
+// The held state t.q measured into a result of its own, as a blocked test's end state is (the free
+// state's outputs in t.out are kept).
+SimResult MeasureHeldState(TubeEvaluation& t, double forceN) {
+    SimResult held;
+    held.initial = t.problem.rest;
+    ShellOutputs kept = std::move(t.out);
+    t.out = ShellOutputs{};
+    t.out.stretchLimit = kept.stretchLimit;
+    t.out.tensileStrengthKpa = kept.tensileStrengthKpa;
+    t.out.restVolumeMm3 = kept.restVolumeMm3;
+    t.out.targetPressureKpa = kept.targetPressureKpa;
+    Measure(t, held);
+    t.out.strokeForceN = forceN;
+    held.shell = std::move(t.out);
+    t.out = std::move(kept);
+    held.status = held.shell.maxStretch > held.shell.stretchLimit ? Status::OverStretched : Status::Ok;
+    held.fitness = held.status == Status::Ok ? held.contractionPercent : std::nan("");
+    return held;
+}
+
 // Stage (the isobaric test): from the free equilibrium, the top held at each fraction of the free
 // stroke, the largest first, each held state from the last.
 std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& finalLoad, const std::vector<double>& fractions, double freeContractionPercent) {
@@ -875,6 +895,7 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
         point.strokePercent = fraction * freeContractionPercent;
         Eigen::VectorXd held = t.q;
         held[problem.axial] = fraction * freeU;
+        const Counters before = t.solver.counters;
         if (t.solver.Minimise(held, finalLoad) != NewtonEnd::Converged) {
             point.status = Status::NotConverged;
         } else {
@@ -889,7 +910,18 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
                 point.forceN = exact.axialForce;
                 point.twistDeg = (problem.twist >= 0 ? held[problem.twist] : problem.heldTwist) * 180 / std::numbers::pi;
                 t.q = held;  // the next stroke starts here
+                point.state = MeasureHeldState(t, point.forceN);
+                point.status = point.state.status;  // a held state may stretch the wall past its limit
+                if (fraction == 0) point.state.shell.blockingForceN = point.forceN;  // held at its rest place
+                point.state.shell.newtonIterations = t.solver.counters.iterations - before.iterations;  // this point's own work
+                point.state.shell.factorizations = t.solver.counters.factorizations - before.factorizations;
+                point.state.iterationsRun = point.state.shell.newtonIterations;
             }
+        }
+        if (point.state.initial.Size() == 0) {  // failed: the record of a failed evaluation
+            point.state.initial = point.state.final = problem.rest;
+            point.state.status = point.status;
+            point.state.contractionPercent = point.state.fitness = std::nan("");
         }
         points.push_back(point);
     }
@@ -900,9 +932,31 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
 
 // The evaluation as its pipeline: build the tube, follow the load path, settle on a stable state,
 // measure, judge, stiffness and blocking force, then the stretch verdict; for the isobaric test
-// (`fractions` given, inflation), the held strokes after. Each output is written by one stage (the
-// solver's counters once, at the end).
-SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, const std::vector<double>* fractions, std::vector<IsobaricPoint>* points) {
+// (inflation with isobaric points), the held strokes after, each also into `points` when given.
+// Each output is written by one stage (the solver's counters at the end of the stages that count).
+// Stage (inflation with isobaric points): the held strokes from the free state, none to the free
+// stroke's fractions, and the curve they make, closed by the free state; the work of one stroke.
+std::vector<IsobaricPoint> IsobaricCurveOf(TubeEvaluation& t, const LoadTerms& finalLoad, double freeContractionPercent) {
+    const int n = t.load.isobaricPoints;
+    std::vector<double> fractions;
+    for (int i = 0; i + 1 < n; ++i) fractions.push_back(double(i) / (n - 1));
+    std::vector<IsobaricPoint> points = HeldStrokes(t, finalLoad, fractions, freeContractionPercent);
+    ShellOutputs& out = t.out;
+    for (const IsobaricPoint& point : points) {
+        out.isobaricContractionPercent.push_back(point.strokePercent);
+        out.isobaricForceN.push_back(point.status == Status::Ok ? point.forceN : NAN);
+    }
+    out.isobaricContractionPercent.push_back(freeContractionPercent);
+    out.isobaricForceN.push_back(0.0);
+    out.workPerStrokeMj = StrokeWorkMj(out.isobaricContractionPercent, out.isobaricForceN, t.length);
+    double area = 0;
+    for (const MembraneRest& rest : t.problem.membrane) area += rest.area;
+    const double massG = area * t.def.geometry.thicknessMm * t.def.material.densityKgPerM3 * 1e-6;  // kg/m^3 = 1e-6 g/mm^3
+    if (massG > 0) out.workPerGramMjPerG = out.workPerStrokeMj / massG;
+    return points;
+}
+
+SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, std::vector<IsobaricPoint>* points) {
     const auto started = std::chrono::steady_clock::now();
     SimResult result;
     ShellOutputs& out = result.shell;
@@ -933,14 +987,26 @@ SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, co
     out.factorizations = t.solver.counters.factorizations;
     result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
     if (status == Status::Ok && out.maxStretch > out.stretchLimit) status = Status::OverStretched;
-    if (fractions && points && status == Status::Ok && def.load.kind == ShellLoad::Inflate)
-        *points = HeldStrokes(t, finalLoad, *fractions, result.contractionPercent);
+    if (status == Status::Ok && def.load.kind == ShellLoad::Inflate && def.load.isobaricPoints >= 2) {
+        std::vector<IsobaricPoint> held = IsobaricCurveOf(t, finalLoad, result.contractionPercent);
+        out.newtonIterations = t.solver.counters.iterations;  // the held strokes' work counts
+        out.factorizations = t.solver.counters.factorizations;
+        result.iterationsRun = out.newtonIterations;
+        if (points) *points = std::move(held);
+    }
     return finish(status);
 }
 
 }  // namespace
 
-SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) { return EvaluateTube(shape, def, bending, nullptr, nullptr); }
+SimResult EvaluateShell(const Shape& shape, const ShellDef& def, bool bending) { return EvaluateTube(shape, def, bending, nullptr); }
+
+double StrokeWorkMj(const std::vector<double>& contractionPercent, const std::vector<double>& forceN, double lengthMm) {
+    double work = contractionPercent.size() > 1 && forceN.size() == contractionPercent.size() ? 0 : NAN;
+    for (size_t i = 1; i < contractionPercent.size() && i < forceN.size(); ++i)
+        work += 0.5 * (forceN[i] + forceN[i - 1]) * (contractionPercent[i] - contractionPercent[i - 1]) / 100 * lengthMm;
+    return work;
+}
 
 double WallVolumeMm3(const Shape& shape, const ShellDef& def) {
     std::string error;
@@ -951,9 +1017,9 @@ double WallVolumeMm3(const Shape& shape, const ShellDef& def) {
     return area * def.geometry.thicknessMm;
 }
 
-IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending, const std::vector<double>& fractions) {
+IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending) {
     IsobaricCurve curve;
-    curve.free = EvaluateTube(shape, inflate, bending, &fractions, &curve.points);
+    curve.free = EvaluateTube(shape, inflate, bending, &curve.points);
     return curve;
 }
 

@@ -270,6 +270,32 @@ TEST_F(ShellCli, CharacterizeDrawsTheMusclesCurvesFromItsOwnTests) {
     EXPECT_GT(force[0], force[1]) << "held half way to the free stroke, it pulls with less than blocked";
     EXPECT_GT(force[1], 0) << "and still pulls";
 
+    // Every evaluation is archived: per pressure the free inflation and its held strokes, then the
+    // isometric test; a held stroke replays from the archive to the force on its curve.
+    const app::Table log = app::Table::Read(Path("c/evaluations.csv"));
+    ASSERT_EQ(log.Rows(), 2u * 3u + 1u);
+    for (size_t row = 0; row < log.Rows(); ++row) {
+        EXPECT_EQ(log.Number(row, "evaluation"), double(row));
+        EXPECT_EQ(log.Text(row, "role"), "characteristic");
+    }
+    EXPECT_EQ(log.Text(4, "label"), "held at 0 % contraction at 10 kPa");
+    EXPECT_EQ(log.Number(4, "stroke_force_n"), force[0]);
+    EXPECT_EQ(log.Number(5, "stroke_force_n"), force[1]);
+    EXPECT_NEAR(log.Number(5, "contraction_percent"), contraction[1], 1e-9);
+    const Result replay = Run("simulate --from " + Path("c/evaluations.capnp") + " --index 5");
+    ASSERT_EQ(replay.exitCode, 0) << replay.err;
+    EXPECT_NEAR(nlohmann::json::parse(replay.out)["stroke_force_n"].get<double>(), force[1], 1e-6 * force[0])
+        << "the blocked test from rest reaches the held state the curve reached from the free state";
+    EXPECT_NEAR(log.Number(6, "blocking_force_n"), blockedForce, 1e-9);
+    // A second run into the same folder is refused unless asked to replace it.
+    const std::string before = Slurp(dir_ / "c" / "characteristic.csv");
+    const Result again = Run("characterize" + design + " --pressures-kpa 5 --points 3 --out " + Path("c"));
+    EXPECT_EQ(again.exitCode, 2);
+    EXPECT_NE(again.err.find("--overwrite"), std::string::npos) << again.err;
+    EXPECT_EQ(Slurp(dir_ / "c" / "characteristic.csv"), before);
+    ASSERT_EQ(Run("characterize" + design + " --pressures-kpa 5 --points 3 --overwrite --out " + Path("c")).exitCode, 0);
+    EXPECT_EQ(app::Table::Read(Path("c/evaluations.csv")).Rows(), 3u + 1u);
+
     for (const std::string& bad : {std::string("characterize --model thesis --shape sine --out ") + Path("t"),
                                    "characterize" + design + " --pressures-kpa 10,5 --out " + Path("t"),
                                    "characterize" + design + " --pressure-kpa 10 --out " + Path("t"), "characterize" + design}) {
@@ -299,6 +325,51 @@ TEST_F(ShellCli, TheForceAtAStrokeAndTheTwistAreObjectives) {
         EXPECT_EQ(front.Number(k, "twist_magnitude_deg"), std::fabs(log.Number(row, "twist_deg")));
     }
     EXPECT_GT(front.Number(0, "twist_magnitude_deg"), 1) << "one family turns the top";
+}
+
+// One evaluation gives the isobaric curve and the work of one stroke (its area) when asked: from the
+// blocking force at no contraction to none at the free stroke; and work per gram is an objective
+// that a search can maximise, its values those of the evaluation log.
+TEST_F(ShellCli, AnInflationWithIsobaricPointsGivesTheWorkOfAStroke) {
+    const std::string braid = "simulate --model membrane --shape cylinder --fibres braid --fibre-angle-deg 30 --pressure-kpa 10" + kSmall;
+    const auto j = nlohmann::json::parse(Run(braid + " --isobaric-points 4").out);
+    ASSERT_EQ(j["status"], "ok");
+    const auto& curve = j["isobaric"];
+    ASSERT_EQ(curve.size(), 4u);
+    EXPECT_NEAR(curve[0]["force_n"].get<double>(), j["blocking_force_n"].get<double>(), 1e-6 * j["blocking_force_n"].get<double>());
+    EXPECT_EQ(curve[3]["contraction_percent"], j["contraction_percent"]);
+    EXPECT_EQ(curve[3]["force_n"], 0.0);
+    double work = 0;
+    for (size_t k = 1; k < 4; ++k)
+        work += 0.5 * (curve[k]["force_n"].get<double>() + curve[k - 1]["force_n"].get<double>()) *
+                (curve[k]["contraction_percent"].get<double>() - curve[k - 1]["contraction_percent"].get<double>()) / 100 * j["model"]["length_mm"].get<double>();
+    EXPECT_NEAR(j["work_per_stroke_mj"].get<double>(), work, 1e-9 * work);
+    EXPECT_GT(j["work_per_gram_mj_per_g"].get<double>(), 0);
+    const auto plain = nlohmann::json::parse(Run(braid).out);
+    EXPECT_FALSE(plain.contains("isobaric"));
+    EXPECT_TRUE(plain["work_per_stroke_mj"].is_null());
+    EXPECT_EQ(plain["contraction_percent"], j["contraction_percent"]) << "the held strokes come after the free state is measured";
+    ExpectRefused(braid + " --load blocked --isobaric-points 4", "--isobaric-points applies to --load inflate, not --load blocked");
+
+    const std::string study = R"({"id": "w", "seed": 5, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "fibres": "braid",
+        "fibre_angle_deg": 30, "load": {"pressure_kpa": 5, "steps": 1LOAD}}, "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 1,
+        "objectives": ["work_per_gram", "max_stretch"], "genome": {"family": "bspline", "control_points": 4}}, "render": {"figures": false, "thumbnails": false}})";
+    auto withLoad = [&](const std::string& extra) { std::string s = study; s.replace(s.find("LOAD"), 4, extra); return s; };
+    Write("work_refused.json", withLoad(""));
+    const Result refused = Run("evolve " + Path("work_refused.json") + " --out " + Path("work_refused"));
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_NE(refused.err.find("isobaric_points"), std::string::npos) << refused.err;
+    Write("work.json", withLoad(R"(, "isobaric_points": 3)"));
+    const Result r = Run("evolve " + Path("work.json") + " --out " + Path("work"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const app::Table front = app::Table::Read((dir_ / "work" / "run_1" / "pareto_front.csv").string());
+    const app::Table log = app::Table::Read((dir_ / "work" / "evaluations.csv").string());
+    ASSERT_GE(front.Rows(), 1u);
+    for (size_t k = 0; k < front.Rows(); ++k) {
+        const size_t row = static_cast<size_t>(front.Number(k, "evaluation"));
+        EXPECT_EQ(front.Number(k, "work_per_stroke_per_gram_mJ_g"), log.Number(row, "work_per_gram_mj_per_g"));
+        EXPECT_GT(front.Number(k, "work_per_stroke_per_gram_mJ_g"), 0);
+    }
 }
 
 // A held stroke in mm is the same test as in percent of the length; both at once is refused.

@@ -86,6 +86,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     d.ends.twist = sim::TwistEnd::Loaded;
     d.ends.torqueNMm = -3.25;
     d.load.steps = 9;
+    d.load.isobaricPoints = 7;
     d.solver = {1e-9, 77, 4, false};
     capnp::MallocMessageBuilder message;
     app::SetJob(message.initRoot<app::schema::EvalRequest>(), job);
@@ -102,9 +103,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
               std::tie(d.material.preset, d.material.law, d.material.muKpa, d.material.c10Kpa, d.material.c01Kpa, d.material.c20Kpa, d.material.c30Kpa,
                        d.material.tensileStrengthKpa, d.material.elongationAtBreak, d.material.stretchLimit, d.material.densityKgPerM3));
     EXPECT_EQ(std::tie(b.load.kind, b.load.pressureKpa, b.load.forceN, b.load.volumeRatio, b.load.strokePercent, b.load.strokeMm, b.ends.twist, b.ends.torqueNMm,
-                       b.load.steps),
+                       b.load.steps, b.load.isobaricPoints),
               std::tie(d.load.kind, d.load.pressureKpa, d.load.forceN, d.load.volumeRatio, d.load.strokePercent, d.load.strokeMm, d.ends.twist, d.ends.torqueNMm,
-                       d.load.steps));
+                       d.load.steps, d.load.isobaricPoints));
     EXPECT_EQ(std::tie(b.solver.tolerance, b.solver.maxIterations, b.solver.maxBisections, b.solver.selfContact),
               std::tie(d.solver.tolerance, d.solver.maxIterations, d.solver.maxBisections, d.solver.selfContact));
 
@@ -134,6 +135,10 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     o.strokeForceN = 0.375;
     o.curveForceN = {0, 0.5, 0.75};
     o.curveTwistDeg = {1, 2, 4};
+    o.isobaricContractionPercent = {0, 2.5, 5};
+    o.isobaricForceN = {1.5, NAN, 0};
+    o.workPerStrokeMj = 4.25;
+    o.workPerGramMjPerG = 0.875;
     capnp::MallocMessageBuilder resultMessage;
     app::SetResultNumbers(resultMessage.initRoot<app::schema::EvalResult>(), r, job.model);
     sim::SimResult got;
@@ -145,6 +150,11 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     EXPECT_EQ(g.curveVolumeMm3, o.curveVolumeMm3);
     EXPECT_EQ(g.curveForceN, o.curveForceN);
     EXPECT_EQ(g.curveTwistDeg, o.curveTwistDeg);
+    EXPECT_EQ(g.isobaricContractionPercent, o.isobaricContractionPercent);
+    ASSERT_EQ(g.isobaricForceN.size(), 3u);
+    EXPECT_EQ(g.isobaricForceN[0], 1.5);
+    EXPECT_TRUE(std::isnan(g.isobaricForceN[1])) << "a failed point stays failed";
+    EXPECT_EQ(std::tie(g.workPerStrokeMj, g.workPerGramMjPerG), std::tie(o.workPerStrokeMj, o.workPerGramMjPerG));
     EXPECT_EQ(std::tie(g.twistDeg, g.twistPerLengthDegPerMm, g.torqueNMm, g.strokeForceN),
               std::tie(o.twistDeg, o.twistPerLengthDegPerMm, o.torqueNMm, o.strokeForceN));
     EXPECT_EQ(std::tie(g.targetPressureKpa, g.limitPressureKpa, g.blockingForceN, g.axialStiffnessNPerMm, g.restVolumeMm3, g.volumeMm3, g.maxStretch,
