@@ -10,6 +10,7 @@
 #include "formats/table.h"
 #include "support/errors.h"
 #include "pictures/figures.h"
+#include "pictures/plots.h"
 #include "formats/files.h"
 
 namespace app {
@@ -87,6 +88,34 @@ std::string StatusText(const std::map<std::string, int>& statuses) {
     return text.empty() ? "none" : text;
 }
 
+// The muscle's characteristic curves of the best contracting fibre-reinforced design of the chapter
+// (its study's model, ends and material) at a quarter, half and all of the study's pressure: what a
+// muscle paper would show of it. None when no fibre design is valid or the study's load is not an
+// inflation.
+std::optional<ChapterCurves> BestFibreCurves(const Chapter& chapter, const fs::path& dir) {
+    std::optional<ArchiveRecord> best;
+    std::string experiment;
+    for (const ChapterRow& row : chapter.rows) {
+        if (std::get<sim::ShellDef>(row.physical->experiment.def).fibres.layout == sim::FibreLayout::None) continue;
+        Tally tally = TallyOf(dir / row.physical->folder / "evaluations.capnp");
+        if (tally.best && (!best || tally.best->result.contractionPercent > best->result.contractionPercent)) {
+            best = std::move(tally.best);
+            experiment = row.physical->experiment.id;
+        }
+    }
+    if (!best || !CharacterizeJobError(best->job).reason.empty()) return std::nullopt;
+    const double p = best->job.Shell().load.pressureKpa;
+    ChapterCurves c{experiment, best->job, Characterize(best->job, {p / 4, p / 2, p}, 6, 0), "", ""};
+    c.figure = chapter.folder + "/" + experiment + "_best_force_contraction.png";
+    c.table = chapter.folder + "/" + experiment + "_best_characteristic.csv";
+    const CharacteristicImages images = CharacteristicCurveImages(experiment + ": the best fibre-reinforced design, " + sim::Name(best->job.model) + " model",
+                                                                  c.curves.pressuresKpa, c.curves.contractionPercent, c.curves.forceN,
+                                                                  IdealMuscleForces(best->job, c.curves), c.curves.isometric, c.curves.free.back());
+    WritePng((dir / c.figure).string(), images.forceContraction, 6);
+    WriteFileAtomically((dir / c.table).string(), CharacteristicTable(c.curves).Csv());
+    return c;
+}
+
 }  // namespace
 
 Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path& dir, Evaluator& evaluator) {
@@ -151,6 +180,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
                        CsvNumber(fine), CsvNumber(ChangeOf(best, fine).relative)});
     }
     WriteFileAtomically((dir / chapter.folder / "comparison.csv").string(), table.Csv());
+    chapter.bestCurves = BestFibreCurves(chapter, dir);
     chapter.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return chapter;
 }
@@ -262,6 +292,19 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
         describe(bestWithFibres, "fibre-reinforced");
         describe(bestIsotropic, "isotropic");
         md += "\n\n";
+        if (const auto& b = chapter.bestCurves) {
+            // Its curves as a muscle paper shows them: the force it pulls with against its contraction.
+            const CharacteristicCurves& c = b->curves;
+            md += fmt::format("Its characteristic curves (experiment {}'s best, the study's ends and material; [table]({})): ", b->experiment, b->table);
+            for (size_t k = 0; k < c.pressuresKpa.size(); ++k) {
+                const bool ok = c.free[k].status == sim::Status::Ok;
+                md += fmt::format("{}at {:g} kPa {}", k ? "; " : "", c.pressuresKpa[k],
+                                  ok ? fmt::format("{} N with the top held at its rest place, {:+.2f} % free, {} mJ per stroke",
+                                                   Cell(c.forceN[k].empty() ? NAN : c.forceN[k][0]), c.free[k].contractionPercent, Cell(c.workPerStrokeMj[k]))
+                                     : std::string(sim::Name(c.free[k].status)));
+            }
+            md += ".\n\n![" + b->experiment + " best: force against contraction](" + b->figure + ")\n\n";
+        }
         for (const Best* b : {&bestWithFibres, &bestIsotropic}) {
             if (!b->row) continue;
             for (const auto& figure : b->row->physical->outcome.figures)

@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
+#include "evaluation/characterize.h"
 #include "evaluation/evaluator.h"
 #include "report/report.h"
 
@@ -26,9 +29,18 @@ struct ChapterRow {
     std::string thesisBestFigure, bestFigure;  // pictures under `folder`, relative to the report
 };
 
+// The best fibre-reinforced design's characteristic curves, as `actuator characterize` gives them.
+struct ChapterCurves {
+    std::string experiment;         // where the design comes from
+    sim::EvalJob job;               // its evaluation under the study's model, ends and load
+    CharacteristicCurves curves;
+    std::string figure, table;      // force_contraction picture and characteristic table, relative to the report
+};
+
 struct Chapter {
     std::vector<ChapterRow> rows;
     std::string folder;  // relative to the report: pictures and comparison.csv
+    std::optional<ChapterCurves> bestCurves;  // none without a valid fibre-reinforced design
     double seconds = 0;
 };
 

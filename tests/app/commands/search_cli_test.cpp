@@ -611,6 +611,18 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     const auto comparison = app::ParseCsv(Slurp(dir_ / "thesis" / "comparison" / "comparison.csv"));
     EXPECT_EQ(comparison.size(), 10u) << "a row per experiment of part 2 that re-runs one of part 1 (the header, 7 isotropic, 2 with fibres)";
     EXPECT_THAT(report, HasSubstr("**With fibres.**"));
+    // The best fibre-reinforced design's characteristic curves, drawn and tabled (the figure is
+    // checked below with every picture the report shows).
+    EXPECT_THAT(report, HasSubstr("Its characteristic curves (experiment "));
+    EXPECT_THAT(report, HasSubstr("_best_force_contraction.png)"));
+    bool curvesTable = false;
+    for (const auto& entry : fs::directory_iterator(dir_ / "thesis" / "comparison"))
+        if (entry.path().filename().string().ends_with("_best_characteristic.csv")) {
+            curvesTable = true;
+            const app::Table curves = app::Table::Read(entry.path().string());
+            EXPECT_GT(curves.Rows(), 3u * 6u) << "three isobaric curves of six points, the isometric and free-stroke curves";
+        }
+    EXPECT_TRUE(curvesTable);
     EXPECT_THAT(report, HasSubstr("Of the thesis model's "));
     EXPECT_THAT(report, Not(HasSubstr("Part 1's results")));
     EXPECT_THAT(report, HasSubstr("| ours | thesis |"));
