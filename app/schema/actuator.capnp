@@ -113,6 +113,7 @@ struct ShellDef {
   strokePercent @36 :Float64;
   strokeMm @37 :Float64;
   isobaricPoints @38 :UInt32;     # inflate: held strokes after the free inflation (0: none)
+  tip @39 :Text;                    # the top clamp's lateral translation and tilt: "" (records before it could tilt) is "held"
 }
 
 struct FibreBand {
@@ -153,6 +154,10 @@ struct ShellOutputs {
   isobaricForceN @26 :List(Float64);
   workPerStrokeMj @27 :Float64 = nan;
   workPerGramMjPerG @28 :Float64 = nan;
+  tipLateralMm @29 :Float64 = nan;
+  tipTiltDeg @30 :Float64 = nan;
+  tipForceN @31 :Float64 = nan;
+  tipMomentNMm @32 :Float64 = nan;
 }
 
 struct EvalResult {

@@ -68,6 +68,10 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Number("twist_deg", "deg", s.twistDeg);
     v.Number("twist_per_length_deg_per_mm", "deg/mm", s.twistPerLengthDegPerMm);
     v.Number("torque_n_mm", "N mm", s.torqueNMm);
+    v.Number("tip_lateral_mm", "mm", s.tipLateralMm);
+    v.Number("tip_tilt_deg", "deg", s.tipTiltDeg);
+    v.Number("tip_force_n", "N", s.tipForceN);
+    v.Number("tip_moment_n_mm", "N mm", s.tipMomentNMm);
     v.Number("work_per_stroke_mj", "mJ", s.workPerStrokeMj);
     v.Number("work_per_gram_mj_per_g", "mJ/g", s.workPerGramMjPerG);
     v.Number("rest_volume_mm3", "mm^3", s.restVolumeMm3);

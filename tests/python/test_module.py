@@ -413,6 +413,14 @@ def test_a_field_without_effect_is_refused_as_on_the_command_line():
     r = actuator.evaluate(actuator.cylinder(), model="shell", geometry=small, load=actuator.Load(pressure_kpa=1, steps=1),
                           fibres=actuator.Fibres(fibres="braid", fibre_angle_deg=40))
     assert r.status == "ok" and r.contraction_percent > 0
+    # The tip (lateral translation and tilt): held by default, its holding loads reported; free on request.
+    assert r.shell["tip_moment_n_mm"] < 1e-6 and np.isnan(r.shell["tip_tilt_deg"])
+    free = actuator.evaluate(actuator.cylinder(), model="shell", geometry=small, load=actuator.Load(pressure_kpa=1, steps=1),
+                             fibres=actuator.Fibres(fibres="braid", fibre_angle_deg=40), ends=actuator.Ends(tip="free"))
+    assert free.status == "ok" and free.shell["tip_tilt_deg"] < 1e-6 and np.isnan(free.shell["tip_moment_n_mm"])
+    assert free.contraction_percent == pytest.approx(r.contraction_percent, rel=1e-6)
+    with pytest.raises(ValueError, match="tip"):
+        actuator.evaluate(actuator.cylinder(), model="shell", geometry=actuator.Geometry(ends="sliding"), ends=actuator.Ends(tip="free"))
 
 
 def test_every_load_kind_runs_from_python_as_from_the_command_line():

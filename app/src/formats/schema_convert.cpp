@@ -208,6 +208,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setSteps(Count(l.steps));
     s.setTwist(sim::Name(def.ends.twist));
     s.setTorqueNMm(def.ends.torqueNMm);
+    s.setTip(sim::Name(def.ends.tip));
     s.setStrokePercent(l.strokePercent);
     s.setStrokeMm(l.strokeMm);
     s.setIsobaricPoints(Count(l.isobaricPoints));
@@ -262,6 +263,8 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     const std::string twist = s.getTwist();
     def.ends.twist = twist.empty() ? sim::TwistEnd::Held : NamedEnum<sim::TwistEnd>(twist, "twist");  // as such records were evaluated
     def.ends.torqueNMm = s.getTorqueNMm();
+    const std::string tip = s.getTip();
+    def.ends.tip = tip.empty() ? sim::TipEnd::Held : NamedEnum<sim::TipEnd>(tip, "tip");
     l.strokePercent = s.getStrokePercent();
     l.strokeMm = s.getStrokeMm();
     l.isobaricPoints = Count(s.getIsobaricPoints());
@@ -322,6 +325,10 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     Fill<double>(s.initIsobaricForceN(static_cast<unsigned>(o.isobaricForceN.size())), o.isobaricForceN);
     s.setWorkPerStrokeMj(o.workPerStrokeMj);
     s.setWorkPerGramMjPerG(o.workPerGramMjPerG);
+    s.setTipLateralMm(o.tipLateralMm);
+    s.setTipTiltDeg(o.tipTiltDeg);
+    s.setTipForceN(o.tipForceN);
+    s.setTipMomentNMm(o.tipMomentNMm);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -362,6 +369,10 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.isobaricForceN = Copy(s.getIsobaricForceN());
     o.workPerStrokeMj = s.getWorkPerStrokeMj();
     o.workPerGramMjPerG = s.getWorkPerGramMjPerG();
+    o.tipLateralMm = s.getTipLateralMm();
+    o.tipTiltDeg = s.getTipTiltDeg();
+    o.tipForceN = s.getTipForceN();
+    o.tipMomentNMm = s.getTipMomentNMm();
 }
 
 void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {

@@ -95,6 +95,8 @@ template <class Def, class Visitor>
 void VisitFields(Def& e, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::EndsDef> {
     v.Enum("twist", e.twist, "the top clamp's turn about the axis: free, held (its torque reported) or loaded (torque_n_mm)");
     v.Number("torque_n_mm", e.torqueNMm, "twist loaded: torque on the top clamp, N mm, + right-handed about +z", -1e9, 1e9);
+    v.Enum("tip", e.tip, "the top clamp's lateral translation and tilt, together: held (the force and moment that hold it reported) or free "
+                         "(a bending actuator's free end)");
 }
 
 template <class Def, class Visitor>
@@ -190,7 +192,7 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     if (key == "isobaric_points") return unless(load == L::Inflate, "kind", "inflate", sim::Name(load));
     if (key == "torque_n_mm") return unless(def.ends.twist == sim::TwistEnd::Loaded, "twist", "loaded", sim::Name(def.ends.twist));
     // Sliding ends hold the tube's rotation by an anchor; only clamps turn.
-    if (key == "twist") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
+    if (key == "twist" || key == "tip") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
     if (key == "volume_ratio") return unless(load == L::Volume, "kind", "volume", sim::Name(load));
     // Volume control follows its steps as they are; the others halve a step that fails.
     if (key == "max_bisections") return unless(load != L::Volume, "kind", "inflate, gas, force or blocked", sim::Name(load));

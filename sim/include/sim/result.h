@@ -37,6 +37,10 @@ struct ShellOutputs {
     double twistPerLengthDegPerMm = NAN;           // twistDeg over the length
     double torqueNMm = NAN;                        // about +z on the top clamp: the fixture's that holds it (twist held),
                                                    // or the one applied (twist loaded); NaN when it turns freely
+    double tipLateralMm = NAN;                     // tip free: the top cap centre's distance from the axis (clamped ends)
+    double tipTiltDeg = NAN;                       // tip free: the angle between the top cap's axis and the tube's
+    double tipForceN = NAN;                        // tip held: the lateral force that keeps the top cap on the axis
+    double tipMomentNMm = NAN;                     // tip held: the bending moment that keeps it square to the axis
     double maxFibreStrain = NAN, meanFibreStrain = NAN;  // fibre stretch - 1 at the target (fibres only)
     double fibreAngleDeg = NAN;                    // the fibres' mean angle to the axis in the middle third
     int newtonIterations = 0;

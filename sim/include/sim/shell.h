@@ -78,12 +78,19 @@ MaterialDef MaterialPresetDef(MaterialPreset preset);
 double ShearModulusKpa(const MaterialDef& material);
 double StretchLimit(const MaterialDef& material);
 
-// How the top clamp may turn about the tube's axis (docs/models/shell.md section 12). Its lateral
-// translation and tilt are held; the bottom clamp is fixed.
+// How the top clamp may turn about the tube's axis (docs/models/shell.md section 12); the bottom
+// clamp is fixed.
 enum class TwistEnd {
     Free,    // turns as the wall makes it (a bench's top on a bearing): the default
     Held,    // kept from turning; the torque that holds it is an output
     Loaded,  // a prescribed torque turns it
+};
+
+// The top clamp's lateral translation and tilt, together (docs/models/shell.md section 12).
+enum class TipEnd {
+    Held,  // kept on the axis and square to it (a bench's guided top): the default; the lateral force
+           // and bending moment that hold it are outputs
+    Free,  // moves and tilts as the wall makes it (a bending actuator's free end)
 };
 
 struct LoadDef {
@@ -138,6 +145,7 @@ struct SolverDef {
 struct EndsDef {
     TwistEnd twist = TwistEnd::Free;  // a free top turns as the fibres wind it
     double torqueNMm = 0;             // twist Loaded: torque on the top clamp, N mm, + turns it right-handed about +z
+    TipEnd tip = TipEnd::Held;        // lateral translation and tilt
 };
 
 struct ShellDef {
@@ -260,6 +268,10 @@ template <>
 struct sim::EnumNames<sim::TwistEnd> {
     static constexpr std::array<std::pair<sim::TwistEnd, const char*>, 3> table{
         {{sim::TwistEnd::Free, "free"}, {sim::TwistEnd::Held, "held"}, {sim::TwistEnd::Loaded, "loaded"}}};
+};
+template <>
+struct sim::EnumNames<sim::TipEnd> {
+    static constexpr std::array<std::pair<sim::TipEnd, const char*>, 2> table{{{sim::TipEnd::Held, "held"}, {sim::TipEnd::Free, "free"}}};
 };
 template <>
 struct sim::EnumNames<sim::EndCondition> {

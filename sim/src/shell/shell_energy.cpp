@@ -66,6 +66,30 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (int v : p.anchor.vertices)
         for (int c = 0; c < 3; ++c) anchored.push_back(Unknown(p, v, c));
     addBlock(anchored.data(), static_cast<int>(anchored.size()));
+    // Tip free: the top's parameters meet every unknown of every element on the clamp, and each other.
+    std::vector<int> top;
+    for (int d : TopUnknowns(p))
+        if (d >= 0 && p.rigidTop) top.push_back(d);
+    auto rigid = [&](const int* vertices, int count) {
+        for (int k = 0; k < count; ++k)
+            if (p.dofOf[3 * vertices[k]] == kRigid) return true;
+        return false;
+    };
+    auto addTop = [&](const int* vertices, int count) {
+        if (top.empty() || !rigid(vertices, count)) return;
+        for (int k = 0; k < count; ++k)
+            for (int c = 0; c < 3; ++c)
+                if (const int d = Unknown(p, vertices[k], c); d >= 0)
+                    for (int t : top) {
+                        entries.emplace_back(d, t, 0.0);
+                        entries.emplace_back(t, d, 0.0);
+                    }
+    };
+    for (const auto& t : p.wall) addTop(t.data(), 3);
+    for (const auto& t : p.caps) addTop(t.data(), 3);
+    for (const auto& h : p.hinges) addTop(h.data(), 4);
+    for (int a : top)
+        for (int b : top) entries.emplace_back(a, b, 0.0);
     for (int d = 0; d < p.unknowns; ++d) entries.emplace_back(d, d, 0.0);  // a full diagonal for shifts
     matrix.resize(p.unknowns, p.unknowns);
     matrix.setFromTriplets(entries.begin(), entries.end());
@@ -85,10 +109,22 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& t : p.caps) slots(UnknownsOfVertices(p, t).data(), 9, capSlots);
     for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
     slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
-    twistSlot = slot(p.twist, p.twist);
+    twistSlot = p.rigidTop ? -1 : slot(p.twist, p.twist);
+    const std::array<int, kTopParameters> topUnknown = TopUnknowns(p);
+    for (int k = 0; k < kTopParameters && !top.empty(); ++k) {
+        const int t = topUnknown[k];
+        for (int l = 0; l < kTopParameters; ++l) topBlockSlots[k][l] = slot(t, topUnknown[l]);
+        if (t < 0) continue;
+        for (int i = matrix.outerIndexPtr()[t]; i < matrix.outerIndexPtr()[t + 1]; ++i) {
+            const int row = matrix.innerIndexPtr()[i];
+            if (std::find(top.begin(), top.end(), row) == top.end()) topCouplings[k].push_back({row, i, slot(t, row)});
+        }
+    }
     auto turned = [&](const int* vertices, int count) {
-        for (int k = 0; k < count; ++k)
+        for (int k = 0; k < count; ++k) {
             if (p.dofOf[3 * vertices[k]] == kTwist) return char(1);
+            if (p.dofOf[3 * vertices[k]] == kRigid) return char(2);
+        }
         return char(0);
     };
     for (const auto& t : p.wall) wallTurned.push_back(turned(t.data(), 3));
@@ -117,7 +153,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     PositionsOf(p, q, x);
     EnergyResult r;
     // The clamp's turn is not linear in theta: its curvature term needs every force on the clamp.
-    wantGradient = wantGradient || (hessian && p.twist >= 0);
+    wantGradient = wantGradient || (hessian && (p.twist >= 0 || p.rigidTop));
     if (wantGradient) {
         r.gradient = Eigen::VectorXd::Zero(p.unknowns);
         r.volumeGradient = Eigen::VectorXd::Zero(p.unknowns);
@@ -133,10 +169,31 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     // A turned coordinate's lever dx/dtheta = e_z x x (the axis through x = y = 0), and d2x/dtheta2 = -x
     // in the plane.
     auto lever = [&](int v, int c) { return c == 0 ? -x.y[v] : x.x[v]; };
+    // The top clamp as a rigid body (docs/models/shell.md section 12): every force on it summed as a
+    // resultant and the matrix sum g_i (X_i - c0)^T, from which dE/dt = the resultant and dE/da_k =
+    // <dR/da_k, that matrix> (Frobenius). Kept for the energy (its loads: the reactions) and the
+    // volume (its gradient, tip free).
+    struct TopSum {
+        Eigen::Vector3d force = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
+    } topEnergy, topVolume;
+    const Eigen::Vector3d c0(p.topCentre[0], p.topCentre[1], p.topCentre[2]);
+    const std::array<double, kTopParameters> top = p.onTop.empty() ? std::array<double, kTopParameters>{} : TopParameters(p, q);
+    const double angles[3] = {top[kTopTiltX], top[kTopTiltY], top[kTopTwist]};
+    Eigen::Matrix3d dR[3];  // dR/da_k, k = tilt x, tilt y, twist
+    for (int k = 0; k < 3 && !p.onTop.empty(); ++k) dR[k] = TopRotation(angles, k == 0, k == 1, k == 2);
     auto addGradient = [&](Eigen::VectorXd& g, int v, int c, double value, double* axial) {
         const int d = p.dofOf[3 * v + c];
-        if (d >= 0) g[d] += value;
-        else if (d == kAxial) {
+        if (d >= 0) {
+            g[d] += value;
+            return;
+        }
+        if (!p.onTop.empty() && p.onTop[v]) {
+            TopSum& sum = axial ? topEnergy : topVolume;
+            sum.force[c] += value;
+            sum.moment.row(c) += value * (Eigen::RowVector3d(p.rest.x[v], p.rest.y[v], p.rest.z[v]) - c0.transpose());
+        }
+        if (d == kAxial) {
             if (p.axial >= 0) g[p.axial] += value;
             if (axial) *axial += value;
         } else if (d == kTwist) {
@@ -150,10 +207,40 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     };
     // An element's Hessian over its vertices' coordinates into the unknowns': a turned coordinate's
     // rows and columns scaled by its lever (`turned`: the element has one, from the pattern).
-    auto addHessian = [&](const int* slots, const double* local, int count, const int* vertices, bool turned) {
-        if (!turned) {
+    // Tip free: an element's Hessian H over a clamp vertex's coordinates reaches the top's parameters
+    // through J = dx/d(parameters): (unknown, parameter) entries H J into `topColumns`, (parameter,
+    // parameter) ones J^T H J into `topBlock`, scattered once at the end.
+    Eigen::Matrix<double, Eigen::Dynamic, kTopParameters> topColumns;
+    Eigen::Matrix<double, kTopParameters, kTopParameters> topBlock = Eigen::Matrix<double, kTopParameters, kTopParameters>::Zero();
+    if (hessian && p.rigidTop) topColumns = Eigen::Matrix<double, Eigen::Dynamic, kTopParameters>::Zero(p.unknowns, kTopParameters);
+    auto topJacobianRow = [&](int v, int c) {
+        Eigen::Matrix<double, 1, kTopParameters> row = Eigen::Matrix<double, 1, kTopParameters>::Zero();
+        row[c] = 1;
+        const Eigen::Vector3d Y = Eigen::Vector3d(p.rest.x[v], p.rest.y[v], p.rest.z[v]) - c0;
+        for (int k = 0; k < 3; ++k) row[3 + k] = dR[k].row(c).dot(Y);
+        return row;
+    };
+    auto addHessian = [&](const int* slots, const double* local, int count, const int* vertices, char turned) {
+        if (turned != 1) {
             for (int i = 0; i < count * count; ++i)
                 if (slots[i] >= 0) values[slots[i]] += local[i];
+            if (turned == 0) return;
+            // The rigid top's part (the slots above skip its coordinates).
+            std::array<Eigen::Matrix<double, 1, kTopParameters>, 12> J;
+            std::array<int, 12> unknown;
+            for (int k = 0; k < count; ++k) {
+                const int v = vertices[k / 3], c = k % 3;
+                unknown[k] = p.dofOf[3 * v + c] == kRigid ? -2 : Unknown(p, v, c);
+                if (unknown[k] == -2) J[k] = topJacobianRow(v, c);
+            }
+            for (int i = 0; i < count; ++i) {
+                if (unknown[i] != -2) continue;
+                for (int j = 0; j < count; ++j) {
+                    const double h = local[i * count + j];
+                    if (unknown[j] == -2) topBlock += J[i].transpose() * (h * J[j]);
+                    else if (unknown[j] >= 0) topColumns.row(unknown[j]) += h * J[i];
+                }
+            }
             return;
         }
         std::array<double, 12> scale{};  // elements only: the anchor (sliding ends) has no turned coordinates
@@ -352,9 +439,53 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     }
     // The turn's own curvature: exact, or (for Newton's steps) only where it stiffens.
     if (hessian && hessian->twistSlot >= 0) values[hessian->twistSlot] += kind == HessianKind::Exact ? twistCurvature : std::max(0.0, twistCurvature);
+    // The top clamp's loads: the resultant along x, y, z and the moments about its tilt and twist axes.
+    std::array<double, kTopParameters> topLoads{}, topVolumeSlopes{};
+    for (int k = 0; k < 3 && !p.onTop.empty(); ++k) {
+        topLoads[k] = topEnergy.force[k];
+        topLoads[3 + k] = (dR[k].array() * topEnergy.moment.array()).sum();
+        topVolumeSlopes[k] = topVolume.force[k];
+        topVolumeSlopes[3 + k] = (dR[k].array() * topVolume.moment.array()).sum();
+    }
+    if (p.rigidTop) {
+        const std::array<int, kTopParameters> unknown = TopUnknowns(p);
+        if (wantGradient)
+            for (int k = 0; k < kTopParameters; ++k)
+                if (unknown[k] >= 0) {
+                    r.gradient[unknown[k]] += topLoads[k];
+                    r.volumeGradient[unknown[k]] += topVolumeSlopes[k];
+                }
+        axialForce += topLoads[kTopAxial];
+        twistTorque += topLoads[kTopTwist];
+        if (hessian) {
+            // R's own curvature: sum_i g_i . d2x_i/da_k da_l = <d2R/da_k da_l, sum g_i Y_i^T>; exact, or
+            // (for Newton's steps) projected to where it stiffens.
+            Eigen::Matrix3d curvature;
+            for (int k = 0; k < 3; ++k)
+                for (int l = 0; l < 3; ++l) {
+                    const int order[3] = {(k == 0) + (l == 0), (k == 1) + (l == 1), (k == 2) + (l == 2)};
+                    curvature(k, l) = (TopRotation(angles, order[0], order[1], order[2]).array() * topEnergy.moment.array()).sum();
+                }
+            if (kind != HessianKind::Exact) {
+                Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(curvature);
+                curvature = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+            }
+            topBlock.bottomRightCorner<3, 3>() += curvature;
+            for (int k = 0; k < kTopParameters; ++k) {
+                if (unknown[k] < 0) continue;
+                for (int l = 0; l < kTopParameters; ++l)
+                    if (unknown[l] >= 0) values[hessian->topBlockSlots[k][l]] += topBlock(k, l);
+                for (const auto& [row, slot, transposed] : hessian->topCouplings[k]) {
+                    values[slot] += topColumns(row, k);
+                    values[transposed] += topColumns(row, k);
+                }
+            }
+        }
+    }
     r.energy = energy.Value();
     r.axialForce = axialForce;
     r.twistTorque = twistTorque;
+    r.topLoads = topLoads;
     return r;
 }
 

@@ -34,7 +34,9 @@ void NumberUnknowns(ShellProblem& p, bool axialUnknown, bool twistUnknown = fals
     int next = 0;
     for (int& d : p.dofOf)
         if (d >= 0 || d == -3) d = next++;
+    for (int k = 0; k < 2; ++k) p.lateral[k] = p.rigidTop ? next++ : -1;
     p.axial = axialUnknown ? next++ : -1;
+    for (int k = 0; k < 2; ++k) p.tilt[k] = p.rigidTop ? next++ : -1;
     p.twist = twistUnknown ? next++ : -1;
     p.unknowns = next;
 }
@@ -193,21 +195,31 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
     p.dofOf.assign(3 * p.rest.Size(), kFree);
     auto hold = [&](int v, int coordinate, int how) { p.dofOf[3 * v + coordinate] = how; };
     const bool clamped = g.ends == EndCondition::Clamped;
+    p.rigidTop = clamped && def.ends.tip == TipEnd::Free;
     for (int j = 0; j < H; ++j)
         for (int i = 0; i < R; ++i) {
             const int v = j * R + i;
             const bool bottom = clamped ? j < c : j == 0, top = clamped ? j >= H - c : j == H - 1;
             if (!bottom && !top) continue;
             if (clamped) {
-                // The top clamp's rings turn with it (held or not, the torque is measured through them).
-                hold(v, 0, bottom ? kFixed : kTwist);
-                hold(v, 1, bottom ? kFixed : kTwist);
+                // The top clamp's rings turn with it (held or not, the torque is measured through them);
+                // with the tip free they move with it in every direction.
+                hold(v, 0, bottom ? kFixed : p.rigidTop ? kRigid : kTwist);
+                hold(v, 1, bottom ? kFixed : p.rigidTop ? kRigid : kTwist);
             }
-            hold(v, 2, bottom ? kFixed : kAxial);
+            hold(v, 2, bottom ? kFixed : p.rigidTop ? kRigid : kAxial);
         }
     for (int coordinate = 0; coordinate < 3; ++coordinate) {
         hold(bottomCap, coordinate, kFixed);
-        hold(topCap, coordinate, coordinate == 2 ? kAxial : kFixed);
+        hold(topCap, coordinate, p.rigidTop ? kRigid : coordinate == 2 ? kAxial : kFixed);
+    }
+    if (clamped) {
+        p.onTop.assign(p.rest.Size(), 0);
+        for (int v = (H - c) * R; v < H * R; ++v) p.onTop[v] = 1;
+        p.onTop[topCap] = 1;
+        p.topCentre[0] = p.rest.x[topCap];
+        p.topCentre[1] = p.rest.y[topCap];
+        p.topCentre[2] = p.rest.z[topCap];
     }
     if (!clamped) {
         for (int i = 0; i < R; ++i) p.anchor.vertices.push_back(i);
@@ -220,6 +232,7 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
     NumberUnknowns(p, true, twistUnknown);
     if (clamped) {
         p.twistReference = (H - 1) * R;
+        p.tiltReference = (H - 1) * R + R / 4;
         p.twistLeverMm = std::hypot(p.rest.x[p.twistReference], p.rest.y[p.twistReference]);
         if (!(p.twistLeverMm > 0)) return fail("the top clamp's ring lies on the axis");
     }
@@ -316,9 +329,62 @@ ShellProblem BuildPatchProblem(const MembraneMaterial& material, double size, in
     return p;
 }
 
+std::array<int, kTopParameters> TopUnknowns(const ShellProblem& p) {
+    return {p.lateral[0], p.lateral[1], p.axial, p.tilt[0], p.tilt[1], p.twist};
+}
+
+std::array<double, kTopParameters> TopParameters(const ShellProblem& p, const Eigen::VectorXd& q) {
+    const std::array<int, kTopParameters> unknown = TopUnknowns(p);
+    std::array<double, kTopParameters> value{0, 0, p.heldAxial, 0, 0, p.heldTwist};
+    for (int k = 0; k < kTopParameters; ++k)
+        if (unknown[k] >= 0) value[k] = q[unknown[k]];
+    return value;
+}
+
+Eigen::Matrix3d TopRotation(const double angles[3], int i, int j, int k) {
+    // A rotation about axis `axis` by `angle`, differentiated `order` times: cos and sin, and the
+    // axis's own row and column (constant, so gone once differentiated).
+    auto turn = [](int axis, double angle, int order) {
+        const double c = std::cos(angle), s = std::sin(angle);
+        // d^n/da^n of (cos a, sin a): (cos, sin), (-sin, cos), (-cos, -sin).
+        const double dc = order == 0 ? c : order == 1 ? -s : -c;
+        const double ds = order == 0 ? s : order == 1 ? c : -s;
+        const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+        Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+        if (order == 0) m(axis, axis) = 1;
+        m(a, a) = dc;
+        m(a, b) = -ds;
+        m(b, a) = ds;
+        m(b, b) = dc;
+        return m;
+    };
+    return turn(0, angles[0], i) * turn(1, angles[1], j) * turn(2, angles[2], k);
+}
+
 Eigen::VectorXd UnknownsOf(const ShellProblem& p, const Positions& x) {
     Eigen::VectorXd q = Eigen::VectorXd::Zero(p.unknowns);
-    if (p.twist >= 0) {
+    if (p.rigidTop) {
+        // t from the cap centre (at c0 + t); R from the frames of two ring vertices, at rest and now.
+        const int cap = p.rest.Size() - 1;
+        const Eigen::Vector3d c0(p.topCentre[0], p.topCentre[1], p.topCentre[2]), c(x.x[cap], x.y[cap], x.z[cap]);
+        auto frame = [&](const Positions& at, const Eigen::Vector3d& centre) {
+            const Eigen::Vector3d a = Eigen::Vector3d(at.x[p.twistReference], at.y[p.twistReference], at.z[p.twistReference]) - centre;
+            const Eigen::Vector3d b = Eigen::Vector3d(at.x[p.tiltReference], at.y[p.tiltReference], at.z[p.tiltReference]) - centre;
+            Eigen::Matrix3d e;
+            e.col(0) = a.normalized();
+            e.col(2) = a.cross(b).normalized();
+            e.col(1) = e.col(2).cross(e.col(0));
+            return e;
+        };
+        const Eigen::Matrix3d R = frame(x, c) * frame(p.rest, c0).transpose();
+        const std::array<int, kTopParameters> unknown = TopUnknowns(p);
+        // R = Rx(a) Ry(b) Rz(theta): R e_z = (sin b, -sin a cos b, cos a cos b), first row (cos b cos theta, -cos b sin theta, sin b).
+        const double value[kTopParameters] = {c.x() - c0.x(), c.y() - c0.y(), c.z() - c0.z(), std::atan2(-R(1, 2), R(2, 2)),
+                                              std::asin(std::clamp(R(0, 2), -1.0, 1.0)), std::atan2(-R(0, 1), R(0, 0))};
+        for (int k = 0; k < kTopParameters; ++k)
+            if (unknown[k] >= 0) q[unknown[k]] = value[k];
+    }
+    if (p.twist >= 0 && !p.rigidTop) {
         const int v = p.twistReference;
         const double X = p.rest.x[v], Y = p.rest.y[v];
         q[p.twist] = std::atan2(X * x.y[v] - Y * x.x[v], X * x.x[v] + Y * x.y[v]);
@@ -343,8 +409,23 @@ void PositionsOf(const ShellProblem& p, const Eigen::VectorXd& q, Positions& x) 
     const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
     const double theta = p.twist >= 0 ? q[p.twist] : p.heldTwist;
     const double cosine = std::cos(theta), sine = std::sin(theta);
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c = Eigen::Vector3d::Zero();
+    if (p.rigidTop) {
+        const std::array<double, kTopParameters> top = TopParameters(p, q);
+        R = TopRotation(&top[kTopTiltX], 0, 0, 0);
+        c0 = Eigen::Vector3d(p.topCentre[0], p.topCentre[1], p.topCentre[2]);
+        c = c0 + Eigen::Vector3d(top[kTopX], top[kTopY], top[kTopAxial]);
+    }
     for (int v = 0; v < n; ++v) {
         const int* d = &p.dofOf[3 * v];
+        if (d[0] == kRigid) {  // the clamp as a rigid body
+            const Eigen::Vector3d at = c + R * (Eigen::Vector3d(p.rest.x[v], p.rest.y[v], p.rest.z[v]) - c0);
+            x.x[v] = at.x();
+            x.y[v] = at.y();
+            x.z[v] = at.z();
+            continue;
+        }
         if (d[0] == kTwist) {  // x and y turn together
             x.x[v] = cosine * p.rest.x[v] - sine * p.rest.y[v];
             x.y[v] = sine * p.rest.x[v] + cosine * p.rest.y[v];
@@ -376,9 +457,9 @@ std::vector<int> VertexBlockPlaces(const ShellProblem& p) {
             }
         blocks += free;
     }
-    int shared = 0;  // u and theta: one block of their own
-    if (p.axial >= 0) places[p.axial] = 3 * blocks + shared++;
-    if (p.twist >= 0) places[p.twist] = 3 * blocks + shared++;
+    int shared = 0;  // the top's parameters (u and theta; all six with the tip free): blocks of their own
+    for (int d : TopUnknowns(p))
+        if (d >= 0) places[d] = 3 * blocks + shared++;
     return places;
 }
 

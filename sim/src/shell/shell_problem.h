@@ -81,6 +81,12 @@ constexpr int kFixed = -1;  // held at its value in ShellProblem::held
 constexpr int kAxial = -2;  // the top clamp's axial translation u, added to its rest value
 constexpr int kTwist = -4;  // x or y of a top clamp vertex: its rest place turned by the clamp's twist
                             // theta about the axis (x = 0, y = 0), docs/models/shell.md section 12
+constexpr int kRigid = -5;  // any coordinate of a top clamp vertex when the tip is free: the clamp as a
+                            // rigid body, x = c0 + t + R (X - c0) (TopParameter, TopRotation)
+
+// The top clamp's rigid-body parameters, in this order: translation t = (x, y, u) of its centre c0
+// and the angles of R = Rx(tilt x) Ry(tilt y) Rz(theta). With the tip held only u and theta move.
+enum TopParameter { kTopX, kTopY, kTopAxial, kTopTiltX, kTopTiltY, kTopTwist, kTopParameters };
 
 // A soft anchor against rigid motions that no support prevents (sliding ends, a free sphere):
 // (k/2)(|T|^2 + |R|^2) with T = sum (x - X), R = sum X x (x - X) over the anchored vertices, for
@@ -112,6 +118,13 @@ struct ShellProblem {
     double heldTwist = 0;                          // theta when it is not an unknown (twist held), radians
     int twistReference = -1;                       // a top clamp vertex off the axis: theta is read from it
     double twistLeverMm = 1;                       // its distance from the axis: torque over it is a force
+    // Tip free (kRigid): the lateral translation's and tilt's unknowns (-1: held at 0), the clamp's
+    // rest centre c0 and a second ring vertex a quarter turn from twistReference (R is read from both).
+    bool rigidTop = false;
+    int lateral[2] = {-1, -1}, tilt[2] = {-1, -1};
+    double topCentre[3] = {0, 0, 0};
+    int tiltReference = -1;
+    std::vector<char> onTop;                       // per vertex: rides on the top clamp (clamped ends; else empty)
     Anchor anchor;
     double restVolume = 0;                         // mm^3, caps included
     double meanEdgeMm = 1;                         // for the convergence tolerance
@@ -148,8 +161,15 @@ void SetHingeRest(ShellProblem& problem);
 // vertex's free coordinates share a block; the clamp's axial and twist unknowns share one of their own.
 std::vector<int> VertexBlockPlaces(const ShellProblem& problem);
 
+// The top clamp's parameters' unknowns (TopParameter order; -1: held) and values at q.
+std::array<int, kTopParameters> TopUnknowns(const ShellProblem& problem);
+std::array<double, kTopParameters> TopParameters(const ShellProblem& problem, const Eigen::VectorXd& q);
+// R = Rx(a) Ry(b) Rz(c) of angles (a, b, c), or its derivative of orders (i, j, k) in them (each 0,
+// 1 or 2): TopRotation(angles, 0, 1, 0) = Rx(a) Ry'(b) Rz(c).
+Eigen::Matrix3d TopRotation(const double angles[3], int i, int j, int k);
+
 // The unknowns' values for positions (u read from the first axial coordinate, theta from the
-// reference vertex) and back.
+// reference vertex; tip free: t from the cap centre, R from the two reference vertices) and back.
 Eigen::VectorXd UnknownsOf(const ShellProblem& problem, const Positions& x);
 void PositionsOf(const ShellProblem& problem, const Eigen::VectorXd& q, Positions& x);
 
@@ -185,7 +205,12 @@ public:
     std::vector<int> wallSlots, hingeSlots, capSlots;  // per element: 81, 144 or 81 value indices (-1: none)
     std::vector<int> anchorSlots;                      // the anchor's dense block
     int twistSlot = -1;                                // (theta, theta): the clamp's turn's own curvature
-    std::vector<char> wallTurned, capTurned, hingeTurned;  // per element: a corner rides on the clamp's turn
+    std::vector<char> wallTurned, capTurned, hingeTurned;  // per element: a corner rides on the clamp's turn (1)
+                                                           // or on the rigid top (2, tip free)
+    // Tip free: the top parameters' couplings. Per parameter with an unknown, the (row, slot of
+    // (row, it), slot of (it, row)) of every other unknown it meets; and the parameters' own block.
+    std::array<std::vector<std::array<int, 3>>, kTopParameters> topCouplings;
+    std::array<std::array<int, kTopParameters>, kTopParameters> topBlockSlots{};
 };
 
 struct EnergyResult {
@@ -193,6 +218,9 @@ struct EnergyResult {
     double volume = 0;           // mm^3
     double axialForce = 0;       // dE/du: the force the actuator exerts on the top clamp (+ pulls it down), N
     double twistTorque = 0;      // dE/dtheta: the torque about +z a fixture applies to keep the top clamp where it is, N mm
+    // dE/d of each top parameter (TopParameter order; clamped ends): the loads a fixture applies to
+    // keep the clamp where it is (N along x, y, z; N mm about the tilt and twist axes).
+    std::array<double, kTopParameters> topLoads{};
     Eigen::VectorXd gradient;    // over the unknowns
     Eigen::VectorXd volumeGradient;
 };

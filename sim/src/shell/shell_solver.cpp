@@ -153,6 +153,10 @@ struct Solver {
         }
         if (problem.axial >= 0 && !holdAxial) largest = std::max(largest, std::fabs(g[problem.axial]));
         if (problem.twist >= 0) largest = std::max(largest, std::fabs(g[problem.twist]) / problem.twistLeverMm);  // torque as a force at the clamp
+        for (int k = 0; k < 2; ++k) {  // tip free: the lateral force, and the tilting moment as a force at the clamp
+            if (problem.lateral[k] >= 0) largest = std::max(largest, std::fabs(g[problem.lateral[k]]));
+            if (problem.tilt[k] >= 0) largest = std::max(largest, std::fabs(g[problem.tilt[k]]) / problem.twistLeverMm);
+        }
         return largest;
     }
 
@@ -808,6 +812,19 @@ void Measure(TubeEvaluation& t, SimResult& result) {
         out.torqueNMm = AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact).twistTorque;
     else if (t.def.ends.twist == TwistEnd::Loaded)
         out.torqueNMm = t.def.ends.torqueNMm;
+    // The tip: where it went when free; what holds it when held (the lateral resultant, and the bending
+    // moment about the two tilt axes).
+    if (t.problem.twistReference < 0) return;
+    if (t.problem.rigidTop) {
+        const std::array<double, kTopParameters> top = TopParameters(t.problem, t.q);
+        out.tipLateralMm = std::hypot(top[kTopX], top[kTopY]);
+        out.tipTiltDeg = std::acos(std::clamp(std::cos(top[kTopTiltX]) * std::cos(top[kTopTiltY]), -1.0, 1.0)) * 180 / std::numbers::pi;
+    } else {
+        const std::array<double, kTopParameters> loads =
+            AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact).topLoads;
+        out.tipForceN = std::hypot(loads[kTopX], loads[kTopY]);
+        out.tipMomentNMm = std::hypot(loads[kTopTiltX], loads[kTopTiltY]);
+    }
 }
 
 // Stage: the stiffness at the free equilibrium, 1 / (K^-1)_uu of the exact Hessian (its Schur

@@ -384,3 +384,36 @@ TEST_F(ShellCli, AHeldStrokeInMillimetresIsTheSameTestAsInPercent) {
     ExpectRefused(braid + " --stroke-percent 5 --stroke-mm 7.5", "give the held stroke once");
     ExpectRefused("simulate --model membrane --stroke-mm 7.5" + kSmall, "--stroke-mm applies to --load blocked, not --load inflate");
 }
+
+// A bending actuator (meridian threads on one half, hoop threads on the other) as a bench sees it:
+// held square on the axis by default, the bench feels a bending moment; with --tip free (or the
+// experiment's "ends": {"tip": "free"}) the tip tilts and swings off the axis, and the results say
+// how far. The option is refused where it cannot apply, and old archives read as held.
+TEST_F(ShellCli, ABendingActuatorsTipTiltsWhenFreeAndFeelsAMomentWhenHeld) {
+    const std::string model = R"("name": "membrane", "geometry": {"ring_vertices": 16, "rings": 20}, "load": {"pressure_kpa": 3, "steps": 3},
+        "fibres": "single", "fibre_sectors_deg": [0, 90])";
+    const std::string rest = R"("evaluate": {"shapes": [{"family": "cylinder"}]}, "render": {"figures": false, "thumbnails": false}})";
+    Write("held.json", R"({"id": "held", "model": {)" + model + "}, " + rest);
+    Write("free.json", R"({"id": "free", "model": {)" + model + R"(, "ends": {"tip": "free"}}, )" + rest);
+    for (const char* name : {"held", "free"}) {
+        const Result r = Run(std::string("sweep ") + Path(std::string(name) + ".json") + " --out " + Path(name));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    const app::Table held = app::Table::Read((dir_ / "held" / "evaluations.csv").string());
+    const app::Table free = app::Table::Read((dir_ / "free" / "evaluations.csv").string());
+    EXPECT_GT(held.Number(0, "tip_moment_n_mm"), 0.1);
+    EXPECT_TRUE(held.Text(0, "tip_tilt_deg").empty()) << "a held tip does not tilt";
+    EXPECT_GT(free.Number(0, "tip_tilt_deg"), 10);
+    EXPECT_GT(free.Number(0, "tip_lateral_mm"), 1);
+    EXPECT_TRUE(free.Text(0, "tip_moment_n_mm").empty()) << "nothing holds a free tip";
+    // The stored job keeps its ends: replayed, the tip tilts as it did.
+    const Result replay = Run("simulate --from " + Path("free/evaluations.capnp") + " --index 0");
+    ASSERT_EQ(replay.exitCode, 0) << replay.err;
+    const auto json = nlohmann::json::parse(replay.out);
+    EXPECT_EQ(json["model"]["tip"], "free");
+    EXPECT_EQ(json["tip_tilt_deg"].get<double>(), free.Number(0, "tip_tilt_deg"));
+    // Where a tip cannot move: sliding ends, and the thesis model.
+    ExpectRefused("simulate --model membrane --ends sliding --tip free" + kSmall, "--tip applies to --ends clamped, not --ends sliding");
+    ExpectRefused("simulate --model thesis --tip free", "--tip");
+    ExpectRefused("simulate --model membrane --tip bent" + kSmall, "held or free");
+}

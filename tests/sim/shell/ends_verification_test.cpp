@@ -318,3 +318,42 @@ TEST(EndsClosedForms, ATurnOrShiftOfTheWholeTubeChangesOnlyTheEndLoadsWork) {
     EXPECT_NEAR(m.gradient[p.twist], r.gradient[p.twist], 1e-9 * scale);
     EXPECT_NEAR(m.gradient[p.axial], r.gradient[p.axial], 1e-9 * scale);
 }
+
+// A bending actuator: threads along the meridian on one half of the tube (a strain-limiting layer)
+// and round it on the other. Inflated, the hoop half lengthens and the tube bends towards the
+// meridian half. Held square on the axis (the default), the tip does not move and the bench feels
+// a bending moment and a lateral force; free, the tip tilts and swings off the axis, towards the
+// limited side, with no such loads left. An axisymmetric braid has neither.
+TEST(EndsClosedForms, AFreeTipBendsWhereAHeldTipFeelsTheMoment) {
+    sim::EvalJob job = FibreTube(30, sim::FibreLayout::Single, 0, 50);
+    job.Shell().fibres.sectorAnglesDeg = {0, 90};
+    job.Shell().load.pressureKpa = 3;
+    job.Shell().load.steps = 6;
+    const sim::SimResult held = sim::Evaluate(job);
+    ASSERT_EQ(held.status, sim::Status::Ok) << Reproduce(job);
+    job.Shell().ends.tip = sim::TipEnd::Free;
+    const sim::SimResult free = sim::Evaluate(job);
+    ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(job) << " --tip free";
+    EXPECT_TRUE(std::isnan(held.shell.tipTiltDeg) && std::isnan(free.shell.tipMomentNMm)) << "each reports what its ends have";
+    EXPECT_GT(held.shell.tipMomentNMm, 0.5) << Reproduce(job);  // 1.01 N mm
+    EXPECT_GT(free.shell.tipTiltDeg, 20) << Reproduce(job) << " --tip free";  // 45.5 deg
+    // Bent to a circular arc of angle theta, the tip's lateral and axial distances from the bottom
+    // are in the ratio (1 - cos theta) / sin theta = tan(theta / 2), whatever the arc's length (the
+    // straight clamps and the bend's ends make it 2.6 % more here).
+    const double lateral = free.shell.tipLateralMm, axial = job.Shell().geometry.lengthMm * (1 - free.contractionPercent / 100);
+    EXPECT_NEAR(lateral / axial, std::tan(free.shell.tipTiltDeg * kPi / 360), 0.05 * lateral / axial);
+    // The meridian half is the first sector, angles 0 to pi (y > 0): the tip swings to it.
+    EXPECT_GT(free.final.y[free.final.Size() - 1], 0.9 * lateral);
+    EXPECT_LT(held.shell.tipForceN, 1e-2 * held.shell.tipMomentNMm / job.Shell().geometry.radiusMm) << "a pure moment: no shear is needed at the bench";
+
+    sim::EvalJob braid = FibreTube(30, sim::FibreLayout::Braid, 30, 50);
+    braid.Shell().load.pressureKpa = 3;
+    const sim::SimResult braidHeld = sim::Evaluate(braid);
+    braid.Shell().ends.tip = sim::TipEnd::Free;
+    const sim::SimResult braidFree = sim::Evaluate(braid);
+    ASSERT_EQ(braidHeld.status, sim::Status::Ok);
+    ASSERT_EQ(braidFree.status, sim::Status::Ok);
+    EXPECT_LT(braidHeld.shell.tipMomentNMm, 1e-8);
+    EXPECT_LT(braidFree.shell.tipTiltDeg, 1e-3);
+    EXPECT_NEAR(braidFree.contractionPercent, braidHeld.contractionPercent, 1e-4 * std::fabs(braidHeld.contractionPercent));
+}

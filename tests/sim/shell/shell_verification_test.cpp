@@ -26,9 +26,10 @@ Eigen::Vector3d Vertex(const sim::Positions& p, int v) { return {p.x[v], p.y[v],
 
 // A small tube whose every term is switched on, deformed off its rest shape.
 sim::ShellProblem SmallTube(sim::MaterialLaw law, bool bending, sim::EndCondition ends = sim::EndCondition::Clamped,
-                           sim::TwistEnd twist = sim::TwistEnd::Free) {
+                           sim::TwistEnd twist = sim::TwistEnd::Free, sim::TipEnd tip = sim::TipEnd::Held) {
     sim::ShellDef def;
     def.ends.twist = twist;
+    def.ends.tip = tip;
     def.geometry.radiusMm = 4;
     def.geometry.lengthMm = 12;
     def.geometry.ringVertices = 8;
@@ -104,6 +105,68 @@ TEST(ShellDerivatives, EveryTermMatchesCentralDifferences) {
     // The sealed gas's term (its rank-one Hessian part lives in the solver; here the rest).
     const auto sliding = SmallTube(sim::MaterialLaw::NeoHookean, false, sim::EndCondition::Sliding);
     CheckDerivatives(sliding, load, {false, false, false, false, true}, "anchor");
+}
+
+// With the tip free the top clamp is a rigid body of six unknowns, x = c0 + t + Rx Ry Rz (X - c0):
+// the chain rule through R, its second derivatives (the curvature block) included, and every term.
+TEST(ShellDerivatives, EveryTermMatchesCentralDifferencesWithTheTipFree) {
+    sim::LoadTerms load;
+    load.pressure = 0.004;
+    load.force = 0.3;
+    load.torque = 0.7;
+    for (auto twist : {sim::TwistEnd::Free, sim::TwistEnd::Held}) {
+        const auto p = SmallTube(sim::MaterialLaw::MooneyRivlin, true, sim::EndCondition::Clamped, twist, sim::TipEnd::Free);
+        ASSERT_TRUE(p.rigidTop);
+        for (int k = 0; k < 2; ++k) ASSERT_TRUE(p.lateral[k] >= 0 && p.tilt[k] >= 0);
+        ASSERT_EQ(p.twist >= 0, twist == sim::TwistEnd::Free);
+        const std::string name = std::string("tip free, twist ") + sim::Name(twist);
+        CheckDerivatives(p, load, {true, false, false, false, false}, name + ": membrane");
+        CheckDerivatives(p, load, {false, true, false, false, false}, name + ": bending");
+        CheckDerivatives(p, load, {false, false, true, false, false}, name + ": pressure");
+        CheckDerivatives(p, load, {}, name + ": all terms");
+    }
+}
+
+// The free tip's parameters read back from the positions they make (t from the cap centre, R from
+// two ring vertices), tilted and turned well away from rest.
+TEST(ShellDerivatives, TheFreeTipsParametersReadBackFromItsPositions) {
+    const auto p = SmallTube(sim::MaterialLaw::NeoHookean, true, sim::EndCondition::Clamped, sim::TwistEnd::Free, sim::TipEnd::Free);
+    Eigen::VectorXd q = Perturbed(p, 0.3, 11);
+    q[p.lateral[0]] = 0.7;
+    q[p.lateral[1]] = -1.1;
+    q[p.tilt[0]] = 0.4;
+    q[p.tilt[1]] = -0.25;
+    q[p.twist] = 1.2;
+    sim::Positions x;
+    sim::PositionsOf(p, q, x);
+    EXPECT_LT((sim::UnknownsOf(p, x) - q).lpNorm<Eigen::Infinity>(), 1e-12);
+}
+
+// Held, the tip's lateral force and bending moment are the energy's slopes along the free tip's
+// translation and tilt, at the same state (the free tip square on the axis is the held tip).
+TEST(ShellDerivatives, TheHeldTipsLoadsAreTheFreeTipsSlopes) {
+    sim::LoadTerms load;
+    load.pressure = 0.004;
+    const auto held = SmallTube(sim::MaterialLaw::NeoHookean, true, sim::EndCondition::Clamped, sim::TwistEnd::Free, sim::TipEnd::Held);
+    const auto free = SmallTube(sim::MaterialLaw::NeoHookean, true, sim::EndCondition::Clamped, sim::TwistEnd::Free, sim::TipEnd::Free);
+    const Eigen::VectorXd q = Perturbed(held, 0.3, 5);
+    sim::Positions x;
+    sim::PositionsOf(held, q, x);
+    const Eigen::VectorXd qFree = sim::UnknownsOf(free, x);
+    for (int k = 0; k < 2; ++k) ASSERT_NEAR(qFree[free.lateral[k]], 0, 1e-12);
+    const sim::EnergyResult h = sim::AssembleEnergy(held, q, load, {}, true, nullptr, sim::HessianKind::Exact);
+    const sim::EnergyResult f = sim::AssembleEnergy(free, qFree, load, {}, true, nullptr, sim::HessianKind::Exact);
+    EXPECT_NEAR(h.energy, f.energy, 1e-12 * std::fabs(h.energy));
+    const double scale = f.gradient.lpNorm<Eigen::Infinity>();
+    const int unknown[4] = {free.lateral[0], free.lateral[1], free.tilt[0], free.tilt[1]};
+    const int load4[4] = {sim::kTopX, sim::kTopY, sim::kTopTiltX, sim::kTopTiltY};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_NEAR(h.topLoads[load4[k]], f.gradient[unknown[k]], 1e-10 * scale) << "top parameter " << load4[k];
+        EXPECT_NEAR(f.topLoads[load4[k]], f.gradient[unknown[k]], 1e-10 * scale);
+    }
+    EXPECT_GT(std::fabs(h.topLoads[sim::kTopTiltX]) + std::fabs(h.topLoads[sim::kTopTiltY]), 1e-3) << "a perturbed tube bends its clamp";
+    EXPECT_NEAR(h.axialForce, f.axialForce, 1e-10 * scale);
+    EXPECT_NEAR(h.twistTorque, f.twistTorque, 1e-10 * scale);
 }
 
 // Held, the twist is no unknown; the torque on the clamp is still dE/dtheta, measured by turning the
