@@ -70,13 +70,16 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     std::vector<int> top;
     for (int d : TopUnknowns(p))
         if (d >= 0 && p.rigidTop) top.push_back(d);
-    auto rigid = [&](const int* vertices, int count) {
-        for (int k = 0; k < count; ++k)
-            if (p.dofOf[3 * vertices[k]] == kRigid) return true;
-        return false;
+    // Whether an element has a corner on the clamp's turn (1) or on the rigid top (2, tip free).
+    auto turned = [&](const int* vertices, int count) {
+        for (int k = 0; k < count; ++k) {
+            if (p.dofOf[3 * vertices[k]] == kTwist) return char(1);
+            if (p.dofOf[3 * vertices[k]] == kRigid) return char(2);
+        }
+        return char(0);
     };
     auto addTop = [&](const int* vertices, int count) {
-        if (top.empty() || !rigid(vertices, count)) return;
+        if (top.empty() || turned(vertices, count) != 2) return;
         for (int k = 0; k < count; ++k)
             for (int c = 0; c < 3; ++c)
                 if (const int d = Unknown(p, vertices[k], c); d >= 0)
@@ -120,13 +123,6 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
             if (std::find(top.begin(), top.end(), row) == top.end()) topCouplings[k].push_back({row, i, slot(t, row)});
         }
     }
-    auto turned = [&](const int* vertices, int count) {
-        for (int k = 0; k < count; ++k) {
-            if (p.dofOf[3 * vertices[k]] == kTwist) return char(1);
-            if (p.dofOf[3 * vertices[k]] == kRigid) return char(2);
-        }
-        return char(0);
-    };
     for (const auto& t : p.wall) wallTurned.push_back(turned(t.data(), 3));
     for (const auto& t : p.caps) capTurned.push_back(turned(t.data(), 3));
     for (const auto& h : p.hinges) hingeTurned.push_back(turned(h.data(), 4));
@@ -177,7 +173,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         Eigen::Vector3d force = Eigen::Vector3d::Zero();
         Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
     } topEnergy, topVolume;
-    const Eigen::Vector3d c0(p.topCentre[0], p.topCentre[1], p.topCentre[2]);
+    const Eigen::Vector3d c0 = p.topCap >= 0 ? At(p.rest, p.topCap) : Eigen::Vector3d::Zero();
     const std::array<double, kTopParameters> top = p.onTop.empty() ? std::array<double, kTopParameters>{} : TopParameters(p, q);
     const double angles[3] = {top[kTopTiltX], top[kTopTiltY], top[kTopTwist]};
     Eigen::Matrix3d dR[3];  // dR/da_k, k = tilt x, tilt y, twist
@@ -188,7 +184,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             g[d] += value;
             return;
         }
-        if (!p.onTop.empty() && p.onTop[v]) {
+        if (!p.onTop.empty() && p.onTop[v] && (axial || p.rigidTop)) {  // the volume's slopes only for a free tip's unknowns
             TopSum& sum = axial ? topEnergy : topVolume;
             sum.force[c] += value;
             sum.moment.row(c) += value * (Eigen::RowVector3d(p.rest.x[v], p.rest.y[v], p.rest.z[v]) - c0.transpose());

@@ -217,9 +217,7 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
         p.onTop.assign(p.rest.Size(), 0);
         for (int v = (H - c) * R; v < H * R; ++v) p.onTop[v] = 1;
         p.onTop[topCap] = 1;
-        p.topCentre[0] = p.rest.x[topCap];
-        p.topCentre[1] = p.rest.y[topCap];
-        p.topCentre[2] = p.rest.z[topCap];
+        p.topCap = topCap;
     }
     if (!clamped) {
         for (int i = 0; i < R; ++i) p.anchor.vertices.push_back(i);
@@ -365,8 +363,8 @@ Eigen::VectorXd UnknownsOf(const ShellProblem& p, const Positions& x) {
     Eigen::VectorXd q = Eigen::VectorXd::Zero(p.unknowns);
     if (p.rigidTop) {
         // t from the cap centre (at c0 + t); R from the frames of two ring vertices, at rest and now.
-        const int cap = p.rest.Size() - 1;
-        const Eigen::Vector3d c0(p.topCentre[0], p.topCentre[1], p.topCentre[2]), c(x.x[cap], x.y[cap], x.z[cap]);
+        const int cap = p.topCap;
+        const Eigen::Vector3d c0(p.rest.x[cap], p.rest.y[cap], p.rest.z[cap]), c(x.x[cap], x.y[cap], x.z[cap]);
         auto frame = [&](const Positions& at, const Eigen::Vector3d& centre) {
             const Eigen::Vector3d a = Eigen::Vector3d(at.x[p.twistReference], at.y[p.twistReference], at.z[p.twistReference]) - centre;
             const Eigen::Vector3d b = Eigen::Vector3d(at.x[p.tiltReference], at.y[p.tiltReference], at.z[p.tiltReference]) - centre;
@@ -414,7 +412,7 @@ void PositionsOf(const ShellProblem& p, const Eigen::VectorXd& q, Positions& x) 
     if (p.rigidTop) {
         const std::array<double, kTopParameters> top = TopParameters(p, q);
         R = TopRotation(&top[kTopTiltX], 0, 0, 0);
-        c0 = Eigen::Vector3d(p.topCentre[0], p.topCentre[1], p.topCentre[2]);
+        c0 = Eigen::Vector3d(p.rest.x[p.topCap], p.rest.y[p.topCap], p.rest.z[p.topCap]);
         c = c0 + Eigen::Vector3d(top[kTopX], top[kTopY], top[kTopAxial]);
     }
     for (int v = 0; v < n; ++v) {

@@ -118,12 +118,12 @@ struct ShellProblem {
     double heldTwist = 0;                          // theta when it is not an unknown (twist held), radians
     int twistReference = -1;                       // a top clamp vertex off the axis: theta is read from it
     double twistLeverMm = 1;                       // its distance from the axis: torque over it is a force
-    // Tip free (kRigid): the lateral translation's and tilt's unknowns (-1: held at 0), the clamp's
-    // rest centre c0 and a second ring vertex a quarter turn from twistReference (R is read from both).
+    // Tip free (kRigid): the lateral translation's and tilt's unknowns (-1: held at 0), and a second
+    // ring vertex a quarter turn from twistReference (R is read from both).
     bool rigidTop = false;
     int lateral[2] = {-1, -1}, tilt[2] = {-1, -1};
-    double topCentre[3] = {0, 0, 0};
     int tiltReference = -1;
+    int topCap = -1;                               // the top cap's centre vertex: its rest place is c0 (clamped ends)
     std::vector<char> onTop;                       // per vertex: rides on the top clamp (clamped ends; else empty)
     Anchor anchor;
     double restVolume = 0;                         // mm^3, caps included

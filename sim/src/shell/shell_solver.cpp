@@ -808,22 +808,21 @@ void Measure(TubeEvaluation& t, SimResult& result) {
         out.twistDeg = t.TwistDeg();
         out.twistPerLengthDegPerMm = out.twistDeg / t.length;
     }
-    if (t.def.ends.twist == TwistEnd::Held && t.problem.twistReference >= 0)
-        out.torqueNMm = AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact).twistTorque;
-    else if (t.def.ends.twist == TwistEnd::Loaded)
-        out.torqueNMm = t.def.ends.torqueNMm;
-    // The tip: where it went when free; what holds it when held (the lateral resultant, and the bending
-    // moment about the two tilt axes).
     if (t.problem.twistReference < 0) return;
-    if (t.problem.rigidTop) {
+    // The loads on the clamp where a fixture holds it: the torque (twist held), the lateral resultant
+    // and the bending moment about the two tilt axes (tip held); one assembly for all.
+    const bool twistHeld = t.def.ends.twist == TwistEnd::Held;
+    EnergyResult held;
+    if (twistHeld || !t.problem.rigidTop) held = AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact);
+    if (twistHeld) out.torqueNMm = held.twistTorque;
+    else if (t.def.ends.twist == TwistEnd::Loaded) out.torqueNMm = t.def.ends.torqueNMm;
+    if (t.problem.rigidTop) {  // the tip: where it went
         const std::array<double, kTopParameters> top = TopParameters(t.problem, t.q);
         out.tipLateralMm = std::hypot(top[kTopX], top[kTopY]);
         out.tipTiltDeg = std::acos(std::clamp(std::cos(top[kTopTiltX]) * std::cos(top[kTopTiltY]), -1.0, 1.0)) * 180 / std::numbers::pi;
     } else {
-        const std::array<double, kTopParameters> loads =
-            AssembleEnergy(t.problem, t.q, t.FinalLoad(), t.solver.terms, true, nullptr, HessianKind::Exact).topLoads;
-        out.tipForceN = std::hypot(loads[kTopX], loads[kTopY]);
-        out.tipMomentNMm = std::hypot(loads[kTopTiltX], loads[kTopTiltY]);
+        out.tipForceN = std::hypot(held.topLoads[kTopX], held.topLoads[kTopY]);
+        out.tipMomentNMm = std::hypot(held.topLoads[kTopTiltX], held.topLoads[kTopTiltY]);
     }
 }
 
