@@ -10,9 +10,9 @@ $Cxx.namespace("actuator::schema");
 enum Load { inflate @0; stretch @1; none @2; }
 enum Precision { float @0; double @1; }
 # The CLI's ok, nan, diverged, limit-point, not-converged, non-finite, self-intersection,
-# invalid-geometry, over-stretched.
+# invalid-geometry, over-stretched, material-unstable.
 enum Status { ok @0; notANumber @1; diverged @2; limitPoint @3; notConverged @4; nonFinite @5; selfIntersection @6; invalidGeometry @7;
-              overStretched @8; }
+              overStretched @8; materialUnstable @9; }
 enum SplineRegion { entire @0; middle @1; }
 enum ModelKind { thesis @0; membrane @1; shell @2; }
 

@@ -28,7 +28,7 @@ template <class Schema, class Sim>
 Schema EnumToSchema(Sim value) {
     return static_cast<Schema>(static_cast<std::uint16_t>(value));
 }
-static_assert(static_cast<int>(schema::Status::OVER_STRETCHED) == static_cast<int>(sim::Status::OverStretched));
+static_assert(static_cast<int>(schema::Status::MATERIAL_UNSTABLE) == static_cast<int>(sim::Status::MaterialUnstable));
 static_assert(static_cast<int>(schema::Load::NONE) == static_cast<int>(sim::Load::None));
 static_assert(static_cast<int>(schema::Precision::DOUBLE) == static_cast<int>(sim::Precision::Double));
 static_assert(static_cast<int>(schema::SplineRegion::MIDDLE) == static_cast<int>(sim::SplineRegion::Middle));

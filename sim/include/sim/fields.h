@@ -66,9 +66,10 @@ void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Enum("law", m.law, "hyperelastic law");
     v.Number("mu_kpa", m.muKpa, "neo-Hookean shear modulus, kPa (overrides the preset)", 0, kUnbounded);
     v.Number("c10_kpa", m.c10Kpa, "Mooney-Rivlin and Yeoh C10, kPa", 0, kUnbounded);
-    v.Number("c01_kpa", m.c01Kpa, "Mooney-Rivlin C01, kPa", 0, kUnbounded);
-    v.Number("c20_kpa", m.c20Kpa, "Yeoh C20, kPa", 0, kUnbounded);
-    v.Number("c30_kpa", m.c30Kpa, "Yeoh C30, kPa", 0, kUnbounded);
+    // The higher constants may be negative: a state past the law's stable range is material-unstable.
+    v.Number("c01_kpa", m.c01Kpa, "Mooney-Rivlin C01, kPa (may be negative)", -kUnbounded, kUnbounded);
+    v.Number("c20_kpa", m.c20Kpa, "Yeoh C20, kPa (may be negative)", -kUnbounded, kUnbounded);
+    v.Number("c30_kpa", m.c30Kpa, "Yeoh C30, kPa (may be negative)", -kUnbounded, kUnbounded);
     v.Number("tensile_strength_kpa", m.tensileStrengthKpa, "tensile strength to compare stresses with, kPa", 0, kUnbounded);
     v.Number("elongation_at_break", m.elongationAtBreak, "elongation at break as a fraction (9 = 900 %)", 0, kUnbounded);
     v.Number("stretch_limit", m.stretchLimit, "largest allowed principal stretch (0: 1 + elongation / 2)", 0, kUnbounded);
@@ -146,15 +147,19 @@ void VisitFields(Def& f, Visitor&& v) requires std::is_same_v<std::remove_const_
 // A preset's material with the fields `isGiven` names taken from `given` (an option or experiment
 // key given by the user overrides the preset's value). A neo-Hookean modulus given over a preset of
 // another law switches to neo-Hookean, unless the law is given too.
-inline sim::MaterialDef MaterialWithOverrides(sim::MaterialPreset preset, const sim::MaterialDef& given,
+inline sim::MaterialDef MaterialWithOverrides(sim::MaterialDef material, const sim::MaterialDef& given,
                                               const std::function<bool(const char* key)>& isGiven) {
     std::map<std::string, double> values;
     VisitFields(given, detail::MaterialCollector{values});
-    sim::MaterialDef material = preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(preset);
     VisitFields(material, detail::MaterialSetter{values, isGiven});
     if (isGiven("mu_kpa") && !isGiven("law")) material.law = sim::MaterialLaw::NeoHookean;
-    material.preset = preset;  // named after the preset it started from; the fields say what changed
-    return material;
+    return material;  // named after the preset it started from (custom for a file); the fields say what changed
+}
+inline sim::MaterialDef MaterialWithOverrides(sim::MaterialPreset preset, const sim::MaterialDef& given,
+                                              const std::function<bool(const char* key)>& isGiven) {
+    sim::MaterialDef base = preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(preset);
+    base.preset = preset;
+    return MaterialWithOverrides(base, given, isGiven);
 }
 
 // The mold around an exported part (sim/solid.h). Option names: --margin-mm, --end-wall-mm, ...

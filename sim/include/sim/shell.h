@@ -28,8 +28,13 @@ enum class ModelKind {
 
 enum class MaterialLaw { NeoHookean, MooneyRivlin, Yeoh };
 
-// Silicones with their suppliers' data (docs/models/shell.md section 3). `Custom` keeps the constants given.
-enum class MaterialPreset { Ecoflex0030, Ecoflex0050, DragonSkin10, DragonSkin20, DragonSkin30, Elastosil4601, Custom };
+// Silicones (docs/guide/materials.md): the first five fitted to measured tensile curves, the
+// `...Datasheet` ones from their suppliers' 100 % moduli (the constants studies used before the
+// fits). `Custom` keeps the constants given.
+enum class MaterialPreset {
+    Ecoflex0030, Ecoflex0050, DragonSkin10, DragonSkin20, DragonSkin30, Elastosil4601,
+    Ecoflex0030Datasheet, Ecoflex0050Datasheet, DragonSkin10Datasheet, DragonSkin20Datasheet, DragonSkin30Datasheet,
+    Custom };
 
 // How the actuator is loaded.
 enum class ShellLoad {
@@ -70,6 +75,8 @@ struct MaterialDef {
     double tensileStrengthKpa = 0;     // supplier's tensile strength, kPa
     double elongationAtBreak = 0;      // supplier's elongation at break as a fraction (900 % = 9)
     double stretchLimit = 0;           // largest allowed principal stretch; 0: 1 + elongationAtBreak / 2
+                                       // (a material with neither is refused: no run may be over-stretched
+                                       // for want of a limit)
     double densityKgPerM3 = 0;         // for silicone volume and mass
 };
 // The preset's constants and limits, with their sources (materials.cpp).
@@ -238,13 +245,18 @@ struct sim::EnumNames<sim::MaterialLaw> {
 };
 template <>
 struct sim::EnumNames<sim::MaterialPreset> {
-    static constexpr std::array<std::pair<sim::MaterialPreset, const char*>, 7> table{{
+    static constexpr std::array<std::pair<sim::MaterialPreset, const char*>, 12> table{{
         {sim::MaterialPreset::Ecoflex0030, "ecoflex-00-30"},
         {sim::MaterialPreset::Ecoflex0050, "ecoflex-00-50"},
         {sim::MaterialPreset::DragonSkin10, "dragon-skin-10"},
         {sim::MaterialPreset::DragonSkin20, "dragon-skin-20"},
         {sim::MaterialPreset::DragonSkin30, "dragon-skin-30"},
         {sim::MaterialPreset::Elastosil4601, "elastosil-m4601"},
+        {sim::MaterialPreset::Ecoflex0030Datasheet, "ecoflex-00-30-datasheet"},
+        {sim::MaterialPreset::Ecoflex0050Datasheet, "ecoflex-00-50-datasheet"},
+        {sim::MaterialPreset::DragonSkin10Datasheet, "dragon-skin-10-datasheet"},
+        {sim::MaterialPreset::DragonSkin20Datasheet, "dragon-skin-20-datasheet"},
+        {sim::MaterialPreset::DragonSkin30Datasheet, "dragon-skin-30-datasheet"},
         {sim::MaterialPreset::Custom, "custom"},
     }};
 };

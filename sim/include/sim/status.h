@@ -17,11 +17,12 @@ enum class Status {
     SelfIntersection, // shell models: the wall passes through itself at equilibrium
     InvalidGeometry,  // shell models: the rest shape cannot be built (radius <= 0, self-intersecting)
     OverStretched,    // shell models: the wall stretches past the material's allowed stretch
+    MaterialUnstable, // shell models: the wall stretches past where the material's law is Drucker-stable
 };
 
 template <>
 struct EnumNames<Status> {
-    static constexpr std::array<std::pair<Status, const char*>, 9> table{{
+    static constexpr std::array<std::pair<Status, const char*>, 10> table{{
         {Status::Ok, "ok"},
         {Status::NaN, "nan"},
         {Status::Diverged, "diverged"},
@@ -31,6 +32,7 @@ struct EnumNames<Status> {
         {Status::SelfIntersection, "self-intersection"},
         {Status::InvalidGeometry, "invalid-geometry"},
         {Status::OverStretched, "over-stretched"},
+        {Status::MaterialUnstable, "material-unstable"},
     }};
 };
 

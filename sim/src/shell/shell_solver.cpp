@@ -20,6 +20,7 @@
 #include <numbers>
 
 #include "sim/batch.h"
+#include "sim/material_fit.h"
 #include "shell/block_ldlt.h"
 #include "shell/shell_problem.h"
 
@@ -612,6 +613,15 @@ Status SolveVolume(const ShellProblem& problem, const SolverDef& def, double vol
 
 namespace {
 
+// A state's verdict on the wall's stretch: past the allowed stretch, or past where the law is stable
+// (only a law with a negative higher constant can lose stability: its slopes otherwise only rise).
+Status StretchStatus(const MaterialDef& m, double maxStretch, double limit) {
+    if (maxStretch > limit) return Status::OverStretched;
+    if ((m.c01Kpa < 0 || m.c20Kpa < 0 || m.c30Kpa < 0) && !DruckerStability(m, maxStretch).stable) return Status::MaterialUnstable;
+    return Status::Ok;
+}
+
+
 // One evaluation as it passes through the stages of EvaluateShell: the tube, its solver, the state
 // q and the outputs each stage writes.
 struct TubeEvaluation {
@@ -892,7 +902,7 @@ SimResult MeasureHeldState(TubeEvaluation& t, double forceN) {
     t.out.strokeForceN = forceN;
     held.shell = std::move(t.out);
     t.out = std::move(kept);
-    held.status = held.shell.maxStretch > held.shell.stretchLimit ? Status::OverStretched : Status::Ok;
+    held.status = StretchStatus(t.def.material, held.shell.maxStretch, held.shell.stretchLimit);
     held.fitness = held.status == Status::Ok ? held.contractionPercent : std::nan("");
     return held;
 }
@@ -1002,7 +1012,7 @@ SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, st
     out.newtonIterations = t.solver.counters.iterations;
     out.factorizations = t.solver.counters.factorizations;
     result.iterationsRun = out.newtonIterations;  // the common "iterations" column: Newton iterations here
-    if (status == Status::Ok && out.maxStretch > out.stretchLimit) status = Status::OverStretched;
+    if (status == Status::Ok) status = StretchStatus(def.material, out.maxStretch, out.stretchLimit);
     if (status == Status::Ok && def.load.kind == ShellLoad::Inflate && def.load.isobaricPoints >= 2) {
         std::vector<IsobaricPoint> held = IsobaricCurveOf(t, finalLoad, result.contractionPercent);
         out.newtonIterations = t.solver.counters.iterations;  // the held strokes' work counts

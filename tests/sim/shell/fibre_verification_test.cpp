@@ -131,7 +131,7 @@ TEST(FibreClosedForms, MeridianFibresShortenAndHoopFibresLengthenWithoutBulging)
     job.shape = sim::CylinderShape{};
     job.Shell().geometry.lengthMm = 60;
     job.Shell().geometry.ringVertices = 24;
-    job.Shell().load.pressureKpa = 3;
+    job.Shell().load.pressureKpa = 1.2;  // P = p R / (mu h) = 0.38: below the plain tube's limit point (0.75)
     const sim::SimResult plain = sim::Evaluate(job);
     job.Shell().fibres.layout = sim::FibreLayout::Meridian;
     const sim::SimResult meridian = sim::Evaluate(job);
@@ -162,7 +162,7 @@ TEST(FibreSolver, ConvergesFromSlackToNearInextensibleFibres) {
     job.shape = sim::SineShape{1.3, 0.5, kPi - 0.5};
     job.Shell().geometry.ringVertices = 16;
     job.Shell().geometry.rings = 24;
-    job.Shell().load.pressureKpa = 3;
+    job.Shell().load.pressureKpa = 1.2;
     job.Shell().fibres.layout = sim::FibreLayout::Braid;
     const double muH = sim::ShearModulusKpa(job.Shell().material) * 1e-3 * job.Shell().geometry.thicknessMm;
     for (double angle : {20.0, 54.7, 75.0})
