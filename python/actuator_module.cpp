@@ -26,6 +26,7 @@
 #include "experiments/experiment.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
+#include "materials/material_file.h"
 #include "pictures/figures.h"
 #include "map_evaluator.h"
 #include "formats/results_folder.h"
@@ -379,6 +380,16 @@ PYBIND11_MODULE(actuator, m) {
                 return sim::MaterialPresetDef(*preset);
             },
             py::arg("name"), "A preset's constants and limits (Material() is ecoflex-00-30's); change fields after, as the command line's keys override a preset.")
+        .def_static(
+            "from_file",
+            [](const std::string& path) {
+                try {
+                    return app::ReadMaterialFile(path);
+                } catch (const app::UsageError& e) {
+                    throw py::value_error(e.what());
+                }
+            },
+            py::arg("path"), "A material file's law, constants and limits (written by `actuator material fit`; docs/guide/materials.md).")
         .def_property_readonly("preset", [](const sim::MaterialDef& d) { return std::string(sim::Name(d.preset)); },
                                "the preset the constants started from (figures and JSON name it)");
     BindDef<sim::LoadDef>(m, "Load", "The membrane and shell models' load.", shell.load);

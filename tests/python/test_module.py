@@ -469,3 +469,25 @@ def test_characterize_gives_the_command_lines_curves(tmp_path):
         actuator.characterize(actuator.cylinder(), model="thesis")
     with pytest.raises(ValueError, match="load blocked: characterize sets the load"):
         actuator.characterize(actuator.cylinder(), load=actuator.Load(kind="blocked"))
+
+
+def test_a_material_file_is_a_material_as_a_preset_is(tmp_path):
+    # A material file as `actuator material fit` writes it: the same tube under it and under the
+    # same constants set by hand.
+    (tmp_path / "mix.json").write_text(json.dumps({
+        "format": "actuator-material", "version": 1, "name": "mix",
+        "material": {"law": "yeoh", "c10_kpa": 12.0, "c20_kpa": 0.3, "stretch_limit": 3.0}, "fit": None}))
+    material = actuator.Material.from_file(str(tmp_path / "mix.json"))
+    assert (material.law, material.c10_kpa, material.c20_kpa, material.stretch_limit, material.preset) == ("yeoh", 12.0, 0.3, 3.0, "custom")
+    by_hand = actuator.Material.from_preset("custom")
+    by_hand.law, by_hand.c10_kpa, by_hand.c20_kpa, by_hand.stretch_limit = "yeoh", 12.0, 0.3, 3.0
+    geometry = actuator.Geometry(ring_vertices=16, rings=20)
+    load = actuator.Load(pressure_kpa=1.0, steps=2)
+    a = actuator.evaluate(actuator.cylinder(), model="membrane", geometry=geometry, material=material, load=load)
+    b = actuator.evaluate(actuator.cylinder(), model="membrane", geometry=geometry, material=by_hand, load=load)
+    assert a.status == "ok" and a.contraction_percent == b.contraction_percent
+    (tmp_path / "typo.json").write_text('{"format": "actuator-material", "version": 1, "material": {"law": "yeoh", "c10kpa": 3}}')
+    with pytest.raises(ValueError, match="c10kpa': unknown key"):
+        actuator.Material.from_file(str(tmp_path / "typo.json"))
+    with pytest.raises(ValueError, match="absent.json"):
+        actuator.Material.from_file(str(tmp_path / "absent.json"))

@@ -3,6 +3,7 @@
 // [SECTION] Experiment files
 // [SECTION] Saved experiments, hashes, titles
 #include "formats/json_out.h"
+#include "materials/material_file.h"
 #include "pictures/plots.h"
 #include "experiments/experiment.h"
 #include "experiments/experiment_library.h"
@@ -736,6 +737,35 @@ Override ParseOverride(const std::string& text) {
     return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
+// A model's "material": {"file": "mix.json", ...} is replaced by the file's keys (with the others given
+// over them), so that the experiment kept with its results, its hash and its resume stand on their own.
+// The path is relative to the experiment file's folder.
+void InlineMaterialFile(Json& root, const std::string& path) {
+    if (!root.is_object() || !root.contains("model") || !root["model"].is_object()) return;
+    Json& model = root["model"];
+    if (!model.contains("material") || !model["material"].is_object() || !model["material"].contains("file")) return;
+    Json& block = model["material"];
+    const std::string where = path + ": 'model.material.file': ";
+    if (!block["file"].is_string()) throw UsageError(where + "expected the name of a material file, got " + Quote(block["file"].dump()));
+    if (block.contains("preset")) throw UsageError(where + "give a preset or a material file, not both");
+    std::filesystem::path file = block["file"].get<std::string>();
+    if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
+    sim::MaterialDef material;
+    try {
+        material = ReadMaterialFile(file.string());
+    } catch (const UsageError& error) {
+        throw UsageError(where + error.what());
+    }
+    Json inlined = MaterialFieldsJson(material);
+    inlined.erase("density_kg_per_m3");  // nothing in an experiment weighs the silicone
+    Json result = Json::object();
+    result["preset"] = "custom";
+    for (const auto& [key, value] : inlined.items()) result[key] = value;
+    for (const auto& [key, value] : block.items())
+        if (key != "file") result[key] = value;
+    block = result;
+}
+
 Experiment ParseExperiment(const std::string& text, const std::string& path, const std::vector<Override>& overrides) {
     Json root;
     try {
@@ -756,6 +786,7 @@ Experiment ParseExperiment(const std::string& text, const std::string& path, con
         throw UsageError(path + ": not valid JSON (" + what + ")");
     }
     for (const auto& o : overrides) Apply(root, o, path);
+    InlineMaterialFile(root, path);
     Source source{path, &overrides};
 
     Experiment e;

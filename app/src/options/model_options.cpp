@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "materials/material_file.h"
 #include "sim/fields.h"
 
 namespace app {
@@ -50,7 +51,10 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Group("Membrane and shell models: geometry");
     cli.Fields(o.shell.geometry);
     cli.Group("Membrane and shell models: material");
-    cli.Enum("--material", o.material, "silicone preset (suppliers' data; docs/guide/physical-models.md)");
+    cli.Text("--material", o.material,
+             "silicone: a preset (" + sim::ChoicesBar<sim::MaterialPreset>() + "; `actuator material list`) or a material file FILE.json (`actuator material fit`)")
+        ->type_name("NAME|FILE.json")
+        ->default_str(o.material);
     cli.Fields(o.materialFields);
     cli.Group("Membrane and shell models: load and solver");
     cli.Fields(o.shell.load);
@@ -104,7 +108,7 @@ std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ShellD
 
 // The options' material: the preset with the material fields given over it.
 sim::MaterialDef MaterialOfOptions(const Cli& cli, const ModelOptions& o) {
-    return MaterialWithOverrides(o.material, o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
+    return MaterialWithOverrides(MaterialNamed(o.material, "--material"), o.materialFields, [&](const char* key) { return cli.Given(OptionName(key)); });
 }
 
 // A new job's def from the options.

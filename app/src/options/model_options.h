@@ -17,7 +17,7 @@ struct ModelOptions {
     std::string load;                       // thesis: inflate|stretch|none; shell: inflate|gas|volume|force|blocked
     sim::SimParams thesis = sim::DefaultSimParams();
     sim::ShellDef shell = sim::DefaultShellDef();
-    sim::MaterialPreset material = sim::DefaultShellDef().material.preset;
+    std::string material = sim::Name(sim::DefaultShellDef().material.preset);  // a preset's name or a material file (FILE.json)
     sim::MaterialDef materialFields = sim::DefaultShellDef().material;  // bound to the overriding options
 };
 

@@ -1,5 +1,7 @@
 #include "pictures/plots.h"
 
+#include <map>
+
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -256,6 +258,41 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
                                   : std::string("last converged step (") + sim::Name(r.status) + ")";
     }
     return plots->RenderLines(title + "  -  contraction against pressure", {plot});
+}
+
+render::Image TensileCurveImage(const TensileFigure& f) {
+    auto plots = MakePlots(1024, 640);
+    render::LinePlot plot;
+    plot.title = f.subtitle;
+    plot.xLabel = "engineering strain (percent)";
+    plot.yLabel = "engineering stress (kPa)";
+    const render::Rgb lawColours[] = {{0.13f, 0.35f, 0.75f}, {0.80f, 0.33f, 0.10f}, {0.20f, 0.55f, 0.25f}, {0.45f, 0.30f, 0.60f}};
+    double top = 0;
+    std::map<int, render::LineSeries> specimens;
+    for (const sim::TensilePoint& p : f.measured) {
+        if (p.strain > f.maxStrain) continue;
+        render::LineSeries& s = specimens[p.specimen];
+        if (s.x.empty()) s = {specimens.size() == 1 ? f.measuredLabel : "", {}, {}, {0.15f, 0.15f, 0.15f}, true, false};
+        s.x.push_back(100 * p.strain);
+        s.y.push_back(p.stressKpa);
+        top = std::max(top, p.stressKpa);
+    }
+    constexpr int kSamples = 200;
+    for (size_t k = 0; k < f.laws.size(); ++k) {
+        render::LineSeries s{f.laws[k].label, {}, {}, lawColours[k % 4], false};
+        s.dashed = f.laws[k].dashed;
+        for (int i = 0; i <= kSamples; ++i) {
+            const double strain = f.maxStrain * i / kSamples;
+            s.x.push_back(100 * strain);
+            s.y.push_back(sim::UniaxialStressKpa(f.laws[k].material, 1 + strain));
+            top = std::max(top, s.y.back());
+        }
+        plot.series.push_back(s);
+    }
+    if (f.fitMaxStrain > 0)
+        plot.bands.push_back({fmt::format("range fitted: 0-{:g} %", 100 * f.fitMaxStrain), {0, 100 * f.fitMaxStrain}, {0, 0}, {top, top}, {0.55f, 0.65f, 0.85f}});
+    for (auto& [specimen, s] : specimens) plot.series.insert(plot.series.begin(), s);
+    return plots->RenderLines(f.title, {plot});
 }
 
 CharacteristicImages CharacteristicCurveImages(const std::string& title, const std::vector<double>& pressures,

@@ -8,6 +8,7 @@
 
 #include "render/image.h"
 #include "sim/batch.h"
+#include "sim/material_fit.h"
 #include "sim/optimize.h"
 #include "sim/search.h"
 
@@ -68,6 +69,24 @@ CharacteristicImages CharacteristicCurveImages(const std::string& title, const s
                                                const std::vector<std::vector<double>>& contraction, const std::vector<std::vector<double>>& force,
                                                const std::vector<std::vector<double>>& ideal, const sim::SimResult& isometric,
                                                const sim::SimResult& freeStroke);
+
+// A silicone's uniaxial tensile curve (actuator material show and fit): the measured points (faint
+// markers, per specimen), each law's engineering stress against strain (a data-sheet law dashed),
+// and the range a fit used shaded.
+struct TensileFigure {
+    std::string title, subtitle;                 // subtitle: the residual and the range, under the title
+    std::vector<sim::TensilePoint> measured;     // may be empty
+    std::string measuredLabel;
+    struct Law {
+        std::string label;
+        sim::MaterialDef material;
+        bool dashed = false;
+    };
+    std::vector<Law> laws;
+    double fitMaxStrain = 0;  // engineering strain; 0: no fit range drawn
+    double maxStrain = 3;     // the x axis's end, engineering strain
+};
+render::Image TensileCurveImage(const TensileFigure& figure);
 
 // How a sweep axis is named on plots, e.g. "amplitude A".
 std::string AxisLabel(sim::SweepParameter parameter);

@@ -331,7 +331,7 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {
 // A stored membrane design re-simulated with a preset given: the preset replaces the stored
 // silicone (its fields given over it), never silently ignored; export takes the stored one.
 TEST_F(OptionsHaveAnEffectOrAreRefused, MaterialOverAStoredDesign) {
-    std::ofstream(dir_ / "m.json") << R"({"model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 12}, "load": {"steps": 2}}, "id": "m",
+    std::ofstream(dir_ / "m.json") << R"({"model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 12}, "load": {"pressure_kpa": 0.4, "steps": 2}}, "id": "m",
         "render": {"figures": false, "thumbnails": false}, "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]}, "axes": [{"parameter": "amplitude", "values": [1.1]}]}})";
     const std::string bin = "cd '" + dir_.string() + "' && " + std::string(ACTUATOR_BIN);
     ASSERT_EQ(testing_support::RunShell(bin + " sweep m.json --out a", dir_).exitCode, 0);

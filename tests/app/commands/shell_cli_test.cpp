@@ -94,7 +94,7 @@ TEST_F(ShellCli, SavedMeshesReadBackAndAMeshOfAnotherTopologyIsRefused) {
 }
 
 TEST_F(ShellCli, RenderDrawsStretchThePressureCurveAndAFramePerLoadStep) {
-    const Result r = Run("render --model shell --shape sine --amplitude 1.3 --pressure-kpa 3 --timelapse 3 --size 320x240" +
+    const Result r = Run("render --model shell --shape sine --amplitude 1.3 --pressure-kpa 1.2 --timelapse 3 --size 320x240" +
                          std::string(" --ring-vertices 16 --rings 20 --out ") + Path("pictures"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
@@ -110,19 +110,19 @@ TEST_F(ShellCli, RenderDrawsStretchThePressureCurveAndAFramePerLoadStep) {
 // A sweep over pressure is a design's contraction-pressure curve; its archive gives each point back.
 TEST_F(ShellCli, APressureSweepIsTheContractionPressureCurveAndItsArchiveReplays) {
     Write("pressure.json", R"({"id": "p", "model": {"name": "membrane", "geometry": {"ring_vertices": 16, "rings": 20}, "load": {"steps": 2}},
-        "sweep": {"shape": {"family": "sine", "amplitude": 1.3}, "axes": [{"parameter": "pressure_kpa", "values": [1, 2, 3]}]},
+        "sweep": {"shape": {"family": "sine", "amplitude": 1.3}, "axes": [{"parameter": "pressure_kpa", "values": [0.4, 0.8, 1.2]}]},
         "render": {"figures": false, "thumbnails": false}})");
     const Result r = Run("sweep " + Path("pressure.json") + " --out " + Path("runs"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const app::Table results = app::Table::Read((dir_ / "runs" / "results.csv").string());
     ASSERT_EQ(results.Rows(), 3u);
-    EXPECT_EQ(results.Numbers("pressure_kpa"), (std::vector<double>{1, 2, 3}));
+    EXPECT_EQ(results.Numbers("pressure_kpa"), (std::vector<double>{0.4, 0.8, 1.2}));
     const std::vector<double> contraction = results.Numbers("contraction_percent");
     EXPECT_GT(contraction[0], contraction[1]) << "lengthens more with pressure";
     EXPECT_GT(contraction[1], contraction[2]);
     const app::Table log = app::Table::Read((dir_ / "runs" / "evaluations.csv").string());
     EXPECT_EQ(log.Text(0, "model"), "membrane");
-    EXPECT_EQ(log.Text(2, "pressure_kpa"), "3");
+    EXPECT_EQ(log.Text(2, "pressure_kpa"), "1.2");
     EXPECT_FALSE(log.Text(2, "max_stretch").empty());
     // The stored job replays to the same number.
     const Result replay = Run("simulate --from " + Path("runs/evaluations.capnp") + " --index 2");
@@ -310,7 +310,7 @@ TEST_F(ShellCli, CharacterizeDrawsTheMusclesCurvesFromItsOwnTests) {
 // the top's turn, each front design's values those of its row in the evaluation log.
 TEST_F(ShellCli, TheForceAtAStrokeAndTheTwistAreObjectives) {
     Write("bench.json", R"({"id": "o", "seed": 3, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "fibres": "single",
-        "fibre_angle_deg": 30, "load": {"kind": "blocked", "pressure_kpa": 3, "stroke_percent": 2, "steps": 1}},
+        "fibre_angle_deg": 30, "load": {"kind": "blocked", "pressure_kpa": 1.2, "stroke_percent": 2, "steps": 1}},
         "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 2, "objectives": ["force_at_stroke", "twist"],
                       "genome": {"family": "bspline", "control_points": 4}}, "render": {"figures": false, "thumbnails": false}})");
     const Result r = Run("evolve " + Path("bench.json") + " --out " + Path("bench"));

@@ -85,9 +85,10 @@ TEST(BeforeAfterScene, ATurnedTopIsDrawnAsAStripeWoundByTheTwist) {
     ASSERT_EQ(before.size(), 12u) << "one segment between each pair of rings and the top cap's radius";
     ASSERT_EQ(after.size(), before.size());
     auto angle = [](const float p[3]) { return std::atan2(double(p[1]), double(p[0])) * 180 / std::numbers::pi; };
-    // At rest the stripe runs along the axis: every vertex within half a ring spacing of one angle.
+    // At rest the stripe runs along the axis: every vertex within half a ring spacing of one angle
+    // (a staggered ring's two nearest vertices can tie at exactly half a spacing).
     for (size_t k = 0; k + 1 < before.size(); ++k)  // the last is the cap's radius, from the axis
-        EXPECT_LT(std::fabs(std::remainder(angle(before[k].a) - angle(before.front().a), 360)), 360.0 / 12 / 2 + 1e-6);
+        EXPECT_LT(std::fabs(std::remainder(angle(before[k].a) - angle(before.front().a), 360)), 360.0 / 12 / 2 + 1e-3);
     EXPECT_NEAR(std::remainder(angle(after.back().b) - angle(before.back().b), 360), r.shell.twistDeg, 1e-3) << "the cap's radius turns with the top";
 
     sim::EvalJob braid = single;
