@@ -132,9 +132,9 @@ int RunFit(int argc, char** argv, int first) {
     cli.Text("--out", out, "the material file to write")->required()->type_name("FILE.json");
     cli.Text("--figure", figure, "the figure of data and fit (default: --out with .png)")->type_name("FILE.png");
     cli.Text("--name", name, "the material's name in the file (default: the curve file's name)");
-    cli.Number("--stretch-limit", stretchLimit, "the largest principal stretch the models allow (default: 1 + the largest strain fitted)", 1, 100);
-    cli.Number("--tensile-strength-kpa", tensileKpa, "tensile strength, kPa (default: the largest stress measured)", 0, kUnbounded);
-    cli.Number("--density-kg-per-m3", density, "density, kg/m^3 (for the silicone's mass in exports; default: not given)", 0, kUnbounded);
+    cli.Number("--stretch-limit", stretchLimit, "the largest principal stretch the models allow", 1, 100)->default_str("1 + the largest strain fitted");
+    cli.Number("--tensile-strength-kpa", tensileKpa, "tensile strength, kPa", 0, kUnbounded)->default_str("the largest stress measured");
+    cli.Number("--density-kg-per-m3", density, "density, kg/m^3 (for the silicone's mass in exports)", 0, kUnbounded)->default_str("not given");
     cli.Flag("--overwrite", overwrite, "replace existing output files");
     if (!cli.Parse(argc, argv, first)) return 0;
     if (cli.Given("--terms") && def.law != sim::MaterialLaw::Yeoh) throw UsageError("--terms applies to --law yeoh (neo-Hookean has 1 constant, Mooney-Rivlin 2)");

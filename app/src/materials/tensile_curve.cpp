@@ -92,6 +92,15 @@ TensileCurve ReadTensileCurve(const std::string& path, StressUnit unit) {
     StressUnit named = StressUnit::FromHeader;
     if (stressName.find("mpa") != std::string::npos || stressName.find("n/mm") != std::string::npos) named = StressUnit::Mpa;
     else if (stressName.find("kpa") != std::string::npos) named = StressUnit::Kpa;
+    if (named == StressUnit::FromHeader) {
+        // A unit named that is not one of ours ("Stress (psi)", "stress_pa"): refused, not guessed.
+        const size_t open = stressName.find('('), underscore = stressName.rfind('_');
+        const std::string given = open != std::string::npos ? Trim(stressName.substr(open + 1, stressName.find(')', open) - open - 1))
+                                  : underscore != std::string::npos ? stressName.substr(underscore + 1)
+                                                                    : std::string();
+        if (!given.empty())
+            throw UsageError(where + "the stress column " + Quote(curve.stressColumn) + " names the unit " + Quote(given) + ", not one this reads (kPa, MPa or N/mm^2)");
+    }
     if (named != StressUnit::FromHeader && unit != StressUnit::FromHeader && named != unit)
         throw UsageError(where + "the stress column " + Quote(curve.stressColumn) + " names another unit than --unit " + (unit == StressUnit::Kpa ? "kpa" : "mpa"));
     const StressUnit used = named != StressUnit::FromHeader ? named : unit;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "cli_fixture.h"
@@ -17,13 +18,19 @@ using MaterialCli = CliTest;
 
 namespace {
 
-// A curve of a two-term Yeoh law (C10 12 kPa, C20 0.3 kPa) in MPa, with a test machine's preamble
-// and a column of true stress that must be left alone, as the database's files have.
-std::string SyntheticCurve() {
+// The synthetic curves' law: two-term Yeoh, C10 12 kPa, C20 0.3 kPa.
+sim::MaterialDef SyntheticMaterial() {
     sim::MaterialDef m;
     m.law = sim::MaterialLaw::Yeoh;
     m.c10Kpa = 12;
     m.c20Kpa = 0.3;
+    return m;
+}
+
+// Its curve in MPa, with a test machine's preamble and a column of true stress that must be left
+// alone, as the database's files have.
+std::string SyntheticCurve() {
+    const sim::MaterialDef m = SyntheticMaterial();
     std::ostringstream text;
     text << "Machine;Instron\nSpeed (mm/min);450\n;;\nTime (s);True Stress (MPa);Engineering Strain;Engineering Stress (MPa)\n";
     for (int k = 1; k <= 120; ++k) {
@@ -62,6 +69,17 @@ TEST_F(MaterialCli, AFitRecoversTheCurvesConstantsAndItsFileWorksAsAPreset) {
     ASSERT_EQ(viaFile["status"], "ok");
     EXPECT_EQ(viaFile["contraction_percent"], viaOptions["contraction_percent"]);
     EXPECT_EQ(viaFile["stretch_limit"], 3);
+
+    // The model's own uniaxial response: a tube on sliding end plates pulled to the curve's stress at
+    // 100 % strain stretches to 2 (the mesh and the fit within 2 %).
+    const double stressKpa = sim::UniaxialStressKpa(SyntheticMaterial(), 2);
+    const Result pulled = Run("simulate --model membrane --shape cylinder --material " + Path("mix.json") +
+                              " --radius-mm 10 --length-mm 40 --thickness-mm 0.5 --ring-vertices 24 --rings 0 --ends sliding --load force --steps 8 --force-n " +
+                              std::to_string(stressKpa * 1e-3 * 2 * std::numbers::pi * 10 * 0.5));
+    ASSERT_EQ(pulled.exitCode, 0) << pulled.err;
+    const auto pulledJson = nlohmann::json::parse(pulled.out);
+    ASSERT_EQ(pulledJson["status"], "ok");
+    EXPECT_NEAR(1 + pulledJson["displacement_mm"].get<double>() / 40, 2, 0.04);
 
     // In an experiment file, relative to the experiment's folder; the run keeps the constants.
     fs::create_directories(dir_ / "study");
@@ -109,6 +127,7 @@ TEST_F(MaterialCli, BadCurvesAreRefusedNamingTheRowAndNothingIsWritten) {
                           Case{"one.csv", header + "0.1,3\n", "1 point"},
                           Case{"negative.csv", header + "0.1,3\n0.2,-1\n", "row 3: negative stress"},
                           Case{"nounit.csv", "strain,stress\n0.1,3\n0.2,6\n", "names no unit"},
+                          Case{"psi.csv", "strain,stress (psi)\n0.1,3\n0.2,6\n", "names the unit 'psi'"},
                           Case{"clash.csv", header + "0.1,3\n0.2,6\n", "another unit", " --unit mpa"},
                           Case{"noheader.csv", "a,b\n1,2\n", "no header row"},
                           Case{"short.csv", header + "0.1,3\n0.2\n", "row 3: has 1 fields"}}) {
