@@ -84,6 +84,17 @@ int RunShow(int argc, char** argv, int first) {
                              100 * m.elongationAtBreak);
     std::cout << (m.densityKgPerM3 > 0 ? fmt::format("density      {:g} kg/m^3\n", m.densityKgPerM3) : std::string("density      not given\n"));
     if (!s.source.empty()) std::cout << "source       " << s.source << "\n" << "test         " << s.conditions << "\n";
+    std::string fileFit;  // a material file's record of its fit
+    if (IsMaterialFileName(name)) {
+        const Json file = ParseJson(ReadInputFile(name, 1 << 20), name);
+        const Json fit = file.value("fit", Json());
+        if (fit.is_object() && fit.contains("curve") && fit.contains("rms_residual_kpa"))
+            fileFit = fmt::format("{} fitted to {}, {} points up to {:g} % strain, rms {:.3g} kPa", fit.value("law", std::string("?")),
+                                  fit.value("curve", std::string("?")), fit.value("points", 0), 100 * fit.value("largest_strain_fitted", 0.0),
+                                  fit.value("rms_residual_kpa", 0.0));
+        std::cout << "name         " << file.value("name", std::string("(none)")) << "\n";
+        if (!fileFit.empty()) std::cout << "fit          " << fileFit << "\n";
+    }
     if (s.fitMaxStrain > 0)
         std::cout << fmt::format("fit          0-{:g} % engineering strain, rms residual {:.3g} kPa ({:.2f} % of the rms stress)\n", 100 * s.fitMaxStrain, s.fitRmsKpa,
                                  100 * s.fitRelativeRms);
@@ -100,7 +111,9 @@ int RunShow(int argc, char** argv, int first) {
     if (cli.Given("--figure")) {
         TensileFigure f;
         f.title = name + "  -  uniaxial tension";
-        f.subtitle = s.fitMaxStrain > 0 ? fmt::format("{}, fitted 0-{:g} %, rms {:.3g} kPa", sim::Name(m.law), 100 * s.fitMaxStrain, s.fitRmsKpa) : std::string(sim::Name(m.law));
+        f.subtitle = s.fitMaxStrain > 0 ? fmt::format("{}, fitted 0-{:g} %, rms {:.3g} kPa", sim::Name(m.law), 100 * s.fitMaxStrain, s.fitRmsKpa)
+                     : !fileFit.empty() ? fileFit
+                                        : std::string(sim::Name(m.law)) + " (no measured points ship with it)";
         f.measured = points;
         f.measuredLabel = "measured (Marechal et al. 2021, ODbL)";
         f.laws.push_back({name + ": " + ConstantsText(m), m, false});
