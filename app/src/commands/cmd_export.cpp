@@ -75,7 +75,18 @@ static int RunExport(int argc, char** argv, int first) {
     }
     const sim::PartDef part = PartDefOf(cli, partOptions, job);
     const sim::MoldDef& mold = partOptions.mold;
+    if (cli.Given("--drain-mm") && mold.core != sim::CoreKind::Lost) throw UsageError("--drain-mm applies to --core lost (a rigid core has no drain)");
     const sim::PartSolids solids = BuildSolids(job, part, mold, partOptions.fittings);
+    // A one-piece core must leave the cured part through an end, the wall stretched over it.
+    const sim::MaterialDef material = CastMaterialOf(job);
+    const sim::CoreExit& exit = solids.coreExit;
+    const double demouldLimit = sim::DemouldingStretchLimit(material);
+    if (mold.core == sim::CoreKind::Rigid && exit.stretch > demouldLimit)
+        throw UsageError(fmt::format(
+            "cannot demould this design's one-piece core: to leave through the {} end, its {:.1f} mm section must pass the wall's {:.1f} mm section at "
+            "z = {:.1f} mm, a hoop stretch of {:.2f}, more than the {:.2f} {} allows (docs/guide/export.md); give --core lost for a core printed to "
+            "dissolve or melt out",
+            exit.top ? "top" : "bottom", exit.coreAcrossMm, exit.openingMm, exit.zMm, exit.stretch, demouldLimit, sim::Name(material.preset)));
 
     // The folder: new or empty, so that a part's files never mix with another's.
     std::error_code ec;
@@ -110,12 +121,26 @@ static int RunExport(int argc, char** argv, int first) {
     }
     manifest["files"] = list;
     const double silicone = sim::MeshVolume(solids.actuator);
-    const sim::MaterialDef material = CastMaterialOf(job);
     manifest["silicone"] = Json{{"volume_mm3", silicone},
                                 {"material", sim::Name(material.preset)},
                                 {"density_kg_per_m3", material.densityKgPerM3},
                                 {"mass_g", silicone * 1e-9 * material.densityKgPerM3 * 1e3}};
     manifest["core_outside_block_mm3"] = solids.coreOutsideBlockMm3;
+    manifest["core"] = Json{{"kind", sim::Name(mold.core)},
+                            {"exit", exit.top ? "top" : "bottom"},
+                            {"demoulding_stretch", exit.stretch},
+                            {"demoulding_stretch_allowed", demouldLimit},
+                            {"tightest_section_z_mm", exit.zMm}};
+    if (mold.core == sim::CoreKind::Lost) {
+        manifest["core"]["drain_mm"] = mold.drainMm;
+        manifest["core"]["drain_in_block_mm3"] = solids.drainInBlockMm3;
+        manifest["core"]["how"] =
+            "print mold_core in a material that leaves the cured part without a pull: PVA or BVOH (dissolve in warm water), or a wax or "
+            "low-melt alloy (melt out below the silicone's limit); after curing, open the shells, cut the handles flush and let the "
+            "solvent in, or the melt out, through the drain along the core's axis";
+    } else {
+        manifest["core"]["how"] = std::string("pull mold_core out through the ") + (exit.top ? "top" : "bottom") + " end by its handle";
+    }
     // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).
     manifest["sprue_and_vents_mm3"] = solids.openingsMm3;
     manifest["pins_less_holes_mm3"] = solids.pinsLessHolesMm3;

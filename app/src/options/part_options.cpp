@@ -23,14 +23,21 @@ void AddPartOptions(Cli& cli, PartOptions& o) {
 
 std::vector<std::string> PartOptionNames() { return {"--wall", "--unit-mm", "--wall-mm", "--sampling", "--fittings", "--port-mm"}; }
 
+namespace {
+struct MoldOptionNameCollector {
+    std::vector<std::string>& names;
+    void Number(const char* key, const double&, const char*, double, double) { names.push_back(OptionName(key)); }
+    template <class E>
+    void Enum(const char* key, const E&, const char*) {
+        names.push_back(OptionName(key));
+    }
+};
+}  // namespace
+
 std::vector<std::string> MoldOptionNames() {
     std::vector<std::string> names;
-    struct Names {
-        std::vector<std::string>& names;
-        void Number(const char* key, const double&, const char*, double, double) { names.push_back(OptionName(key)); }
-    };
     const sim::MoldDef mold;
-    VisitFields(mold, Names{names});
+    VisitFields(mold, MoldOptionNameCollector{names});
     return names;
 }
 

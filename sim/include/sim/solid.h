@@ -59,6 +59,12 @@ struct FittingDef {
     double insertMm = 0;       // insert length into the tube; 0: the clamped length (clampFraction x length), at least two walls
 };
 
+// How the core leaves the cured part (docs/guide/export.md, demoulding).
+enum class CoreKind {
+    Rigid,  // one piece, pulled out through an end opening: only where the wall can stretch over it
+    Lost,   // printed to be dissolved or melted out (PVA, wax, a low-melt alloy), with a drain along its axis
+};
+
 // The mold: a block around the actuator split in two halves through the axis (the plane y = 0), and
 // a core that forms the inside, its ends reaching through the block as handles.
 struct MoldDef {
@@ -73,7 +79,25 @@ struct MoldDef {
     // Registration: four square pins on shell A's split face (in the margin, near each end), tapered
     // by this clearance at their tops, into holes of their feet's size in shell B.
     double pinClearanceMm = 0.15;
+    CoreKind core = CoreKind::Rigid;
+    double drainMm = 4;  // a lost core's drain: a bore along its axis, handle to handle, this diameter
 };
+
+// A one-piece core leaves through one end: every section of the wall between the core's widest
+// section and that end must stretch around it. The hoop stretch needed is the core's largest
+// perimeter that must pass over the part's perimeter there; the exit is the end that needs less.
+struct CoreExit {
+    bool top = true;         // leaves through the top end (else the bottom)
+    double stretch = 1;      // the largest hoop stretch of the wall on the way out
+    double zMm = 0;          // the wall's section that needs it, mm from the bottom end
+    double coreAcrossMm = 0; // the widest core section that must pass it: perimeter / pi, mm
+    double openingMm = 0;    // that section's inner perimeter / pi, mm
+};
+
+// The hoop stretch a cured wall may take once, while a one-piece core is pulled out through it: the
+// material's stretch limit, and never more than 3, the largest stretch the presets' tensile fits
+// cover (docs/guide/export.md).
+double DemouldingStretchLimit(const MaterialDef& material);
 
 struct PartSolids {
     TriangleMesh actuator;  // the silicone wall
@@ -85,6 +109,8 @@ struct PartSolids {
     TriangleMesh fittingBottom, fittingTop;  // when asked for (FittingDef::enabled)
     double openingsMm3 = 0;          // the sprue and vents: block volume in neither shell nor part
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
+    double drainInBlockMm3 = 0;      // a lost core's drain within the block (in no part)
+    CoreExit coreExit;               // how a one-piece core would leave (for a lost core too: the reason to lose it)
 };
 
 // B-spline sectors meet in a step of radius that no wall of finite thickness can follow; the part
@@ -101,6 +127,10 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
 
 }  // namespace sim
 
+template <>
+struct sim::EnumNames<sim::CoreKind> {
+    static constexpr std::array<std::pair<sim::CoreKind, const char*>, 2> table{{{sim::CoreKind::Rigid, "rigid"}, {sim::CoreKind::Lost, "lost"}}};
+};
 template <>
 struct sim::EnumNames<sim::WallSide> {
     static constexpr std::array<std::pair<sim::WallSide, const char*>, 2> table{{{sim::WallSide::Centred, "centred"}, {sim::WallSide::Outward, "outward"}}};

@@ -154,6 +154,8 @@ double SectorBlendRadians(const PartDef& part) {
     return std::max(2 * part.thicknessMm / part.radiusMm, 3 * 2 * std::numbers::pi / part.angularSamples);
 }
 
+double DemouldingStretchLimit(const MaterialDef& material) { return std::min(StretchLimit(material), 3.0); }
+
 double MeshVolume(const TriangleMesh& mesh) {
     double six = 0;
     for (const auto& t : mesh.triangles) six += Dot(mesh.vertices[t[0]], Cross(mesh.vertices[t[1]], mesh.vertices[t[2]]));
@@ -522,6 +524,37 @@ double RingArea(const Grid& g, int j) {
 
 }  // namespace
 
+// The perimeter of ring j, mm.
+double RingPerimeter(const Grid& g, int j) {
+    double perimeter = 0;
+    for (int i = 0; i < g.nt; ++i) perimeter += std::sqrt(Dot(Sub(g.At(j, i + 1), g.At(j, i)), Sub(g.At(j, i + 1), g.At(j, i))));
+    return perimeter;
+}
+
+// How a one-piece core leaves through the better end (CoreExit): at each wall section, the largest
+// core section that must pass it on the way to that end, over the section's own perimeter.
+CoreExit CoreExitOf(const Grid& inner) {
+    const int nz = inner.nz;
+    std::vector<double> perimeter(nz);
+    for (int j = 0; j < nz; ++j) perimeter[j] = RingPerimeter(inner, j);
+    CoreExit best;
+    best.stretch = -1;
+    for (const bool top : {true, false}) {
+        CoreExit exit;
+        exit.top = top;
+        exit.stretch = 0;
+        double widest = 0;
+        for (int step = 0; step < nz; ++step) {
+            const int j = top ? step : nz - 1 - step;  // from the far end towards the exit
+            widest = std::max(widest, perimeter[j]);
+            if (const double stretch = widest / perimeter[j]; stretch > exit.stretch)
+                exit = {top, stretch, inner.At(j, 0)[2], widest / std::numbers::pi, perimeter[j] / std::numbers::pi};
+        }
+        if (best.stretch < 0 || exit.stretch < best.stretch) best = exit;
+    }
+    return best;
+}
+
 // A plug for one end of the tube (bottom: z = 0, the collar below; top: mirrored), built bottom-up
 // and flipped for the top: collar rings, the insert following the inner end ring, an optional bore.
 std::string Fitting(const Grid& inner, const Grid& outer, bool atTop, double port, const FittingDef& f, double insert, const PartDef& part,
@@ -590,6 +623,16 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
         if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
     if (std::string error = PinError(outer, part, mold); !error.empty()) return error;
     const int nz = rest.nz, nt = rest.nt;
+    if (mold.core == CoreKind::Lost) {
+        // The drain must leave the core a wall of at least a millimetre everywhere (and its
+        // faces a ring of samples inside every section).
+        if (!(mold.drainMm > 0)) return "the lost core's drain must be a positive diameter";
+        for (int j = 0; j < nz; ++j)
+            for (int i = 0; i < nt; ++i)
+                if (const double r = std::hypot(inner.At(j, i)[0], inner.At(j, i)[1]); r < mold.drainMm / 2 + 1)
+                    return Format("the core is %.3g mm from its axis at z = %.4g mm: too thin for a %.3g mm drain and 1 mm of core around it (give a smaller --drain-mm)",
+                                  r, inner.At(j, i)[2], mold.drainMm);
+    }
 
     PartSolids solids;
     {  // The wall: outer surface out, inner surface in, flat annuli at the ends.
@@ -635,9 +678,17 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
         for (int j = 0; j + 1 < nz; ++j)
             for (int i = 0; i < nt; ++i)
                 b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j, i + 1)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j + 1, i)));
+        // A lost core is bored along its axis, handle to handle: the solvent reaches in and the melt runs out.
+        const bool drained = mold.core == CoreKind::Lost;
+        const double drain = mold.drainMm / 2;
+        auto drainPoint = [&](int i, double z) {
+            const auto [c, sn] = Direction(i, nt);
+            return Vec{drain * c, drain * sn, z};
+        };
         for (const bool atTop : {false, true}) {
             const int j = atTop ? nz - 1 : 0;
             const double z = atTop ? handleTop : handleBottom;
+            const Vec endNormal{0, 0, atTop ? 1.0 : -1.0};
             const int centre = b.Vertex({0, 0, z});
             for (int i = 0; i < nt; ++i) {
                 const Vec& p0 = inner.At(j, i);
@@ -645,11 +696,23 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
                 const int r0 = b.Vertex(p0), r1 = b.Vertex(p1), e0 = b.Vertex({p0[0], p0[1], z}), e1 = b.Vertex({p1[0], p1[1], z});
                 const Vec outward{p0[0] + p1[0], p0[1] + p1[1], 0};
                 b.FacingQuad(e0, e1, r1, r0, outward);
-                b.Facing(centre, e0, e1, Vec{0, 0, atTop ? 1.0 : -1.0});
+                if (drained) b.FacingQuad(e0, e1, b.Vertex(drainPoint(i + 1, z)), b.Vertex(drainPoint(i, z)), endNormal);
+                else b.Facing(centre, e0, e1, endNormal);
             }
         }
+        if (drained)
+            for (int i = 0; i < nt; ++i) {
+                const auto [c0, s0] = Direction(i, nt);
+                const auto [c1, s1] = Direction(i + 1, nt);
+                b.FacingQuad(b.Vertex(drainPoint(i, handleBottom)), b.Vertex(drainPoint(i + 1, handleBottom)), b.Vertex(drainPoint(i + 1, handleTop)),
+                             b.Vertex(drainPoint(i, handleTop)), Vec{-(c0 + c1), -(s0 + s1), 0});  // facing the axis: out of the core
+            }
         solids.core = b.Take();
-        solids.coreOutsideBlockMm3 = (RingArea(inner, 0) + RingArea(inner, nz - 1)) * mold.handleMm;
+        // The bore's section: the polygon of its samples.
+        const double drainArea = drained ? nt / 2.0 * drain * drain * std::sin(2 * std::numbers::pi / nt) : 0;
+        solids.coreOutsideBlockMm3 = (RingArea(inner, 0) + RingArea(inner, nz - 1) - 2 * drainArea) * mold.handleMm;
+        solids.drainInBlockMm3 = drainArea * (part.lengthMm + 2 * mold.endWallMm);
+        solids.coreExit = CoreExitOf(inner);
     }
     // The block: the actuator's widest extent plus the margin, the same in x and y.
     double reach = 0;

@@ -111,7 +111,11 @@ class Solids : public ::testing::TestWithParam<Case> {};
 TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
     const Case& c = GetParam();
     const sim::PartDef part = PartOf(c);
-    const sim::MoldDef mold;
+    for (const sim::CoreKind core : {sim::CoreKind::Rigid, sim::CoreKind::Lost}) {
+    SCOPED_TRACE(sim::Name(core));
+    sim::MoldDef mold;
+    mold.core = core;
+    mold.drainMm = 1;  // the abs-sine's core is under 2 mm from its axis at its ends
     sim::PartSolids solids;
     sim::FittingDef fittings;
     fittings.enabled = true;
@@ -126,7 +130,7 @@ TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
     const auto a = sim::MeshBounds(solids.shellA), b = sim::MeshBounds(solids.shellB);
     const double block = (std::max(a[3], b[3]) - std::min(a[0], b[0])) * (std::max(a[4], b[4]) - std::min(a[1], b[1])) * (a[5] - a[2]);
     const double pieces = sim::MeshVolume(solids.shellA) + sim::MeshVolume(solids.shellB) + sim::MeshVolume(solids.actuator) +
-                          sim::MeshVolume(solids.core) - solids.coreOutsideBlockMm3 + solids.openingsMm3 - solids.pinsLessHolesMm3;
+                          sim::MeshVolume(solids.core) - solids.coreOutsideBlockMm3 + solids.openingsMm3 - solids.pinsLessHolesMm3 + solids.drainInBlockMm3;
     EXPECT_LT(solids.pinsLessHolesMm3, 0) << "pins a little smaller than their holes";
     EXPECT_GT(solids.openingsMm3, 0) << "a sprue and vents";
     EXPECT_NEAR(pieces / block, 1.0, 1e-6) << c.name;
@@ -134,6 +138,46 @@ TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
     // The halves mirror each other when the design does (single-sector shapes), but for their slots.
     if (!std::holds_alternative<sim::BSplineShape>(c.shape) || std::get<sim::BSplineShape>(c.shape).splines.size() == 1)
         EXPECT_NEAR(sim::MeshVolume(solids.shellA), sim::MeshVolume(solids.shellB), solids.openingsMm3 + 8 * 0.5 * 5 * 0.5 * 5 * 5 + 1e-6 * block) << c.name;
+    }
+}
+
+// A one-piece core leaves through the end that needs the least hoop stretch of the wall: none for a
+// straight tube, the bulb's perimeter over the end opening's for a bulb (the 76 mm bulb on a
+// 10 mm tube needs 8.5: refused unless the core is lost), and a lost core is bored for its drain.
+TEST(Solid, ACoreLeavesThroughTheEndThatStretchesTheWallLeast) {
+    sim::PartDef part;
+    part.angularSamples = 64;
+    part.axialSamples = 61;
+    part.clampFraction = 1.0 / 60;
+    sim::PartSolids plain, bulb, lost;
+    ASSERT_EQ(sim::BuildPartSolids(sim::CylinderShape{}, part, {}, &plain), "");
+    EXPECT_NEAR(plain.coreExit.stretch, 1, 1e-9);
+    const sim::BSplineShape shape{sim::SplineRegion::Middle, {{1, 8, 8, 1}}};
+    ASSERT_EQ(sim::BuildPartSolids(shape, part, {}, &bulb), "");
+    // The inner wall (radius 4.5 mm at the ends) around a bulb of about 8 x 5 mm - 0.5 mm.
+    EXPECT_GT(bulb.coreExit.stretch, 7.5);
+    EXPECT_NEAR(bulb.coreExit.openingMm, 9, 0.05) << "the end opening: the inner wall's diameter";
+    EXPECT_NEAR(bulb.coreExit.stretch, bulb.coreExit.coreAcrossMm / bulb.coreExit.openingMm, 1e-9);
+    EXPECT_GT(bulb.coreExit.stretch, sim::DemouldingStretchLimit(sim::MaterialPresetDef(sim::MaterialPreset::Ecoflex0030)));
+    // An entire-length spline is wider at its top end: the core leaves through it.
+    sim::PartSolids funnel;
+    ASSERT_EQ(sim::BuildPartSolids(sim::BSplineShape{sim::SplineRegion::Entire, {{1, 1.2, 1.6, 2.2}}}, part, {}, &funnel), "");
+    EXPECT_TRUE(funnel.coreExit.top);
+    EXPECT_NEAR(funnel.coreExit.stretch, 1, 1e-6) << "widening all the way to the top: nothing to stretch";
+    sim::PartSolids reversed;
+    ASSERT_EQ(sim::BuildPartSolids(sim::BSplineShape{sim::SplineRegion::Entire, {{2.2, 1.6, 1.2, 1}}}, part, {}, &reversed), "");
+    EXPECT_FALSE(reversed.coreExit.top);
+    sim::MoldDef drained;
+    drained.core = sim::CoreKind::Lost;
+    ASSERT_EQ(sim::BuildPartSolids(shape, part, drained, &lost), "");
+    EXPECT_THAT(SolidProblems(lost.core), ::testing::IsEmpty());
+    // The drain: a 4 mm bore (a polygon of the samples around) from handle to handle.
+    const double section = part.angularSamples / 2.0 * 2 * 2 * std::sin(2 * std::numbers::pi / part.angularSamples);
+    const double bore = section * (part.lengthMm + 2 * (drained.endWallMm + drained.handleMm));
+    EXPECT_NEAR(sim::MeshVolume(bulb.core) - sim::MeshVolume(lost.core), bore, 1e-6 * bore);
+    EXPECT_NEAR(lost.drainInBlockMm3, section * (part.lengthMm + 2 * drained.endWallMm), 1e-6 * bore);
+    drained.drainMm = 8.5;
+    EXPECT_THAT(sim::BuildPartSolids(shape, part, drained, &lost), ::testing::HasSubstr("too thin for a 8.5 mm drain"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Designs, Solids, ::testing::ValuesIn(Cases()), [](const auto& info) { return info.param.name; });
@@ -156,9 +200,11 @@ struct CollectNumbers {
 // are valid, or the design is refused saying why. The ranges are the options' own (fields.h).
 TEST(Solid, EveryMoldOptionOverItsRangeBuildsValidSolidsOrIsRefused) {
     sim::MoldDef mold;
+    mold.core = sim::CoreKind::Lost;  // every number has an effect (the drain's too)
+    mold.drainMm = 1;
     std::vector<NumberField> fields;
     sim::VisitFields(mold, CollectNumbers{fields});
-    ASSERT_EQ(fields.size(), 6u);
+    ASSERT_EQ(fields.size(), 7u);
     const Case c{"shell_sine", sim::SineShape{1.3, 0.5, kPi - 0.5}, false};
     int built = 0, refused = 0;
     for (const NumberField& f : fields) {
@@ -292,6 +338,33 @@ TEST_F(ExportCli, RefusesWhatCannotBeMadeAndWritesNothing) {
     r = Run("export --model thesis --shape cylinder --out " + Path("once"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("not an empty folder"));
+}
+
+// The bulb a fibre search returned (76 mm across on a 10 mm tube): its one-piece core cannot leave
+// through the 9 mm end, so export refuses it naming the section and the stretch, and makes it with a
+// lost core.
+TEST_F(ExportCli, ACoreThatCannotLeaveIsRefusedUnlessItIsLost) {
+    const std::string bulb = "export --shape bspline --region middle --control-points 1,8,8,1 --out ";
+    Result r = Run(bulb + Path("rigid"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("cannot demould this design's one-piece core"));
+    EXPECT_THAT(r.err, HasSubstr("a hoop stretch of 8.45, more than the 3.00 ecoflex-00-30 allows"));
+    EXPECT_THAT(r.err, HasSubstr("--core lost"));
+    EXPECT_FALSE(fs::exists(dir_ / "rigid"));
+    r = Run(bulb + Path("lost") + " --core lost");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto manifest = nlohmann::json::parse(Slurp(dir_ / "lost" / "manifest.json"));
+    EXPECT_EQ(manifest["core"]["kind"], "lost");
+    EXPECT_EQ(manifest["core"]["drain_mm"], 4.0);
+    EXPECT_GT(manifest["core"]["demoulding_stretch"].get<double>(), 8);
+    EXPECT_THAT(manifest["core"]["how"].get<std::string>(), HasSubstr("dissolve"));
+    r = Run("export --shape cylinder --drain-mm 3 --out " + Path("drain"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("--drain-mm applies to --core lost"));
+    EXPECT_FALSE(fs::exists(dir_ / "drain"));
+    r = Run("export --shape cylinder --out " + Path("plain"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(Slurp(dir_ / "plain" / "manifest.json"))["core"]["kind"], "rigid");
 }
 
 TEST_F(ExportCli, ShellModelGeometryAndOtherFormats) {
