@@ -75,7 +75,6 @@ static int RunExport(int argc, char** argv, int first) {
     }
     const sim::PartDef part = PartDefOf(cli, partOptions, job);
     const sim::MoldDef& mold = partOptions.mold;
-    if (cli.Given("--drain-mm") && mold.core != sim::CoreKind::Lost) throw UsageError("--drain-mm applies to --core lost (a rigid core has no drain)");
     const sim::PartSolids solids = BuildSolids(job, part, mold, partOptions.fittings);
     // A one-piece core must leave the cured part through an end, the wall stretched over it.
     const sim::MaterialDef material = CastMaterialOf(job);
@@ -132,7 +131,7 @@ static int RunExport(int argc, char** argv, int first) {
                             {"demoulding_stretch_allowed", demouldLimit},
                             {"tightest_section_z_mm", exit.zMm}};
     if (mold.core == sim::CoreKind::Lost) {
-        manifest["core"]["drain_mm"] = mold.drainMm;
+        manifest["core"]["drain_mm"] = solids.drainMm;
         manifest["core"]["drain_in_block_mm3"] = solids.drainInBlockMm3;
         manifest["core"]["how"] =
             "print mold_core in a material that leaves the cured part without a pull: PVA or BVOH (dissolve in warm water), or a wax or "

@@ -75,6 +75,7 @@ sim::MaterialDef CastMaterial(const sim::ShellDef& def) { return def.material; }
 
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
     if (cli.Given("--port-mm") && !o.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
+    if (cli.Given("--drain-mm") && o.mold.core != sim::CoreKind::Lost) throw UsageError("--drain-mm applies to --core lost (a rigid core has no drain)");
     sim::PartDef part = o.part;
     std::visit([&](const auto& def) { SizePart(cli, o, def, part); }, job.def);
     return part;

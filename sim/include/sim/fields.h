@@ -172,7 +172,7 @@ void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("vent_deg", m.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60);
     v.Number("pin_clearance_mm", m.pinClearanceMm, "the registration pins' taper: their tops this much inside their holes, mm", 0, 10);
     v.Enum("core", m.core, "rigid: one piece, pulled out through an end (refused where the wall cannot stretch over it); lost: printed to dissolve or melt out, with a drain");
-    v.Number("drain_mm", m.drainMm, "core lost: diameter of the drain bored along the core's axis, mm", 0.1, 1e3);
+    v.Number("drain_mm", m.drainMm, "core lost: diameter of the drain bored along the core's axis, mm (0: up to 4, leaving 1 mm of core)", 0, 1e3);
 }
 
 // Where a field has an effect, for refusing one that is given where it has none. `decider` is empty

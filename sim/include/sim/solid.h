@@ -80,7 +80,8 @@ struct MoldDef {
     // by this clearance at their tops, into holes of their feet's size in shell B.
     double pinClearanceMm = 0.15;
     CoreKind core = CoreKind::Rigid;
-    double drainMm = 4;  // a lost core's drain: a bore along its axis, handle to handle, this diameter
+    double drainMm = 0;  // a lost core's drain, a bore along its axis handle to handle: its diameter; 0: up to 4 mm,
+                         // leaving 1 mm of core around it
 };
 
 // A one-piece core leaves through one end: every section of the wall between the core's widest
@@ -110,6 +111,7 @@ struct PartSolids {
     double openingsMm3 = 0;          // the sprue and vents: block volume in neither shell nor part
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
     double drainInBlockMm3 = 0;      // a lost core's drain within the block (in no part)
+    double drainMm = 0;              // its diameter as built
     CoreExit coreExit;               // how a one-piece core would leave (for a lost core too: the reason to lose it)
 };
 

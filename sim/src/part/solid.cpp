@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 
@@ -623,15 +624,17 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
         if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
     if (std::string error = PinError(outer, part, mold); !error.empty()) return error;
     const int nz = rest.nz, nt = rest.nt;
+    // A lost core's drain must leave it a wall of at least a millimetre everywhere.
+    double drainMm = 0;
     if (mold.core == CoreKind::Lost) {
-        // The drain must leave the core a wall of at least a millimetre everywhere (and its
-        // faces a ring of samples inside every section).
-        if (!(mold.drainMm > 0)) return "the lost core's drain must be a positive diameter";
-        for (int j = 0; j < nz; ++j)
-            for (int i = 0; i < nt; ++i)
-                if (const double r = std::hypot(inner.At(j, i)[0], inner.At(j, i)[1]); r < mold.drainMm / 2 + 1)
-                    return Format("the core is %.3g mm from its axis at z = %.4g mm: too thin for a %.3g mm drain and 1 mm of core around it (give a smaller --drain-mm)",
-                                  r, inner.At(j, i)[2], mold.drainMm);
+        double nearest = std::numeric_limits<double>::infinity();
+        Vec where{};
+        for (const Vec& p : inner.p)
+            if (const double r = std::hypot(p[0], p[1]); r < nearest) nearest = r, where = p;
+        drainMm = mold.drainMm > 0 ? mold.drainMm : std::min(4.0, 2 * (nearest - 1));
+        if (mold.drainMm > 0 ? nearest < drainMm / 2 + 1 : drainMm < 1)
+            return Format("the core is %.3g mm from its axis at z = %.4g mm: too thin for a %.3g mm drain and 1 mm of core around it",
+                          nearest, where[2], std::max(drainMm, 1.0));
     }
 
     PartSolids solids;
@@ -680,7 +683,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
                 b.Quad(b.Vertex(inner.At(j, i)), b.Vertex(inner.At(j, i + 1)), b.Vertex(inner.At(j + 1, i + 1)), b.Vertex(inner.At(j + 1, i)));
         // A lost core is bored along its axis, handle to handle: the solvent reaches in and the melt runs out.
         const bool drained = mold.core == CoreKind::Lost;
-        const double drain = mold.drainMm / 2;
+        const double drain = drainMm / 2;
         auto drainPoint = [&](int i, double z) {
             const auto [c, sn] = Direction(i, nt);
             return Vec{drain * c, drain * sn, z};
@@ -712,6 +715,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
         const double drainArea = drained ? nt / 2.0 * drain * drain * std::sin(2 * std::numbers::pi / nt) : 0;
         solids.coreOutsideBlockMm3 = (RingArea(inner, 0) + RingArea(inner, nz - 1) - 2 * drainArea) * mold.handleMm;
         solids.drainInBlockMm3 = drainArea * (part.lengthMm + 2 * mold.endWallMm);
+        solids.drainMm = drainMm;
         solids.coreExit = CoreExitOf(inner);
     }
     // The block: the actuator's widest extent plus the margin, the same in x and y.

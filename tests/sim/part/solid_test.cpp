@@ -169,6 +169,7 @@ TEST(Solid, ACoreLeavesThroughTheEndThatStretchesTheWallLeast) {
     EXPECT_FALSE(reversed.coreExit.top);
     sim::MoldDef drained;
     drained.core = sim::CoreKind::Lost;
+    drained.drainMm = 4;
     ASSERT_EQ(sim::BuildPartSolids(shape, part, drained, &lost), "");
     EXPECT_THAT(SolidProblems(lost.core), ::testing::IsEmpty());
     // The drain: a 4 mm bore (a polygon of the samples around) from handle to handle.
@@ -178,6 +179,13 @@ TEST(Solid, ACoreLeavesThroughTheEndThatStretchesTheWallLeast) {
     EXPECT_NEAR(lost.drainInBlockMm3, section * (part.lengthMm + 2 * drained.endWallMm), 1e-6 * bore);
     drained.drainMm = 8.5;
     EXPECT_THAT(sim::BuildPartSolids(shape, part, drained, &lost), ::testing::HasSubstr("too thin for a 8.5 mm drain"));
+    // Left to itself, the drain is as wide as the core allows, up to 4 mm.
+    sim::PartSolids narrow;
+    drained.drainMm = 0;
+    ASSERT_EQ(sim::BuildPartSolids(sim::SineShape{1.0, 0.5, std::numbers::pi - 0.5}, part, drained, &narrow), "");
+    EXPECT_LT(narrow.drainMm, 4);
+    EXPECT_GE(narrow.drainMm, 1);
+    EXPECT_THAT(SolidProblems(narrow.core), ::testing::IsEmpty());
 }
 
 INSTANTIATE_TEST_SUITE_P(Designs, Solids, ::testing::ValuesIn(Cases()), [](const auto& info) { return info.param.name; });
