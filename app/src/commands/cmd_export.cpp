@@ -4,7 +4,9 @@
 // before the first file is written: a design that cannot be made writes nothing.
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -23,6 +25,43 @@
 #include "sim/solid.h"
 
 namespace app {
+
+namespace {
+
+// "220x220x250": a printer's build volume, mm.
+std::array<double, 3> PrinterVolume(const std::string& text) {
+    std::array<double, 3> size{};
+    char x1 = 0, x2 = 0, rest = 0;
+    if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf%c", &size[0], &x1, &size[1], &x2, &size[2], &rest) != 5 || x1 != 'x' || x2 != 'x' ||
+        !(size[0] > 0 && size[1] > 0 && size[2] > 0 && size[0] < 1e5 && size[1] < 1e5 && size[2] < 1e5))
+        throw UsageError("--printer-mm: expected WIDTHxDEPTHxHEIGHT in mm, e.g. 220x220x250, got " + Quote(text));
+    return size;
+}
+
+// How a printed part goes on the bed, its size there, and whether it fits the printer. The shells lie
+// on their split face, cavity up (no support in the cavity); the core stands on its handle when it
+// is short enough, else lies along the bed; fittings stand on their collar.
+Json PrintHint(const std::string& name, const sim::TriangleMesh& mesh, const std::array<double, 3>& printer) {
+    const auto b = sim::MeshBounds(mesh);
+    const double dx = b[3] - b[0], dy = b[4] - b[1], dz = b[5] - b[2];
+    std::string orientation;
+    std::array<double, 3> size{};  // on the bed: two sides, then the height
+    if (name.rfind("mold_shell", 0) == 0) {
+        orientation = "split face (y = 0) on the bed, cavity facing up";
+        size = {dx, dz, dy};
+    } else if (name == "mold_core") {
+        const bool upright = dz <= printer[2];
+        orientation = upright ? "standing on its bottom handle, axis vertical" : "lying along the bed, axis horizontal, with supports";
+        size = upright ? std::array<double, 3>{dx, dy, dz} : std::array<double, 3>{dz, dx, dy};
+    } else {
+        orientation = "standing on its collar, axis vertical";
+        size = {dx, dy, dz};
+    }
+    const bool fits = size[2] <= printer[2] && ((size[0] <= printer[0] && size[1] <= printer[1]) || (size[0] <= printer[1] && size[1] <= printer[0]));
+    return Json{{"orientation", orientation}, {"size_mm", {size[0], size[1], size[2]}}, {"fits_printer", fits}};
+}
+
+}  // namespace
 
 static int RunExport(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
@@ -52,6 +91,11 @@ static int RunExport(int argc, char** argv, int first) {
     cli.Text("--out", out, "folder for the files; must be new or empty")->type_name("DIR");
     cli.Enum("--format", format, "file format: binary STL (default), OBJ or binary PLY");
     cli.Flag("--ascii", ascii, "ASCII STL instead of binary");
+    std::string printerText = "220x220x250";
+    cli.Text("--printer-mm", printerText, "the printer's build volume, WIDTHxDEPTHxHEIGHT mm: each printed part's size in its suggested orientation is "
+                                          "checked against it")
+        ->type_name("WxDxH")
+        ->default_str(printerText);
     cli.Examples(
         "  actuator export --model thesis --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
         "  actuator export --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
@@ -61,6 +105,7 @@ static int RunExport(int argc, char** argv, int first) {
     const auto started = std::chrono::steady_clock::now();
     if (!cli.Given("--out")) throw UsageError("--out DIR is required (a new or empty folder)");
     if (ascii && format != SolidFormat::Stl) throw UsageError("--ascii is for STL; OBJ is text already and PLY is written binary");
+    const std::array<double, 3> printer = PrinterVolume(printerText);
 
     sim::EvalJob job;
     if (cli.Given("--from")) {
@@ -103,6 +148,7 @@ static int RunExport(int argc, char** argv, int first) {
     Json manifest;
     manifest["units"] = "mm";
     Json list = Json::array();
+    std::vector<std::string> tooLarge;
     for (const auto& [name, mesh] : files) {
         const std::string file = name + extension;
         WriteFileAtomically((fs::path(out) / file).string(), FormatSolid(*mesh, format, ascii, name + " (actuator workbench)"));
@@ -112,6 +158,12 @@ static int RunExport(int argc, char** argv, int first) {
                             {"bounds_mm", Json{{"min", {b[0], b[1], b[2]}}, {"max", {b[3], b[4], b[5]}}}},
                             {"triangles", mesh->triangles.size()},
                             {"vertices", mesh->vertices.size()}});
+        if (name == "actuator") {
+            list.back()["print"] = Json{{"orientation", "cast in silicone, not printed"}};
+            continue;
+        }
+        list.back()["print"] = PrintHint(name, *mesh, printer);
+        if (!list.back()["print"]["fits_printer"].get<bool>()) tooLarge.push_back(file);
     }
     {  // The exploded assembly, to look at before printing.
         auto renderer = MakeRenderer(1400, 1000);
@@ -119,6 +171,7 @@ static int RunExport(int argc, char** argv, int first) {
                  renderer->Render(ExplodedMoldScene(solids, fmt::format("mold for {}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm))), 6);
     }
     manifest["files"] = list;
+    manifest["printer_mm"] = {printer[0], printer[1], printer[2]};
     const double silicone = sim::MeshVolume(solids.actuator);
     manifest["silicone"] = Json{{"volume_mm3", silicone},
                                 {"material", sim::Name(material.preset)},
@@ -158,7 +211,13 @@ static int RunExport(int argc, char** argv, int first) {
     WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");
     batch.Commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::cout << Json{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}}.dump() << "\n";
+    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}};
+    if (!tooLarge.empty()) {
+        std::string names;
+        for (const std::string& f : tooLarge) names += (names.empty() ? "" : ", ") + f;
+        summary["warning"] = "larger than the " + printerText + " mm printer in the suggested orientation: " + names + " (manifest.json, print)";
+    }
+    std::cout << summary.dump() << "\n";
     return 0;
 }
 

@@ -375,6 +375,34 @@ TEST_F(ExportCli, ACoreThatCannotLeaveIsRefusedUnlessItIsLost) {
     EXPECT_EQ(nlohmann::json::parse(Slurp(dir_ / "plain" / "manifest.json"))["core"]["kind"], "rigid");
 }
 
+// Each printed part says how it goes on the bed and whether it fits the printer; a printer too small
+// for one is a warning naming the file, a build volume that cannot be read is refused.
+TEST_F(ExportCli, EveryPrintedPartSaysItsOrientationAndWhetherItFitsThePrinter) {
+    Result r = Run("export --shape cylinder --out " + Path("part"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(nlohmann::json::parse(r.out).contains("warning"));
+    const auto manifest = nlohmann::json::parse(Slurp(dir_ / "part" / "manifest.json"));
+    EXPECT_EQ(manifest["printer_mm"], nlohmann::json::parse("[220, 220, 250]"));
+    for (const auto& file : manifest["files"]) {
+        const std::string name = file["file"];
+        if (name == "actuator.stl") continue;
+        EXPECT_TRUE(file["print"]["fits_printer"].get<bool>()) << name;
+        const auto& size = file["print"]["size_mm"];
+        const auto& lo = file["bounds_mm"]["min"];
+        const auto& hi = file["bounds_mm"]["max"];
+        const double volume = (hi[0].get<double>() - lo[0].get<double>()) * (hi[1].get<double>() - lo[1].get<double>()) * (hi[2].get<double>() - lo[2].get<double>());
+        EXPECT_NEAR(size[0].get<double>() * size[1].get<double>() * size[2].get<double>(), volume, 1e-6 * volume) << name << ": its own box, turned";
+    }
+    EXPECT_THAT(manifest["files"][2]["print"]["orientation"].get<std::string>(), HasSubstr("cavity facing up"));
+    r = Run("export --shape cylinder --printer-mm 180x180x180 --out " + Path("small"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_THAT(nlohmann::json::parse(r.out)["warning"].get<std::string>(), HasSubstr("mold_core.stl")) << "a 190 mm core fits neither way";
+    r = Run("export --shape cylinder --printer-mm 220x220 --out " + Path("bad"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("WIDTHxDEPTHxHEIGHT"));
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 TEST_F(ExportCli, ShellModelGeometryAndOtherFormats) {
     Result r = Run("export --model shell --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --radius-mm 6 --length-mm 90 --thickness-mm 1.5 --format ply --out " +
                    Path("ply"));
