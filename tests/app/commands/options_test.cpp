@@ -306,6 +306,7 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {
         {"--turntable", {"2"}},
         {"--timelapse", {"2", "3"}},
         {"--solid", {"cutaway", "mold"}},
+        {"--printer-mm", {"100x100x100"}},
     };
     // --gl-backend chooses the renderer, not the picture: both backends draw the same (Visual tests).
     const std::map<std::string, std::string> exempt{{"--gl-backend", "the same picture from either backend"}};
