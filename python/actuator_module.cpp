@@ -384,7 +384,7 @@ PYBIND11_MODULE(actuator, m) {
             "from_file",
             [](const std::string& path) {
                 try {
-                    return app::ReadMaterialFile(path);
+                    return app::ReadMaterialFile(path).material;
                 } catch (const app::UsageError& e) {
                     throw py::value_error(e.what());
                 }

@@ -41,8 +41,7 @@ std::array<double, 3> PrinterVolume(const std::string& text) {
 // How a printed part goes on the bed, its size there, and whether it fits the printer. The shells lie
 // on their split face, cavity up (no support in the cavity); the core stands on its handle when it
 // is short enough, else lies along the bed; fittings stand on their collar.
-Json PrintHint(const std::string& name, const sim::TriangleMesh& mesh, const std::array<double, 3>& printer) {
-    const auto b = sim::MeshBounds(mesh);
+Json PrintHint(const std::string& name, const std::array<double, 6>& b, const std::array<double, 3>& printer) {
     const double dx = b[3] - b[0], dy = b[4] - b[1], dz = b[5] - b[2];
     std::string orientation;
     std::array<double, 3> size{};  // on the bed: two sides, then the height
@@ -162,7 +161,7 @@ static int RunExport(int argc, char** argv, int first) {
             list.back()["print"] = Json{{"orientation", "cast in silicone, not printed"}};
             continue;
         }
-        list.back()["print"] = PrintHint(name, *mesh, printer);
+        list.back()["print"] = PrintHint(name, b, printer);
         if (!list.back()["print"]["fits_printer"].get<bool>()) tooLarge.push_back(file);
     }
     {  // The exploded assembly, to look at before printing.

@@ -35,12 +35,6 @@ std::string StabilityText(const sim::StabilityCheck& check, double upTo) {
     return fmt::format("NOT Drucker-stable: {} tension fails at stretch {:.3g} (below {:.3g})", check.mode, check.failingStretch, upTo);
 }
 
-// The preset a fitted preset was fitted beside (its data-sheet law), or Custom.
-sim::MaterialPreset DatasheetOf(sim::MaterialPreset preset) {
-    const std::string name = std::string(sim::Name(preset)) + "-datasheet";
-    return sim::FromName<sim::MaterialPreset>(name).value_or(sim::MaterialPreset::Custom);
-}
-
 void WriteFigure(const std::string& path, const TensileFigure& figure) { WritePng(path, TensileCurveImage(figure), 6); }
 
 int RunList(int argc, char** argv, int first) {
@@ -74,7 +68,8 @@ int RunShow(int argc, char** argv, int first) {
         CheckOutputPath(figure, "--figure");
         if (fs::exists(fs::symlink_status(figure))) throw UsageError("--figure: " + Quote(figure) + " already exists; remove it or give another name");
     }
-    const sim::MaterialDef m = MaterialNamed(name, "material show");
+    const MaterialFile file = IsMaterialFileName(name) ? ReadMaterialFile(name) : MaterialFile{};
+    const sim::MaterialDef m = IsMaterialFileName(name) ? file.material : MaterialNamed(name, "material show");
     const sim::MaterialSource s = sim::MaterialPresetSource(m.preset);
     const std::vector<sim::TensilePoint> points = sim::MaterialPresetPoints(m.preset);
     const double limit = sim::StretchLimit(m);
@@ -86,13 +81,12 @@ int RunShow(int argc, char** argv, int first) {
     if (!s.source.empty()) std::cout << "source       " << s.source << "\n" << "test         " << s.conditions << "\n";
     std::string fileFit;  // a material file's record of its fit
     if (IsMaterialFileName(name)) {
-        const Json file = ParseJson(ReadInputFile(name, 1 << 20), name);
-        const Json fit = file.value("fit", Json());
+        const Json& fit = file.fit;
         if (fit.is_object() && fit.contains("curve") && fit.contains("rms_residual_kpa"))
             fileFit = fmt::format("{} fitted to {}, {} points up to {:g} % strain, rms {:.3g} kPa", fit.value("law", std::string("?")),
                                   fit.value("curve", std::string("?")), fit.value("points", 0), 100 * fit.value("largest_strain_fitted", 0.0),
                                   fit.value("rms_residual_kpa", 0.0));
-        std::cout << "name         " << file.value("name", std::string("(none)")) << "\n";
+        std::cout << "name         " << (file.name.empty() ? std::string("(none)") : file.name) << "\n";
         if (!fileFit.empty()) std::cout << "fit          " << fileFit << "\n";
     }
     if (s.fitMaxStrain > 0)
@@ -117,7 +111,7 @@ int RunShow(int argc, char** argv, int first) {
         f.measured = points;
         f.measuredLabel = "measured (Marechal et al. 2021, ODbL)";
         f.laws.push_back({name + ": " + ConstantsText(m), m, false});
-        if (const sim::MaterialPreset datasheet = DatasheetOf(m.preset); datasheet != sim::MaterialPreset::Custom) {
+        if (const sim::MaterialPreset datasheet = s.datasheet; datasheet != sim::MaterialPreset::Custom) {
             const sim::MaterialDef d = sim::MaterialPresetDef(datasheet);
             f.laws.push_back({std::string(sim::Name(datasheet)) + ": " + ConstantsText(d), d, true});
         }

@@ -752,7 +752,7 @@ void InlineMaterialFile(Json& root, const std::string& path) {
     if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
     sim::MaterialDef material;
     try {
-        material = ReadMaterialFile(file.string());
+        material = ReadMaterialFile(file.string()).material;
     } catch (const UsageError& error) {
         throw UsageError(where + error.what());
     }

@@ -70,7 +70,7 @@ std::string MaterialFileText(const std::string& name, const sim::MaterialDef& ma
     return file.dump(2) + "\n";
 }
 
-sim::MaterialDef ReadMaterialFile(const std::string& path) {
+MaterialFile ReadMaterialFile(const std::string& path) {
     const std::string where = path + ": ";
     Json root;
     try {
@@ -98,11 +98,12 @@ sim::MaterialDef ReadMaterialFile(const std::string& path) {
     sim::ShellDef check = sim::DefaultShellDef();
     check.material = material;
     if (const std::string error = sim::ShellDefError(check); !error.empty()) throw UsageError(where + error);
-    return material;
+    if (root.contains("name") && !root.at("name").is_string()) throw UsageError(where + "'name': expected a string");
+    return {root.value("name", std::string()), material, root.value("fit", Json())};
 }
 
 sim::MaterialDef MaterialNamed(const std::string& value, const std::string& what) {
-    if (IsMaterialFileName(value)) return ReadMaterialFile(value);
+    if (IsMaterialFileName(value)) return ReadMaterialFile(value).material;
     if (const auto preset = sim::FromName<sim::MaterialPreset>(value)) return sim::MaterialPresetDef(*preset);
     throw UsageError(what + ": unknown material " + Quote(value) + " (choose " + sim::Choices<sim::MaterialPreset>() +
                      ", or a material file FILE.json from `actuator material fit`)");

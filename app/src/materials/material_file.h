@@ -24,10 +24,17 @@ Json MaterialFieldsJson(const sim::MaterialDef& material);
 // The file's text. `fit` is written as given (an object, or null for none).
 std::string MaterialFileText(const std::string& name, const sim::MaterialDef& material, const Json& fit);
 
-// Reads and checks a material file: strict (unknown keys refused with the nearest valid one), the
-// constants checked as a model's are (sim::ShellDefError). The material's preset is Custom.
-// Throws UsageError naming the file.
-sim::MaterialDef ReadMaterialFile(const std::string& path);
+// A material file as read: its material (preset Custom), its name ("" when none) and its record of
+// the fit (null when none).
+struct MaterialFile {
+    std::string name;
+    sim::MaterialDef material;
+    Json fit;
+};
+
+// Reads and checks a material file: strict (unknown keys refused), the constants checked as a
+// model's are (sim::ShellDefError). Throws UsageError naming the file.
+MaterialFile ReadMaterialFile(const std::string& path);
 
 // A --material value: a preset's name or a material file (IsMaterialFileName). Throws UsageError
 // listing the presets.

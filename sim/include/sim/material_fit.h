@@ -34,7 +34,7 @@ struct StabilityCheck {
 StabilityCheck DruckerStability(const MaterialDef& material, double maxStretch);
 
 // The largest stretch up to which a material is stable in all three tests (searched to `upTo`;
-// `upTo` itself when stable throughout). The solver compares the wall's stretches to it.
+// `upTo` itself when stable throughout). The solver compares the wall's largest stretch to it.
 double StableStretch(const MaterialDef& material, double upTo);
 
 // How a law is fitted to a curve.
@@ -67,6 +67,7 @@ struct MaterialSource {
     double fitMaxStrain = 0;    // the fit's range, engineering strain; 0: constants not fitted here
     double fitRmsKpa = 0;
     double fitRelativeRms = 0;
+    MaterialPreset datasheet = MaterialPreset::Custom;  // a fitted preset's data-sheet constants, kept as that preset
 };
 MaterialSource MaterialPresetSource(MaterialPreset preset);
 

@@ -692,7 +692,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
             const int j = atTop ? nz - 1 : 0;
             const double z = atTop ? handleTop : handleBottom;
             const Vec endNormal{0, 0, atTop ? 1.0 : -1.0};
-            const int centre = b.Vertex({0, 0, z});
+            const int centre = drained ? -1 : b.Vertex({0, 0, z});  // a solid end's fan; a drained one is an annulus
             for (int i = 0; i < nt; ++i) {
                 const Vec& p0 = inner.At(j, i);
                 const Vec& p1 = inner.At(j, i + 1);

@@ -120,6 +120,7 @@ MaterialSource MaterialPresetSource(MaterialPreset preset) {
     s.fitMaxStrain = kFitMaxStrain;
     s.fitRmsKpa = row->fitRmsKpa;
     s.fitRelativeRms = row->fitRelativeRms;
+    s.datasheet = row->datasheet;
     return s;
 }
 

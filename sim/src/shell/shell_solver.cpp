@@ -617,7 +617,7 @@ namespace {
 // (only a law with a negative higher constant can lose stability: its slopes otherwise only rise).
 Status StretchStatus(const MaterialDef& m, double maxStretch, double limit) {
     if (maxStretch > limit) return Status::OverStretched;
-    if ((m.c01Kpa < 0 || m.c20Kpa < 0 || m.c30Kpa < 0) && !DruckerStability(m, maxStretch).stable) return Status::MaterialUnstable;
+    if ((m.c01Kpa < 0 || m.c20Kpa < 0 || m.c30Kpa < 0) && StableStretch(m, maxStretch) < maxStretch) return Status::MaterialUnstable;
     return Status::Ok;
 }
 
