@@ -14,9 +14,15 @@
 
 namespace {
 
+// The benchmarks' silicone: the data-sheet Ecoflex 00-30 their problems (and docs/performance.md's
+// figures) were set up in; the softer fitted preset would take the same pressures past the designs'
+// pressure maxima.
+const sim::MaterialDef kBenchMaterial = sim::MaterialPresetDef(sim::MaterialPreset::Ecoflex0030Datasheet);
+
 sim::EvalJob Job(sim::ModelKind model, int ringVertices, int rings) {
     sim::EvalJob job;
     job.SetModel(model);
+    job.Shell().material = kBenchMaterial;
     job.shape = sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5};
     job.Shell().geometry.ringVertices = ringVertices;
     job.Shell().geometry.rings = rings;
@@ -55,6 +61,7 @@ void BM_Shell(benchmark::State& state, sim::ModelKind model, sim::FibreLayout fi
 sim::EvalJob GaDesign(int which, bool fibres) {
     sim::EvalJob job;
     job.SetModel(sim::ModelKind::Shell);
+    job.Shell().material = kBenchMaterial;
     job.Shell().load.pressureKpa = 1;
     sim::BSplineShape shape;
     if (which == 0) {
