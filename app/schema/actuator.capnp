@@ -12,7 +12,7 @@ enum Precision { float @0; double @1; }
 # The CLI's ok, nan, diverged, limit-point, not-converged, non-finite, self-intersection,
 # invalid-geometry, over-stretched, material-unstable.
 enum Status { ok @0; notANumber @1; diverged @2; limitPoint @3; notConverged @4; nonFinite @5; selfIntersection @6; invalidGeometry @7;
-              overStretched @8; materialUnstable @9; }
+              overStretched @8; materialUnstable @9; outsideEnvelope @10; }
 enum SplineRegion { entire @0; middle @1; }
 enum ModelKind { thesis @0; membrane @1; shell @2; }
 
@@ -114,6 +114,9 @@ struct ShellDef {
   strokeMm @37 :Float64;
   isobaricPoints @38 :UInt32;     # inflate: held strokes after the free inflation (0: none)
   tip @39 :Text;                    # the top clamp's lateral translation and tilt: "" (records before it could tilt) is "held"
+  maxRadiusRatio @40 :Float64;      # the envelope (sim::EnvelopeDef); 0: no bound, as records before it
+  maxRadiusMm @41 :Float64;
+  maxSiliconeG @42 :Float64;
 }
 
 struct FibreBand {
@@ -158,6 +161,8 @@ struct ShellOutputs {
   tipTiltDeg @30 :Float64 = nan;
   tipForceN @31 :Float64 = nan;
   tipMomentNMm @32 :Float64 = nan;
+  siliconeG @33 :Float64 = nan;
+  restMaxRadiusMm @34 :Float64 = nan;
 }
 
 struct EvalResult {

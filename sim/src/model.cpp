@@ -74,6 +74,8 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     v.Number("tip_moment_n_mm", "N mm", s.tipMomentNMm);
     v.Number("work_per_stroke_mj", "mJ", s.workPerStrokeMj);
     v.Number("work_per_gram_mj_per_g", "mJ/g", s.workPerGramMjPerG);
+    v.Number("silicone_g", "g", s.siliconeG);
+    v.Number("rest_max_radius_mm", "mm", s.restMaxRadiusMm);
     v.Number("rest_volume_mm3", "mm^3", s.restVolumeMm3);
     v.Number("volume_mm3", "mm^3", s.volumeMm3);
     v.Number("max_stretch", "", s.maxStretch);

@@ -43,7 +43,7 @@ void CheckGenome(const sim::Genome& whole, const Experiment& e) {
                 throw std::runtime_error("a spline has " + std::to_string(spline.size()) + " control points, outside " + std::to_string(g.lengthMin) +
                                          " to " + std::to_string(g.lengthMax));
             for (double c : spline)
-                if (!(c >= g.controlMin && c <= g.controlMax) || c != std::floor(c)) throw std::runtime_error("a control point is outside the control range");
+                if (!g.OnControlGrid(c)) throw std::runtime_error("a control point is outside the control range");
         }
     } else {
         if (genome.size() != 1 || genome[0].size() != 2 * static_cast<size_t>(sim::VertexCount(DesignMesh(e))))

@@ -394,7 +394,7 @@ void RefuseKeysWithoutEffect(const ObjectReader& block, const sim::ShellDef& she
 // (its settings are the "sim" and "mesh" blocks).
 // Each def reads the rest of the block (a new def adds its overload).
 void ParseModelBlock(ObjectReader& model, sim::ThesisDef&) {
-    for (const char* key : {"geometry", "material", "load", "ends", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
+    for (const char* key : {"geometry", "material", "load", "ends", "envelope", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
                             "fibre_sectors_deg"})
         if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
     model.Finish();
@@ -414,8 +414,6 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         material.Fields(given);
         shell.material = MaterialWithOverrides(preset, given, [&](const char* key) { return material.Has(key); });
         RefuseKeysWithoutEffect(material, shell);
-        // Experiments evaluate; nothing in them weighs the silicone (export does, from its own options).
-        if (material.Has("density_kg_per_m3")) material.Fail("has no effect in an experiment: nothing here weighs the silicone", "density_kg_per_m3");
         material.Finish();
     }
     if (model.Has("load")) {
@@ -430,6 +428,11 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         ends.Fields(shell.ends);
         RefuseKeysWithoutEffect(ends, shell);
         ends.Finish();
+    }
+    if (model.Has("envelope")) {
+        ObjectReader envelope = model.Object("envelope");
+        envelope.Fields(shell.envelope);
+        envelope.Finish();
     }
     if (model.Has("solver")) {
         ObjectReader solver = model.Object("solver");
@@ -504,12 +507,14 @@ void RefuseReplacedKeys(const Experiment& e) {
             if (given({"model", key})) refuse(std::string("model.") + key, "the genome's fibre angle genes give the angles");
 }
 
-// A B-spline genome's "control": [min, max], whole numbers (the GA's and the optimizers').
+// A B-spline genome's "control": [min, max] and "control_step" (the GA's and the optimizers'): the
+// control points' grid, radii in base-radius units.
 void ParseControlRange(ObjectReader& genome, sim::GenomeDef& g) {
     const auto control = genome.Range("control", {g.controlMin, g.controlMax}, -1000, 1000);
-    if (control.first != std::floor(control.first) || control.second != std::floor(control.second)) genome.Fail("control points are whole numbers", "control");
-    g.controlMin = static_cast<int>(control.first);
-    g.controlMax = static_cast<int>(control.second);
+    g.controlMin = control.first;
+    g.controlMax = control.second;
+    genome.Number("control_step", g.controlStep, 1e-6, 1000);
+    if (const std::string error = sim::ControlGridError(g); !error.empty()) genome.Fail(error, "control_step");
 }
 
 // Fibre genes (membrane and shell models with fibres in the model block): how many angle genes,
@@ -757,7 +762,6 @@ void InlineMaterialFile(Json& root, const std::string& path) {
         throw UsageError(where + error.what());
     }
     Json inlined = MaterialFieldsJson(material);
-    inlined.erase("density_kg_per_m3");  // nothing in an experiment weighs the silicone
     Json result = Json::object();
     result["preset"] = "custom";
     for (const auto& [key, value] : inlined.items()) result[key] = value;

@@ -28,7 +28,7 @@ template <class Schema, class Sim>
 Schema EnumToSchema(Sim value) {
     return static_cast<Schema>(static_cast<std::uint16_t>(value));
 }
-static_assert(static_cast<int>(schema::Status::MATERIAL_UNSTABLE) == static_cast<int>(sim::Status::MaterialUnstable));
+static_assert(static_cast<int>(schema::Status::OUTSIDE_ENVELOPE) == static_cast<int>(sim::Status::OutsideEnvelope));
 static_assert(static_cast<int>(schema::Load::NONE) == static_cast<int>(sim::Load::None));
 static_assert(static_cast<int>(schema::Precision::DOUBLE) == static_cast<int>(sim::Precision::Double));
 static_assert(static_cast<int>(schema::SplineRegion::MIDDLE) == static_cast<int>(sim::SplineRegion::Middle));
@@ -209,6 +209,9 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setTwist(sim::Name(def.ends.twist));
     s.setTorqueNMm(def.ends.torqueNMm);
     s.setTip(sim::Name(def.ends.tip));
+    s.setMaxRadiusRatio(def.envelope.maxRadiusRatio);
+    s.setMaxRadiusMm(def.envelope.maxRadiusMm);
+    s.setMaxSiliconeG(def.envelope.maxSiliconeG);
     s.setStrokePercent(l.strokePercent);
     s.setStrokeMm(l.strokeMm);
     s.setIsobaricPoints(Count(l.isobaricPoints));
@@ -265,6 +268,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     def.ends.torqueNMm = s.getTorqueNMm();
     const std::string tip = s.getTip();
     def.ends.tip = tip.empty() ? sim::TipEnd::Held : NamedEnum<sim::TipEnd>(tip, "tip");
+    def.envelope = {s.getMaxRadiusRatio(), s.getMaxRadiusMm(), s.getMaxSiliconeG()};
     l.strokePercent = s.getStrokePercent();
     l.strokeMm = s.getStrokeMm();
     l.isobaricPoints = Count(s.getIsobaricPoints());
@@ -329,6 +333,8 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setTipTiltDeg(o.tipTiltDeg);
     s.setTipForceN(o.tipForceN);
     s.setTipMomentNMm(o.tipMomentNMm);
+    s.setSiliconeG(o.siliconeG);
+    s.setRestMaxRadiusMm(o.restMaxRadiusMm);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -373,6 +379,8 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.tipTiltDeg = s.getTipTiltDeg();
     o.tipForceN = s.getTipForceN();
     o.tipMomentNMm = s.getTipMomentNMm();
+    o.siliconeG = s.getSiliconeG();
+    o.restMaxRadiusMm = s.getRestMaxRadiusMm();
 }
 
 void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {

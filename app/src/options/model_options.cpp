@@ -63,6 +63,8 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Fields(o.shell.ends);
     cli.Group("Membrane and shell models: fibres");
     cli.Fields(o.shell.fibres);
+    cli.Group("Membrane and shell models: the envelope a design must stay in (else outside-envelope)");
+    cli.Fields(o.shell.envelope);
 }
 
 namespace {
@@ -101,7 +103,7 @@ std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::Thesis
 std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ShellDef&) {
     std::vector<std::string> names{"--material"};
     for (const auto& part : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.ends), OptionNames(o.shell.solver),
-                             OptionNames(o.shell.fibres)})
+                             OptionNames(o.shell.fibres), OptionNames(o.shell.envelope)})
         names.insert(names.end(), part.begin(), part.end());
     return names;
 }
@@ -154,6 +156,7 @@ void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, Mode
     else
         cli.CopyGivenFields(o.materialFields, def.material);
     cli.CopyGivenFields(o.shell.fibres, def.fibres);
+    cli.CopyGivenFields(o.shell.envelope, def.envelope);
     if (cli.Given("--load")) def.load.kind = ShellLoadOf(o.load, "--load");
 }
 
@@ -171,17 +174,16 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Thesi
 void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ShellDef& def, ModelUse use) {
     const std::string nothing = "does not apply here: nothing is simulated (the part is the rest shape, its geometry and silicone)";
     if (use == ModelUse::RestShape) {
-        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres)})
+        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres),
+                                 GivenKeys(cli, o.shell.envelope)})
             for (const auto& key : keys) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
         cli.RefuseIfGiven("--load", nothing);
         cli.RefuseIfGiven("--ends", nothing);
         for (const auto& key : GivenKeys(cli, o.materialFields))
             if (key != "density_kg_per_m3") cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (of the material, the part uses its density)");
-    } else if (use != ModelUse::Weighed) {
-        cli.RefuseIfGiven("--density-kg-per-m3", "applies to export and characterize (the silicone's mass); nothing here uses it");
     }
     for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver),
-                             GivenKeys(cli, o.shell.fibres)})
+                             GivenKeys(cli, o.shell.fibres), GivenKeys(cli, o.shell.envelope)})
         for (const auto& key : part) RefuseWhereWithoutEffect(key, sim::ShellFieldUse(def, key));
 }
 

@@ -73,7 +73,7 @@ void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("tensile_strength_kpa", m.tensileStrengthKpa, "tensile strength to compare stresses with, kPa", 0, kUnbounded);
     v.Number("elongation_at_break", m.elongationAtBreak, "elongation at break as a fraction (9 = 900 %)", 0, kUnbounded);
     v.Number("stretch_limit", m.stretchLimit, "largest allowed principal stretch (0: 1 + elongation / 2)", 0, kUnbounded);
-    v.Number("density_kg_per_m3", m.densityKgPerM3, "density, kg/m^3 (silicone mass of exports)", 0, kUnbounded);
+    v.Number("density_kg_per_m3", m.densityKgPerM3, "density, kg/m^3: the silicone's mass (silicone_g, per-gram objectives, max_silicone_g, exports)", 0, kUnbounded);
 }
 
 template <class Def, class Visitor>
@@ -98,6 +98,13 @@ void VisitFields(Def& e, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("torque_n_mm", e.torqueNMm, "twist loaded: torque on the top clamp, N mm, + right-handed about +z", -1e9, 1e9);
     v.Enum("tip", e.tip, "the top clamp's lateral translation and tilt, together: held (the force and moment that hold it reported) or free "
                          "(a bending actuator's free end)");
+}
+
+template <class Def, class Visitor>
+void VisitFields(Def& e, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::EnvelopeDef> {
+    v.Number("max_radius_ratio", e.maxRadiusRatio, "envelope: the rest wall's largest radius over the base radius (0: no bound); beyond it the design is outside-envelope", 0, 1e4);
+    v.Number("max_radius_mm", e.maxRadiusMm, "envelope: the same in mm (0: no bound)", 0, 1e6);
+    v.Number("max_silicone_g", e.maxSiliconeG, "envelope: the wall's silicone at rest, g, at the material's density (0: no bound)", 0, 1e6);
 }
 
 template <class Def, class Visitor>
@@ -270,7 +277,7 @@ inline std::string ShellFieldsWithoutEffect(const sim::ShellDef& def) {
     const sim::MaterialDef preset = def.material.preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(def.material.preset);
     std::vector<std::string> keys;
     for (const auto& part : {ChangedKeys(def.geometry, defaults.geometry), ChangedKeys(def.material, preset), ChangedKeys(def.load, defaults.load), ChangedKeys(def.ends, defaults.ends),
-                             ChangedKeys(def.solver, defaults.solver), ChangedKeys(def.fibres, defaults.fibres)})
+                             ChangedKeys(def.solver, defaults.solver), ChangedKeys(def.fibres, defaults.fibres), ChangedKeys(def.envelope, defaults.envelope)})
         keys.insert(keys.end(), part.begin(), part.end());
     for (const auto& key : keys)
         if (const FieldUse use = ShellFieldUse(def, key); !use.Applies())
@@ -318,6 +325,7 @@ void VisitDefFields(const ShellDef& def, V& v) {
     VisitFields(def.ends, v);
     VisitFields(def.solver, v);
     VisitFields(def.fibres, v);
+    VisitFields(def.envelope, v);
 }
 
 // Empty when every field of the job's model lies in the range the command line and experiment files

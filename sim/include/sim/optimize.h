@@ -48,6 +48,7 @@ enum class ObjectiveKind {
                      // supports (membrane, shell; load blocked)
     WorkPerGram,     // mJ/g, the work of one stroke at the target pressure (the isobaric curve's area) per gram
                      // of the wall's silicone (membrane, shell; load inflate with isobaric points, a density)
+    ForcePerGram,    // N/g, the blocking force per gram of the wall's silicone (membrane, shell; a density)
 };
 
 struct Objective {
@@ -76,7 +77,7 @@ const char* ObjectiveUnit(ObjectiveKind kind);
 enum class VectorFamily {
     Sine,     // amplitude, phase start, phase end (a gene whose bounds are equal is fixed, not a gene)
     AbsSine,  // the same for |sin|
-    BSpline,  // `splines` x `controlPoints` control points, rounded to integers in [controlMin, controlMax]
+    BSpline,  // `splines` x `controlPoints` control points, rounded onto the genome's control grid (controlMin to controlMax in controlStep)
     FreeXY,   // a (dx, dy) offset per vertex in [-bound, bound]
 };
 
@@ -184,7 +185,7 @@ struct EnumNames<Algorithm> {
 };
 template <>
 struct EnumNames<ObjectiveKind> {
-    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 11> table{{{ObjectiveKind::Contraction, "contraction"},
+    static constexpr std::array<std::pair<ObjectiveKind, const char*>, 12> table{{{ObjectiveKind::Contraction, "contraction"},
                                                                                  {ObjectiveKind::ThesisFitness, "thesis_fitness"},
                                                                                  {ObjectiveKind::StretchFitness, "stretch_fitness"},
                                                                                  {ObjectiveKind::BlockingForce, "blocking_force"},
@@ -194,7 +195,8 @@ struct EnumNames<ObjectiveKind> {
                                                                                  {ObjectiveKind::LimitMargin, "limit_margin"},
                                                                                  {ObjectiveKind::Twist, "twist"},
                                                                                  {ObjectiveKind::ForceAtStroke, "force_at_stroke"},
-                                                                                 {ObjectiveKind::WorkPerGram, "work_per_gram"}}};
+                                                                                 {ObjectiveKind::WorkPerGram, "work_per_gram"},
+                                                                                 {ObjectiveKind::ForcePerGram, "force_per_gram"}}};
 };
 template <>
 struct EnumNames<VectorFamily> {

@@ -23,6 +23,8 @@ struct ShellOutputs {
     std::vector<double> isobaricForceN;            // the force at each (NaN: a point that failed; 0 at the free stroke)
     double workPerStrokeMj = NAN;                  // the isobaric force integrated over the stroke, mJ
     double workPerGramMjPerG = NAN;                // the same per gram of the wall's silicone (NaN: no density)
+    double siliconeG = NAN;                        // the wall's silicone at rest, g (NaN: no density)
+    double restMaxRadiusMm = NAN;                  // the rest wall's largest distance from the axis, mm
     double targetPressureKpa = NAN;                // the pressure the contraction is reported at
     double limitPressureKpa = NAN;                 // the pressure maximum, when met
     double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports

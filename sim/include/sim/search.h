@@ -61,8 +61,15 @@ struct GenomeDef {
     GenomeKind kind = GenomeKind::BSpline;
     SplineRegion region = SplineRegion::Middle;  // B-splines: where the splines apply; free-xy: middle leaves the clamped turns unmoved
     int splines = 1;        // B-spline sectors: 1, 2 or 4
-    int controlMin = 0;     // control points are integers in [controlMin, controlMax] (thesis: 0-8)
-    int controlMax = 8;
+    // Control points (radii in base-radius units) lie on a grid: controlMin, controlMin + controlStep,
+    // ..., controlMax (thesis: the integers 0-8). A finer step over a narrower range keeps a search
+    // near a muscle's proportions (the shipped physical searches: 0.5-2.5 in steps of 0.25).
+    double controlMin = 0;
+    double controlMax = 8;
+    double controlStep = 1;
+    long long ControlLevels() const { return std::llround((controlMax - controlMin) / controlStep); }  // grid points less one
+    double ControlValue(long long level) const { return controlMin + static_cast<double>(level) * controlStep; }
+    bool OnControlGrid(double c) const;  // within the range and on a grid point
     int lengthMin = 5;      // control points per spline, inclusive bounds (thesis: 5-16)
     int lengthMax = 16;
     double initRange = 0.5; // free-xy: initial offsets uniform in [-initRange, initRange] (thesis 5.5)
@@ -77,6 +84,10 @@ struct GenomeDef {
     double fibreSigmaDeg = 10;   // Gaussian mutation of an angle gene, degrees
     bool HasFibreGenes() const { return fibreAngles > 0 || fibreSwitches; }
 };
+
+// Empty when the control grid is one: a positive step that divides max - min, low end first, at
+// most a million points; otherwise what is wrong.
+std::string ControlGridError(const GenomeDef& g);
 
 // When a search stops besides its number of generations (each 0 or NaN: never). The reason is
 // written in the run's logbook.

@@ -155,6 +155,16 @@ struct EndsDef {
     TipEnd tip = TipEnd::Held;        // lateral translation and tilt
 };
 
+// The bounds a bench puts on a design (docs/models/shell.md section 12, envelope): a rest design beyond any
+// of them is the status outside-envelope, judged before anything is simulated, so a search learns
+// of it as of any failed design and nothing is clamped. 0: no bound.
+struct EnvelopeDef {
+    double maxRadiusRatio = 0;  // the rest wall's largest distance from the axis over the base radius
+    double maxRadiusMm = 0;     // the same in mm
+    double maxSiliconeG = 0;    // the wall's silicone (rest area x thickness x the material's density), g
+    bool Any() const { return maxRadiusRatio > 0 || maxRadiusMm > 0 || maxSiliconeG > 0; }
+};
+
 struct ShellDef {
     GeometryDef geometry;
     MaterialDef material = MaterialPresetDef(MaterialPreset::Ecoflex0030);
@@ -162,6 +172,7 @@ struct ShellDef {
     EndsDef ends;
     SolverDef solver;
     FibreDef fibres;
+    EnvelopeDef envelope;
 };
 ShellDef DefaultShellDef();
 

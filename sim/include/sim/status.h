@@ -18,11 +18,12 @@ enum class Status {
     InvalidGeometry,  // shell models: the rest shape cannot be built (radius <= 0, self-intersecting)
     OverStretched,    // shell models: the wall stretches past the material's allowed stretch
     MaterialUnstable, // shell models: the wall stretches past where the material's law is Drucker-stable
+    OutsideEnvelope,  // shell models: the rest design lies outside the def's envelope (too wide or too heavy); nothing simulated
 };
 
 template <>
 struct EnumNames<Status> {
-    static constexpr std::array<std::pair<Status, const char*>, 10> table{{
+    static constexpr std::array<std::pair<Status, const char*>, 11> table{{
         {Status::Ok, "ok"},
         {Status::NaN, "nan"},
         {Status::Diverged, "diverged"},
@@ -33,6 +34,7 @@ struct EnumNames<Status> {
         {Status::InvalidGeometry, "invalid-geometry"},
         {Status::OverStretched, "over-stretched"},
         {Status::MaterialUnstable, "material-unstable"},
+        {Status::OutsideEnvelope, "outside-envelope"},
     }};
 };
 

@@ -22,7 +22,7 @@ std::string ObjectiveError(ObjectiveKind kind, ModelKind model) {
     const bool thesis = model == ModelKind::Thesis;
     if ((kind == ObjectiveKind::ThesisFitness || kind == ObjectiveKind::StretchFitness) && !thesis)
         return fmt::format("objective {} is the thesis model's; the {} model gives contraction, blocking_force, axial_stiffness, "
-                           "max_stretch, volume_change, limit_margin, twist, force_at_stroke and work_per_gram",
+                           "max_stretch, volume_change, limit_margin, twist, force_at_stroke, work_per_gram and force_per_gram",
                            Name(kind), Name(model));
     if (thesis && kind != ObjectiveKind::Contraction && kind != ObjectiveKind::ThesisFitness && kind != ObjectiveKind::StretchFitness)
         return fmt::format("objective {} needs units and equilibrium: the thesis model gives only thesis_fitness, stretch_fitness and contraction (use the "
@@ -45,6 +45,8 @@ std::string ObjectiveDefError(ObjectiveKind kind, const ModelDef& def) {
                                Name(shell->load.kind), shell->load.isobaricPoints);
         if (!(shell->material.densityKgPerM3 > 0)) return "objective work_per_gram needs the material's density_kg_per_m3 (the silicone's mass)";
     }
+    if (kind == ObjectiveKind::ForcePerGram && !(shell->material.densityKgPerM3 > 0))
+        return "objective force_per_gram needs the material's density_kg_per_m3 (the silicone's mass)";
     return "";
 }
 
@@ -79,6 +81,7 @@ double ObjectiveValue(ObjectiveKind kind, const SimResult& r, const SimResult* s
         case ObjectiveKind::Twist: return std::fabs(s.twistDeg);
         case ObjectiveKind::ForceAtStroke: return s.strokeForceN;
         case ObjectiveKind::WorkPerGram: return s.workPerGramMjPerG;
+        case ObjectiveKind::ForcePerGram: return s.siliconeG > 0 ? s.blockingForceN / s.siliconeG : NAN;
     }
     return NAN;
 }
@@ -96,6 +99,7 @@ const char* ObjectiveUnit(ObjectiveKind kind) {
         case ObjectiveKind::Twist: return "twist magnitude, deg";
         case ObjectiveKind::ForceAtStroke: return "force at the held stroke, N";
         case ObjectiveKind::WorkPerGram: return "work per stroke per gram, mJ/g";
+        case ObjectiveKind::ForcePerGram: return "blocking force per gram, N/g";
     }
     return "?";
 }
@@ -154,8 +158,8 @@ std::pair<std::vector<double>, std::vector<double>> VectorBounds(const VectorGen
         for (const auto& range : {def.amplitude, def.phaseStart, def.phaseEnd})
             if (range[0] != range[1]) add(range[0], range[1], 1);
     } else if (def.family == VectorFamily::BSpline) {
-        // Each integer gets an equal share of the real line: [min - 0.5, max + 0.5) rounds onto it.
-        add(g.controlMin - 0.5, g.controlMax + 0.5, g.splines * def.controlPoints);
+        // Each grid point gets an equal share of the real line: [min - step/2, max + step/2) rounds onto it.
+        add(g.controlMin - 0.5 * g.controlStep, g.controlMax + 0.5 * g.controlStep, g.splines * def.controlPoints);
     } else {
         add(-g.bound, g.bound, 2 * VertexCount(mesh));
     }
@@ -203,14 +207,14 @@ VectorDesign DesignOfVector(const VectorGenomeDef& def, const std::vector<double
         if (def.family == VectorFamily::Sine) d.shape = SineShape{values[0], values[1], values[2]};
         else d.shape = AbsSineShape{values[0], values[1], values[2]};
     } else if (def.family == VectorFamily::BSpline) {
-        // The thesis's control points are integers: the one place a real gene is rounded (half up,
-        // and the top of the range onto the largest integer).
+        // Control points lie on the genome's grid (the thesis's: integers): the one place a real gene
+        // is rounded (to the nearest grid point, half up, the top of the range onto the last).
         BSplineShape b;
         b.region = g.region;
         for (int s = 0; s < g.splines; ++s) {
             std::vector<double> control;
             for (int c = 0; c < def.controlPoints; ++c)
-                control.push_back(std::min<double>(g.controlMax, std::floor(gene(k++) + 0.5)));
+                control.push_back(g.ControlValue(std::clamp<long long>(std::llround(std::floor((gene(k++) - g.controlMin) / g.controlStep + 0.5)), 0, g.ControlLevels())));
             b.splines.push_back(control);
         }
         d.genome = b.splines;
@@ -309,7 +313,7 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
             if (!std::isfinite(r[0]) || !std::isfinite(r[1])) return "a sine gene's bounds must be finite";
     } else if (v.family == VectorFamily::BSpline) {
         if (g.splines != 1 && g.splines != 2 && g.splines != 4) return "splines must be 1, 2 or 4";
-        if (g.controlMin > g.controlMax) return "the control point range is reversed (give the low end first)";
+        if (std::string e = ControlGridError(g); !e.empty()) return e;
         if (v.controlPoints < 4 || v.controlPoints > 64) return "a spline needs 4 to 64 control points";
         if (g.splines > mesh.resolution) return "more splines than vertices per turn";
     } else if (!(g.bound > 0) || !std::isfinite(g.bound)) {

@@ -119,7 +119,7 @@ Genome RandomShapeGenome(const GenomeDef& def, const MeshDef& mesh, Random& rng)
     }
     for (int s = 0; s < def.splines; ++s) {
         std::vector<double> spline(static_cast<size_t>(rng.Integer(def.lengthMin, def.lengthMax)));
-        for (double& c : spline) c = static_cast<double>(rng.Integer(def.controlMin, def.controlMax));
+        for (double& c : spline) c = def.ControlValue(rng.Integer(0, def.ControlLevels()));
         genome.push_back(std::move(spline));
     }
     return genome;
@@ -140,9 +140,9 @@ void Mutate(Genome& genome, const GaDef& def, const MeshDef& mesh, Random& rng) 
             continue;
         }
         for (double& c : genes)
-            if (rng.Chance(def.indpb)) c = static_cast<double>(rng.Integer(g.controlMin, g.controlMax));
+            if (rng.Chance(def.indpb)) c = g.ControlValue(rng.Integer(0, g.ControlLevels()));
         if (rng.Chance(def.indpb) && static_cast<int>(genes.size()) < g.lengthMax)
-            genes.push_back(static_cast<double>(rng.Integer(g.controlMin, g.controlMax)));
+            genes.push_back(g.ControlValue(rng.Integer(0, g.ControlLevels())));
         if (rng.Chance(def.indpb) && static_cast<int>(genes.size()) > g.lengthMin) genes.pop_back();
     }
     // Fibre genes: angles by clamped Gaussian steps, switches flipped, each with probability INDPB.
@@ -247,6 +247,23 @@ void Record(GaState& state, int evaluations) {
 
 }  // namespace
 
+bool GenomeDef::OnControlGrid(double c) const {
+    if (!(c >= controlMin - 1e-9 * controlStep && c <= controlMax + 1e-9 * controlStep)) return false;
+    const double level = (c - controlMin) / controlStep;
+    return c == ControlValue(std::llround(level));
+}
+
+std::string ControlGridError(const GenomeDef& g) {
+    if (!std::isfinite(g.controlMin) || !std::isfinite(g.controlMax)) return "the control point range must be finite";
+    if (g.controlMin > g.controlMax) return "the control point range is reversed (give the low end first)";
+    if (!(g.controlStep > 0) || !std::isfinite(g.controlStep)) return "the control step must be positive";
+    const double levels = (g.controlMax - g.controlMin) / g.controlStep;
+    if (levels > 1e6) return "the control grid has more than a million points (a larger step)";
+    if (std::fabs(levels - std::round(levels)) > 1e-9 * std::max(1.0, levels))
+        return "the control step must divide the control range (max - min a whole number of steps)";
+    return "";
+}
+
 std::string GaDefError(const GaDef& d, const MeshDef& mesh) {
     if (d.population < 2) return "population must be at least 2";
     if (d.generations < 0) return "generations must not be negative";
@@ -257,7 +274,7 @@ std::string GaDefError(const GaDef& d, const MeshDef& mesh) {
     const GenomeDef& g = d.genome;
     if (g.kind == GenomeKind::BSpline) {
         if (g.splines != 1 && g.splines != 2 && g.splines != 4) return "splines must be 1, 2 or 4";
-        if (g.controlMin > g.controlMax) return "control point range is empty (min > max)";
+        if (std::string e = ControlGridError(g); !e.empty()) return e;
         if (g.lengthMin < 4) return "a spline needs at least 4 control points (length min >= 4)";
         if (g.lengthMin > g.lengthMax) return "length range is empty (min > max)";
         if (g.splines > mesh.resolution) return "more splines than vertices per turn";

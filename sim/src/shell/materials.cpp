@@ -157,6 +157,11 @@ std::string ShellDefError(const ShellDef& d) {
     const int rings = RingCount(g);
     if (rings < 2 * g.clampRings + 2) return "the tube needs at least two free rings between its clamps (" + std::to_string(2 * g.clampRings + 2) + " rings)";
     const MaterialDef& m = d.material;
+    for (const double bound : {d.envelope.maxRadiusRatio, d.envelope.maxRadiusMm, d.envelope.maxSiliconeG})
+        if (!(bound >= 0) || !std::isfinite(bound)) return "an envelope's bounds are 0 (none) or positive";
+    if (d.envelope.maxRadiusRatio > 0 && d.envelope.maxRadiusRatio < 1)
+        return "the envelope's max_radius_ratio is below 1: not even the plain tube fits it";
+    if (d.envelope.maxSiliconeG > 0 && !(m.densityKgPerM3 > 0)) return "the envelope's max_silicone_g needs the material's density_kg_per_m3";
     const double modulus = ShearModulusKpa(m);
     if (!positive(modulus)) return "the material's shear modulus must be positive (set mu, or C10 and C01)";
     for (double c : {m.muKpa, m.c10Kpa, m.c01Kpa, m.c20Kpa, m.c30Kpa})

@@ -975,11 +975,28 @@ std::vector<IsobaricPoint> IsobaricCurveOf(TubeEvaluation& t, const LoadTerms& f
     out.isobaricContractionPercent.push_back(freeContractionPercent);
     out.isobaricForceN.push_back(0.0);
     out.workPerStrokeMj = StrokeWorkMj(out.isobaricContractionPercent, out.isobaricForceN, t.length);
-    double area = 0;
-    for (const MembraneRest& rest : t.problem.membrane) area += rest.area;
-    const double massG = area * t.def.geometry.thicknessMm * t.def.material.densityKgPerM3 * 1e-6;  // kg/m^3 = 1e-6 g/mm^3
-    if (massG > 0) out.workPerGramMjPerG = out.workPerStrokeMj / massG;
+    if (out.siliconeG > 0) out.workPerGramMjPerG = out.workPerStrokeMj / out.siliconeG;
     return points;
+}
+
+// Stage: what the rest design weighs and how far it reaches from the axis (the envelope's measures).
+void MeasureRest(const ShellProblem& problem, const ShellDef& def, ShellOutputs& out) {
+    double area = 0;
+    for (const MembraneRest& rest : problem.membrane) area += rest.area;
+    if (def.material.densityKgPerM3 > 0) out.siliconeG = area * def.geometry.thicknessMm * def.material.densityKgPerM3 * 1e-6;  // kg/m^3 = 1e-6 g/mm^3
+    double reach = 0;
+    const int wall = def.geometry.ringVertices * RingCount(def.geometry);  // the caps' centres are not the wall's
+    for (int v = 0; v < wall; ++v) reach = std::max(reach, std::hypot(problem.rest.x[v], problem.rest.y[v]));
+    out.restMaxRadiusMm = reach;
+}
+
+// Stage: the bench's bounds on the design (EnvelopeDef), each 0 when not given.
+bool WithinEnvelope(const ShellDef& def, const ShellOutputs& out) {
+    const EnvelopeDef& e = def.envelope;
+    if (e.maxRadiusRatio > 0 && out.restMaxRadiusMm > e.maxRadiusRatio * def.geometry.radiusMm) return false;
+    if (e.maxRadiusMm > 0 && out.restMaxRadiusMm > e.maxRadiusMm) return false;
+    if (e.maxSiliconeG > 0 && !(out.siliconeG <= e.maxSiliconeG)) return false;
+    return true;
 }
 
 SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, std::vector<IsobaricPoint>* points) {
@@ -1001,6 +1018,8 @@ SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, st
     result.initial = problem.rest;
     result.final = problem.rest;
     out.restVolumeMm3 = problem.restVolume;
+    MeasureRest(problem, def, out);
+    if (!WithinEnvelope(def, out)) return finish(Status::OutsideEnvelope);
 
     TubeEvaluation t(def, problem, out);
     Status status = FollowLoadPath(t);

@@ -119,7 +119,13 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     EXPECT_THAT(Refusal(shell(R"("load": {"volume_ratio": 2})")), HasSubstr("'model.load.volume_ratio'"));
     EXPECT_THAT(Refusal(shell(R"("load": {"kind": "volume"}, "solver": {"max_bisections": 3})")), HasSubstr("'model.solver.max_bisections'"));
     EXPECT_THAT(Refusal(shell(R"("material": {"law": "yeoh", "c10_kpa": 100, "mu_kpa": 30})")), HasSubstr("\"law\" is neo-hookean, not yeoh"));
-    EXPECT_THAT(Refusal(shell(R"("material": {"density_kg_per_m3": 1100})")), HasSubstr("nothing here weighs the silicone"));
+    // The density weighs the wall (silicone_g, per-gram objectives, the envelope's max_silicone_g): it has an effect.
+    EXPECT_EQ(Refusal(shell(R"("material": {"density_kg_per_m3": 1100})")), "accepted");
+    EXPECT_THAT(Refusal(shell(R"("envelope": {"max_radius": 2})")), HasSubstr("'model.envelope.max_radius'"));
+    EXPECT_THAT(Refusal(shell(R"("envelope": {"max_radius_ratio": 0.5})")), HasSubstr("not even the plain tube fits it"));
+    EXPECT_THAT(Refusal(shell(R"("material": {"density_kg_per_m3": 0}, "envelope": {"max_silicone_g": 8})")), HasSubstr("max_silicone_g needs the material's density"));
+    EXPECT_THAT(Refusal(R"({"model": {"name": "thesis", "envelope": {"max_radius_ratio": 2}}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})"),
+                HasSubstr("'model.envelope': does not apply to the thesis model"));
     EXPECT_THAT(Refusal(shell(R"("geometry": {"ends": "sliding", "clamp_rings": 3})")), HasSubstr("'model.geometry.clamp_rings'"));
     EXPECT_THAT(Refusal(shell(R"("fibre_angle_deg": 40)")), HasSubstr("\"fibres\" is braid or single, not none"));
     EXPECT_THAT(Refusal(shell(R"("fibre_stiffness_n_per_mm": 5)")), HasSubstr("'model.fibre_stiffness_n_per_mm'"));

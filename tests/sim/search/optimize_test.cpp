@@ -198,6 +198,15 @@ TEST(Optimize, BSplineGenesRoundToTheThesissIntegersInOnePlace) {
     const auto& b = std::get<BSplineShape>(d.shape);
     EXPECT_EQ(b.splines[0], (std::vector<double>{0, 0, 1, 8, 8}));
     EXPECT_EQ(d.genome.back(), (std::vector<double>{33.3, 1, 0}));
+    // A finer grid: genes are radii, rounded to the nearest grid point, each point an equal share.
+    def.genes.controlMin = 0.5;
+    def.genes.controlMax = 2.5;
+    def.genes.controlStep = 0.25;
+    const auto [fineLo, fineHi] = VectorBounds(def, kMesh);
+    EXPECT_EQ(fineLo[0], 0.375);
+    EXPECT_EQ(fineHi[0], 2.625);
+    x = {0.375, 0.62, 0.63, 2.3, 2.625, 1, 2, 3, 4, 5, 33.3, 0.7, 0.2};
+    EXPECT_EQ(std::get<BSplineShape>(DesignOfVector(def, x, kMesh).shape).splines[0], (std::vector<double>{0.5, 0.5, 0.75, 2.25, 2.5}));
 }
 
 TEST(Optimize, DefinitionsThatCannotRunAreRefusedWithTheReason) {

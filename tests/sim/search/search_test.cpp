@@ -2,6 +2,7 @@
 // would only slow the test down.
 #include "sim/search.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,6 +134,37 @@ TEST(Ga, GenomesStayWithinTheirBounds) {
         }
     }
     EXPECT_EQ(lengths.size(), 3u) << "mutation should grow and shrink splines across the whole range";
+}
+
+// A control grid finer than the thesis's integers: every control point the GA draws or mutates lies
+// on it, and the grid's every point is reached.
+TEST(Ga, ControlPointsStayOnAFinerGrid) {
+    auto def = SmallGa();
+    def.genome.controlMin = 0.5;
+    def.genome.controlMax = 2.5;
+    def.genome.controlStep = 0.25;
+    def.indpb = 0.5;
+    def.mutpb = 1.0;
+    ASSERT_EQ(sim::GaDefError(def, sim::MeshDef{}), "");
+    const sim::MeshDef mesh;
+    auto state = sim::StartEvolution(def, mesh, 5, Synthetic);
+    std::set<double> seen;
+    for (int g = 0; g < 10; ++g) {
+        ASSERT_TRUE(sim::EvolveOneGeneration(def, mesh, state, Synthetic));
+        for (const auto& individual : state.population)
+            for (const auto& spline : individual.genome)
+                for (double c : spline) {
+                    EXPECT_TRUE(def.genome.OnControlGrid(c)) << c;
+                    seen.insert(c);
+                }
+    }
+    EXPECT_EQ(seen.size(), 9u) << "0.5, 0.75, ..., 2.5";
+    EXPECT_FALSE(def.genome.OnControlGrid(0.6));
+    EXPECT_FALSE(def.genome.OnControlGrid(2.75));
+    def.genome.controlStep = 0.3;  // 2 / 0.3 is no whole number of steps
+    EXPECT_THAT(sim::GaDefError(def, mesh), testing::HasSubstr("must divide the control range"));
+    def.genome.controlStep = 0;
+    EXPECT_THAT(sim::GaDefError(def, mesh), testing::HasSubstr("control step must be positive"));
 }
 
 TEST(Ga, FreeXYMutationAndCrossoverRespectTheBound) {
