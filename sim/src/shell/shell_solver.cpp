@@ -980,10 +980,15 @@ std::vector<IsobaricPoint> IsobaricCurveOf(TubeEvaluation& t, const LoadTerms& f
 }
 
 // Stage: what the rest design weighs and how far it reaches from the axis (the envelope's measures).
-void MeasureRest(const ShellProblem& problem, const ShellDef& def, ShellOutputs& out) {
+// The wall's silicone at rest: its mid-surface's area times the thickness, mm^3.
+double RestWallVolumeMm3(const ShellProblem& problem, const ShellDef& def) {
     double area = 0;
     for (const MembraneRest& rest : problem.membrane) area += rest.area;
-    if (def.material.densityKgPerM3 > 0) out.siliconeG = area * def.geometry.thicknessMm * def.material.densityKgPerM3 * 1e-6;  // kg/m^3 = 1e-6 g/mm^3
+    return area * def.geometry.thicknessMm;
+}
+
+void MeasureRest(const ShellProblem& problem, const ShellDef& def, ShellOutputs& out) {
+    if (def.material.densityKgPerM3 > 0) out.siliconeG = RestWallVolumeMm3(problem, def) * def.material.densityKgPerM3 * 1e-6;  // kg/m^3 = 1e-6 g/mm^3
     double reach = 0;
     const int wall = def.geometry.ringVertices * RingCount(def.geometry);  // the caps' centres are not the wall's
     for (int v = 0; v < wall; ++v) reach = std::max(reach, std::hypot(problem.rest.x[v], problem.rest.y[v]));
@@ -1057,9 +1062,7 @@ double WallVolumeMm3(const Shape& shape, const ShellDef& def) {
     std::string error;
     const ShellProblem problem = BuildTubeProblem(def, shape, false, &error);
     if (!error.empty()) return NAN;
-    double area = 0;
-    for (const MembraneRest& rest : problem.membrane) area += rest.area;
-    return area * def.geometry.thicknessMm;
+    return RestWallVolumeMm3(problem, def);
 }
 
 IsobaricCurve IsobaricForces(const Shape& shape, const ShellDef& inflate, bool bending) {
