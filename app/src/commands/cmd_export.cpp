@@ -21,6 +21,8 @@
 #include "options/part_options.h"
 #include "options/shape_options.h"
 #include "formats/solid_io.h"
+#include "report/casting_sheet.h"
+#include "sim/casting.h"
 #include "sim/shell.h"
 #include "sim/solid.h"
 
@@ -67,10 +69,11 @@ static int RunExport(int argc, char** argv, int first) {
     Cli cli("export", "Writes a design as solids to print and cast, into --out DIR (new or empty): actuator.stl (the wall as a closed solid of "
                       "the given thickness around the rest surface, ends closed by flat annuli), mold_core.stl (the inner cavity with a "
                       "handle through each end of the block), mold_shell_a.stl and mold_shell_b.stl (the block around the actuator split "
-                      "through its axis at y = 0, with registration pins on A and holes in B, a pour sprue in A's top wall and vents in B's), "
+                      "through its axis at y = 0, with registration pins on A and holes in B, a sprue in A's bottom wall to fill from below "
+                      "and four vents in the top wall), "
                       "with --fittings fitting_bottom.stl and fitting_top.stl (end plugs, the bottom one bored for the air line), "
-                      "mold_assembly.png (the parts side by side) and manifest.json (each file's volume in mm^3, bounds, triangles; the "
-                      "silicone's volume and mass). The design is given as for simulate. Under --model thesis one design unit is --unit-mm "
+                      "mold_assembly.png (the parts side by side), casting.md (what to print, mix and pour, in order) and manifest.json "
+                      "(each file's volume in mm^3, bounds, triangles, print orientation; the silicone to mix and the fill's time). The design is given as for simulate. Under --model thesis one design unit is --unit-mm "
                       "millimetres (the 30-turn mesh is 30 units long); under membrane and shell the geometry options give radius, length "
                       "and wall. A design that cannot be made is refused naming where and why, and nothing is written.");
     ShapeOptions shape;
@@ -95,6 +98,12 @@ static int RunExport(int argc, char** argv, int first) {
                                           "checked against it")
         ->type_name("WxDxH")
         ->default_str(printerText);
+    double viscosityCps = 0, potLifeMin = 0;
+    cli.Group("Pour");
+    cli.Number("--viscosity-cps", viscosityCps, "the mixed silicone's viscosity, cps = mPa s, for the fill-time estimate (default: the preset's bulletin; "
+                                                "needed for a material of your own)", 1, 1e7)
+        ->default_str("");
+    cli.Number("--pot-life-min", potLifeMin, "its pot life, minutes (default: the preset's bulletin)", 0.1, 1e4)->default_str("");
     cli.Examples(
         "  actuator export --model thesis --shape sine --amplitude 1.3 --phase 0.5,pi-0.5 --unit-mm 5 --wall-mm 1 --out part/\n"
         "  actuator export --shape bspline --region middle --control-points \"1,1.3,1.1,1.5\" --thickness-mm 1.5 --out part/\n"
@@ -192,6 +201,37 @@ static int RunExport(int argc, char** argv, int first) {
     } else {
         manifest["core"]["how"] = std::string("pull mold_core out through the ") + (exit.top ? "top" : "bottom") + " end by its handle";
     }
+    // The pour: from below, the mixing amounts, and the fill's time by gravity and by syringe.
+    sim::CastingDef casting = sim::CastingPresetDef(material.preset);
+    if (cli.Given("--viscosity-cps")) casting.mixedViscosityPaS = viscosityCps / 1000, casting.source = "given (--viscosity-cps)";
+    if (cli.Given("--pot-life-min")) casting.potLifeMin = potLifeMin;
+    const sim::PourDef pourDef;
+    const sim::PourPlan plan = sim::PlanPour(solids, part, mold, material, casting, pourDef);
+    Json pour{{"orientation", "upright: the axis vertical, the bottom end (z = 0) down, the sprue in shell A's bottom end wall, the vents up"},
+              {"sprue", Json{{"where", "shell A, bottom end wall, centred at 90 deg"},
+                             {"arc_deg", solids.sprueDegreesBuilt},
+                             {"across_mm", solids.sprueGapMm},
+                             {"volume_mm3", solids.sprueMm3},
+                             {"share_of_fill_resistance", solids.sprueResistanceShare}}},
+              {"vents", Json{{"where", "top end wall at 45 and 135 deg (shell A), 225 and 315 deg (shell B)"}, {"arc_deg", mold.ventDegrees}}},
+              {"silicone_ml", Json{{"cavity", plan.cavityMl}, {"sprue_and_vents", plan.slotsMl}, {"to_mix", plan.mixMl}}},
+              {"margin", fmt::format("{:g} % of cavity and slots, at least {:g} ml", 100 * pourDef.marginFraction, pourDef.marginMinMl)},
+              {"to_mix_g", Json{{"total", plan.mixG}, {"part_a", plan.partAG}, {"part_b", plan.partBG}}},
+              {"mix_ratio_a_to_b_by_weight", fmt::format("{:g}:1", casting.partsAPerB)}};
+    if (casting.mixedViscosityPaS > 0) {
+        pour["handling"] = Json{{"mixed_viscosity_cps", casting.mixedViscosityPaS * 1000},
+                                {"pot_life_min", NumberJson(casting.potLifeMin > 0 ? casting.potLifeMin : NAN)},
+                                {"cure_h", NumberJson(casting.cureHours > 0 ? casting.cureHours : NAN)},
+                                {"source", casting.source}};
+        pour["fill"] = Json{{"gravity_min", NumberJson(plan.gravityMin)},
+                            {"funnel_above_top_mm", pourDef.funnelAboveTopMm},
+                            {"syringe_min", NumberJson(plan.syringeMin)},
+                            {"syringe_kpa", pourDef.syringeKpa},
+                            {"method", casting.potLifeMin > 0 ? (plan.gravity ? "gravity" : plan.tooSlow ? "too slow" : "syringe") : "either"}};
+    } else {
+        pour["handling"] = Json{{"source", "not known for this material: give --viscosity-cps and --pot-life-min for a fill time"}};
+    }
+    manifest["pour"] = pour;
     // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).
     manifest["sprue_and_vents_mm3"] = solids.openingsMm3;
     manifest["pins_less_holes_mm3"] = solids.pinsLessHolesMm3;
@@ -208,9 +248,13 @@ static int RunExport(int argc, char** argv, int first) {
     manifest["design"] = Json{{"shape", ShapeJson(job.shape)}, {"model", ModelJson(job)}};
     if (cli.Given("--from")) manifest["design"]["from"] = Json{{"archive", from}, {"index", index}};
     WriteFileAtomically((fs::path(out) / "manifest.json").string(), manifest.dump(2) + "\n");
+    WriteFileAtomically((fs::path(out) / "casting.md").string(), CastingSheet(manifest));
     batch.Commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 2}, {"seconds", seconds}};
+    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 3}, {"seconds", seconds}};
+    if (plan.tooSlow)
+        summary["warning_pour"] = fmt::format("{:.1f} min to fill by syringe, more than half the {:g} min pot life (casting.md, pour)", plan.syringeMin,
+                                              casting.potLifeMin);
     if (!tooLarge.empty()) {
         std::string names;
         for (const std::string& f : tooLarge) names += (names.empty() ? "" : ", ") + f;

@@ -175,8 +175,9 @@ void VisitFields(Def& m, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("margin_mm", m.marginMm, "block beyond the actuator's widest point, mm", 0.1, 1e4);
     v.Number("end_wall_mm", m.endWallMm, "block beyond each end of the actuator, mm", 0.1, 1e4);
     v.Number("handle_mm", m.handleMm, "core beyond the block at each end, to hold and pull it, mm", 0.1, 1e4);
-    v.Number("sprue_deg", m.sprueDegrees, "arc of the pour slot through shell A's top wall, centred at 90 degrees", 0, 120);
-    v.Number("vent_deg", m.ventDegrees, "arc of each of shell B's two vent slots (225 and 315 degrees)", 0, 60);
+    v.Number("sprue_deg", m.sprueDegrees, "arc of the sprue through shell A's bottom wall, centred at 90 degrees (0: sized for --sprue-mm and the flow)", 0, 120);
+    v.Number("sprue_mm", m.sprueMm, "the sprue's least width, both ways, mm (reaches outward past the wall when the wall is thinner)", 0.1, 50);
+    v.Number("vent_deg", m.ventDegrees, "arc of each of the four vents through the top wall (45 and 135 degrees in A, 225 and 315 in B)", 0, 60);
     v.Number("pin_clearance_mm", m.pinClearanceMm, "the registration pins' taper: their tops this much inside their holes, mm", 0, 10);
     v.Enum("core", m.core, "rigid: one piece, pulled out through an end (refused where the wall cannot stretch over it); lost: printed to dissolve or melt out, with a drain");
     v.Number("drain_mm", m.drainMm, "core lost: diameter of the drain bored along the core's axis, mm (0: up to 4, leaving 1 mm of core)", 0, 1e3);

@@ -71,10 +71,14 @@ struct MoldDef {
     double marginMm = 5;    // block beyond the actuator's widest point, in x and y
     double endWallMm = 5;   // block beyond each end face of the actuator
     double handleMm = 15;   // core beyond the block at each end
-    // Slots through the top end wall over the silicone's end face: the sprue to pour through (shell
-    // A, centred at 90 degrees) and two vents for the air (shell B, at 225 and 315 degrees). Each
-    // spans at least one sample cell.
-    double sprueDegrees = 24;
+    // The pour (docs/guide/export.md, pouring): the mold stands upright and fills from its lowest
+    // point, through a sprue in shell A's bottom end wall centred at 90 degrees; the air leaves
+    // through vents in the top end wall, the cavity's only high point, at 45 and 135 degrees (shell
+    // A) and 225 and 315 (shell B). Each slot spans at least one sample cell.
+    double sprueDegrees = 0;  // the sprue's arc; 0: as wide as sprueMm at its mean radius, and wide enough that it adds at
+                              // most a quarter to the cavity's resistance to the flow
+    double sprueMm = 3;       // the sprue's section is at least this wide both ways (a 14 G blunt needle or a 3 mm tube
+                              // fits): across the wall it reaches outward past the wall's outer face
     double ventDegrees = 6;
     // Registration: four square pins on shell A's split face (in the margin, near each end), tapered
     // by this clearance at their tops, into holes of their feet's size in shell B.
@@ -109,6 +113,13 @@ struct PartSolids {
     double coreOutsideBlockMm3 = 0;  // the handles' parts beyond the block (the rest of the core fills the cavity)
     TriangleMesh fittingBottom, fittingTop;  // when asked for (FittingDef::enabled)
     double openingsMm3 = 0;          // the sprue and vents: block volume in neither shell nor part
+    double sprueMm3 = 0;             // the sprue's share of it
+    double sprueDegreesBuilt = 0;    // the sprue's arc as built (whole sample cells)
+    double sprueGapMm = 0;           // its width across the wall (the wall, or sprueMm when that is wider)
+    double sprueResistanceShare = 0; // the sprue's viscous resistance over the full cavity's (thin-gap flow)
+    // The cavity the silicone fills, ring by ring from the bottom: the wall's mid-surface perimeter and
+    // the distance along the wall from the bottom end (mm), for the fill-time estimate (casting.h).
+    std::vector<double> cavityPerimeterMm, cavityPathMm, cavityHeightMm;
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
     double drainInBlockMm3 = 0;      // a lost core's drain within the block (in no part)
     double drainMm = 0;              // its diameter as built

@@ -297,20 +297,35 @@ bool OnSide(int i, int nt, int side) {
     return (degrees >= from && degrees <= to) || (degrees - 360 >= from && degrees - 360 <= to);
 }
 
-// One half of the mold's block (upper: y >= 0, samples 0 .. nt/2; else y <= 0, samples nt/2 .. nt)
-// less the actuator's outer solid and the core's channels through the end walls.
-// Whether the top end wall is open above sample cell i (from sample i to i + 1): the sprue, centred
-// at 90 degrees (shell A), and the vents at 225 and 315 degrees (shell B), each at least one cell.
-bool IsOpening(int i, int nt, const MoldDef& mold) {
+// The mold's slots as built: the sprue in the bottom end wall, the vents in the top one.
+struct Slots {
+    double sprueDegrees = 0, ventDegrees = 0;
+    double sprueReachMm = 0;  // the sprue beyond the wall's outer face, radially
+};
+
+// Whether an end wall is open over sample cell i (from sample i to i + 1): at the bottom the sprue,
+// centred at 90 degrees (shell A); at the top the vents, at 45 and 135 (A), 225 and 315 degrees (B).
+// Each spans at least one cell.
+bool IsOpening(bool atTop, int i, int nt, const Slots& slots) {
     const double cell = 360.0 / nt, middle = cell * ((i % nt) + 0.5);
     auto within = [&](double centre, double width) { return std::fabs(middle - centre) < std::max(width, cell) / 2; };
-    return within(90, mold.sprueDegrees) || within(225, mold.ventDegrees) || within(315, mold.ventDegrees);
+    if (!atTop) return slots.sprueDegrees > 0 && within(90, slots.sprueDegrees);
+    if (!(slots.ventDegrees > 0)) return false;
+    for (const double centre : {45.0, 135.0, 225.0, 315.0})
+        if (within(centre, slots.ventDegrees)) return true;
+    return false;
 }
 
-// The area between the inner and outer end rings over sample cell i (a slot's cross-section).
-double OpeningArea(const Grid& inner, const Grid& outer, int i) {
-    const int j = outer.nz - 1;
-    const Vec* corners[] = {&inner.At(j, i), &inner.At(j, i + 1), &outer.At(j, i + 1), &outer.At(j, i)};
+// A point `reach` further out than `outer`, on the line from `inner` through it (in the vertical
+// plane of the slot's end faces): the sprue's outer wall.
+Vec Beyond(const Vec& inner, const Vec& outer, double reach) {
+    const double dx = outer[0] - inner[0], dy = outer[1] - inner[1], d = std::hypot(dx, dy);
+    return {outer[0] + reach * dx / d, outer[1] + reach * dy / d, outer[2]};
+}
+
+// The xy area of the quad a0 a1 b1 b0 (a slot's cross-section over one sample cell).
+double SlotArea(const Vec& a0, const Vec& a1, const Vec& b1, const Vec& b0) {
+    const Vec* corners[] = {&a0, &a1, &b1, &b0};
     double twice = 0;
     for (int k = 0; k < 4; ++k) twice += (*corners[k])[0] * (*corners[(k + 1) % 4])[1] - (*corners[(k + 1) % 4])[0] * (*corners[k])[1];
     return std::fabs(twice) / 2;
@@ -352,8 +367,8 @@ bool InPin(int band, int nz, int length) {
     return false;
 }
 
-TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, double& openings,
-                   double& pins) {
+TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, const Slots& slots,
+                   double& openings, double& sprue, double& pins) {
     const int nt = outer.nt, nz = outer.nz, half = nt / 2, first = upper ? 0 : half;
     const double bottom = -mold.endWallMm, top = part.lengthMm + mold.endWallMm;
     const Vec up{0, 0, 1}, down{0, 0, -1};
@@ -368,54 +383,69 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
         const Vec& p = b.At(v);
         return Vec{-p[0], -p[1], 0};
     };
-    // The top end wall's slots over the silicone's end face (the sprue and the vents), cell by cell.
-    auto Open = [&](int k) { return IsOpening(first + k, nt, mold); };
-    auto Rim = [&](int k) {  // the actuator's outer ring carried up to the block's top face
-        const Vec& p = outer.At(nz - 1, first + k);
-        return b.Vertex({p[0], p[1], top});
+    // The end walls' slots over the silicone's end faces (the sprue at the bottom, the vents at the
+    // top), cell by cell; none crosses the split plane.
+    auto Open = [&](bool atTop, int k) { return k >= 0 && k < half && IsOpening(atTop, first + k, nt, slots); };
+    // The slot's outer wall: at the top the actuator's outer ring, at the bottom that ring reached
+    // out by the sprue's reach. `onFace`: carried to the block's end face.
+    auto SlotRim = [&](bool atTop, int k, bool onFace) {
+        const int j = atTop ? nz - 1 : 0;
+        const Vec p = atTop ? outer.At(j, first + k) : Beyond(inner.At(j, first + k), outer.At(j, first + k), slots.sprueReachMm);
+        return b.Vertex({p[0], p[1], onFace ? (atTop ? top : bottom) : p[2]});
     };
     for (int k = 0; k < half; ++k) {
-        const bool open = Open(k);
         // The cavity's wall: the actuator's outer surface, facing the axis.
         for (int j = 0; j + 1 < nz; ++j) b.Quad(O(j, k), O(j + 1, k), O(j + 1, k + 1), O(j, k + 1));
-        // The end walls' inner faces (the actuator's end faces) and the core's channels.
-        b.Facing(I(0, k), I(0, k + 1), O(0, k + 1), up);
-        b.Facing(I(0, k), O(0, k + 1), O(0, k), up);
-        if (!open) {
-            b.Facing(I(nz - 1, k), O(nz - 1, k + 1), I(nz - 1, k + 1), down);
-            b.Facing(I(nz - 1, k), O(nz - 1, k), O(nz - 1, k + 1), down);
-        }
         for (const bool atTop : {false, true}) {
             const int j = atTop ? nz - 1 : 0;
-            const int c0 = Channel(atTop, k), c1 = Channel(atTop, k + 1), i0 = I(j, k), i1 = I(j, k + 1);
+            const Vec inward = atTop ? down : up;  // the end wall's face against the silicone's end, into the cavity
+            const Vec outward = atTop ? up : down; // the block's end face
+            const int c0 = Channel(atTop, k), c1 = Channel(atTop, k + 1), i0 = I(j, k), i1 = I(j, k + 1), o0 = O(j, k), o1 = O(j, k + 1);
             const double z = atTop ? top : bottom;
             const int b0 = b.Vertex(BoxPoint(first + k, nt, w, z)), b1 = b.Vertex(BoxPoint(first + k + 1, nt, w, z));
-            if (!atTop) {
+            if (!Open(atTop, k)) {
+                // The end wall's inner face (the actuator's end face), the core's channel, and the block's
+                // end face between the channel and the box, split where a slot beside it has its rim.
+                b.FacingQuad(i0, i1, o1, o0, inward);
                 b.FacingQuad(c0, c1, i1, i0, towardAxis(c0));
-                // The block's end face between the channel and the box, strip by strip along the rays.
-                b.FacingQuad(c0, c1, b1, b0, down);
+                const bool slotBefore = Open(atTop, k - 1), slotAfter = Open(atTop, k + 1);
+                if (!slotBefore && !slotAfter) {
+                    b.FacingQuad(c0, c1, b1, b0, outward);
+                    continue;
+                }
+                std::vector<int> polygon{c0};
+                if (slotBefore) polygon.push_back(SlotRim(atTop, k, true));
+                polygon.insert(polygon.end(), {b0, b1});
+                if (slotAfter) polygon.push_back(SlotRim(atTop, k + 1, true));
+                polygon.push_back(c1);
+                // Fanned from a point inside: the rims lie on the strip's edges.
+                Vec centre{0, 0, z};
+                for (const int v : {c0, c1, b0, b1})
+                    for (int d = 0; d < 2; ++d) centre[d] += b.At(v)[d] / 4;
+                const int middle = b.Vertex(centre);
+                for (size_t n = 0; n < polygon.size(); ++n) b.Facing(middle, polygon[n], polygon[(n + 1) % polygon.size()], outward);
                 continue;
             }
-            // At the top the face is split on the actuator's outer ring, so a slot can open its inner part.
-            const int r0 = Rim(k), r1 = Rim(k + 1);
-            b.FacingQuad(r0, r1, b1, b0, up);
-            if (!open) {
-                b.FacingQuad(c0, c1, i1, i0, towardAxis(c0));
-                b.FacingQuad(c0, c1, r1, r0, up);
-                continue;
-            }
-            // A slot: its outer wall, and its ends where the closed cells begin.
-            const int o0 = O(nz - 1, k), o1 = O(nz - 1, k + 1);
-            b.FacingQuad(o0, o1, r1, r0, towardAxis(o0));
-            const auto [c, s] = Direction(first + k, nt);
-            const auto [c2, s2] = Direction(first + k + 1, nt);
-            if (k == 0 || !Open(k - 1)) {
-                b.FacingQuad(i0, o0, r0, c0, Vec{-s, c, 0});
-            }
-            if (k + 1 == half || !Open(k + 1)) {
-                b.FacingQuad(i1, o1, r1, c1, Vec{s2, -c2, 0});
-            }
-            openings += OpeningArea(inner, outer, first + k) * mold.endWallMm;
+            // A slot: the core's handle is its inner wall; its outer wall rises from the rim (at the
+            // bottom past the actuator's outer face, under a ledge of the end wall) to the block's face.
+            const int x0 = SlotRim(atTop, k, false), x1 = SlotRim(atTop, k + 1, false), r0 = SlotRim(atTop, k, true), r1 = SlotRim(atTop, k + 1, true);
+            if (x0 != o0) b.FacingQuad(o0, o1, x1, x0, outward);  // the ledge, facing down into the slot
+            b.FacingQuad(x0, x1, r1, r0, towardAxis(x0));
+            b.FacingQuad(r0, r1, b1, b0, outward);
+            // Its ends where the closed cells begin: in the vertical plane of each end ray.
+            auto End = [&](int c, int i, int o, int x, int r, const Vec& normal) {
+                std::vector<int> polygon{c, i, o};
+                if (x != o) polygon.push_back(x);
+                polygon.push_back(r);
+                b.Fan(polygon, normal);
+            };
+            const auto [cs, sn] = Direction(first + k, nt);
+            const auto [cs2, sn2] = Direction(first + k + 1, nt);
+            if (!Open(atTop, k - 1)) End(c0, i0, o0, x0, r0, Vec{-sn, cs, 0});
+            if (!Open(atTop, k + 1)) End(c1, i1, o1, x1, r1, Vec{sn2, -cs2, 0});
+            const double volume = SlotArea(inner.At(j, first + k), inner.At(j, first + k + 1), b.At(x1), b.At(x0)) * mold.endWallMm;
+            openings += volume;
+            if (!atTop) sprue += volume;
         }
     }
     // The split face (y = 0) on each meridian: bands between the cavity's profile and the box's edge.
@@ -474,9 +504,9 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
             const double volume = depth / 6 * (wx * wz + 4 * (wx - c) * (wz - c) + (wx - 2 * c) * (wz - 2 * c));
             pins += upper ? volume : -volume;
         }
-        // The top band: from the actuator's end up to the block's top, whose edge carries the rim.
+        // The top band: from the actuator's end up to the block's top.
         const int lt = b.Vertex({x, 0, top});
-        b.Fan({Rim(m), lt, L(part.lengthMm), P2(nz - 1), P1(nz - 1), O(nz - 1, m), I(nz - 1, m), Channel(true, m)}, splitNormal);
+        b.Fan({lt, L(part.lengthMm), P2(nz - 1), P1(nz - 1), O(nz - 1, m), I(nz - 1, m), Channel(true, m)}, splitNormal);
         L(top);
         lineOf[i % nt] = line;
     }
@@ -610,7 +640,8 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
     if (!(mold.marginMm > 0) || !(mold.endWallMm > 0) || !(mold.handleMm > 0)) return "the mold's margin, end walls and handles must be positive";
     if (!(mold.sprueDegrees >= 0 && mold.sprueDegrees <= 120) || !(mold.ventDegrees >= 0 && mold.ventDegrees <= 60))
-        return "the sprue spans 0 to 120 degrees and each vent 0 to 60";
+        return "the sprue spans 0 to 120 degrees (0: sized) and each vent 0 to 60";
+    if (!(mold.sprueMm > 0)) return "the sprue's width must be positive";
     Grid rest;
     if (std::string error = RestSurface(shape, part, measured, &rest); !error.empty()) return error;
     const std::vector<Vec> normals = Normals(rest);
@@ -722,8 +753,48 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     double reach = 0;
     for (const Vec& p : outer.p) reach = std::max({reach, std::fabs(p[0]), std::fabs(p[1])});
     const double w = reach + mold.marginMm;
-    solids.shellA = Shell(true, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
-    solids.shellB = Shell(false, outer, inner, w, part, mold, solids.openingsMm3, solids.pinsLessHolesMm3);
+    // The cavity the silicone fills: its mid-surface ring by ring, and the distance along the wall.
+    solids.cavityPerimeterMm.resize(nz);
+    solids.cavityPathMm.assign(nz, 0);
+    solids.cavityHeightMm.resize(nz);
+    Grid middle = inner;
+    for (size_t k = 0; k < middle.p.size(); ++k)
+        for (int c = 0; c < 3; ++c) middle.p[k][c] = 0.5 * (inner.p[k][c] + outer.p[k][c]);
+    for (int j = 0; j < nz; ++j) {
+        solids.cavityPerimeterMm[j] = RingPerimeter(middle, j);
+        solids.cavityHeightMm[j] = middle.At(j, 0)[2];
+        if (j == 0) continue;
+        double along = 0;
+        for (int i = 0; i < nt; ++i) along += std::sqrt(Dot(Sub(middle.At(j, i), middle.At(j - 1, i)), Sub(middle.At(j, i), middle.At(j - 1, i)))) / nt;
+        solids.cavityPathMm[j] = solids.cavityPathMm[j - 1] + along;
+    }
+    // The slots. The sprue is at least sprueMm across the wall (reaching outward past it) and along
+    // it, and wide enough that its resistance to the flow is at most a quarter of the full cavity's.
+    // Both are thin gaps: a gap g wide over a length l, w across, resists as l / (w g^3) (plane
+    // Poiseuille flow, the viscosity a common factor); the cavity as the sum of its bands' ds / (P h^3).
+    Slots slots;
+    slots.ventDegrees = mold.ventDegrees;
+    const double gap = std::max(h, mold.sprueMm);
+    slots.sprueReachMm = gap - h;
+    if (slots.sprueReachMm > 0.5 * mold.marginMm)
+        return Format("a sprue %.3g mm across reaches %.3g mm past the wall, more than half the mold's margin (%.3g mm): give a wider --margin-mm or a "
+                      "smaller --sprue-mm",
+                      mold.sprueMm, slots.sprueReachMm, mold.marginMm);
+    double cavityResistance = 0;  // mm^-3
+    for (int j = 1; j < nz; ++j)
+        cavityResistance += (solids.cavityPathMm[j] - solids.cavityPathMm[j - 1]) /
+                            (0.5 * (solids.cavityPerimeterMm[j] + solids.cavityPerimeterMm[j - 1]) * h * h * h);
+    const Vec& sprueInner = inner.At(0, nt / 4);
+    const double sprueRadius = std::hypot(sprueInner[0], sprueInner[1]) + 0.5 * gap;  // the slot's mean radius at 90 degrees
+    const double sprueWidthNeeded = std::max(mold.sprueMm, 4 * mold.endWallMm / (gap * gap * gap * cavityResistance));
+    slots.sprueDegrees = mold.sprueDegrees > 0 ? mold.sprueDegrees : std::min(120.0, sprueWidthNeeded / sprueRadius * 180 / std::numbers::pi);
+    int sprueCells = 0;
+    for (int i = 0; i < nt; ++i) sprueCells += IsOpening(false, i, nt, slots);
+    solids.sprueDegreesBuilt = 360.0 * sprueCells / nt;
+    solids.sprueGapMm = gap;
+    solids.sprueResistanceShare = mold.endWallMm / (solids.sprueDegreesBuilt * std::numbers::pi / 180 * sprueRadius * gap * gap * gap) / cavityResistance;
+    solids.shellA = Shell(true, outer, inner, w, part, mold, slots, solids.openingsMm3, solids.sprueMm3, solids.pinsLessHolesMm3);
+    solids.shellB = Shell(false, outer, inner, w, part, mold, slots, solids.openingsMm3, solids.sprueMm3, solids.pinsLessHolesMm3);
     if (fittings.enabled) {
         // The insert runs as far as the tube does not narrow below its end ring (else it would cut the wall).
         double insert = fittings.insertMm > 0 ? fittings.insertMm : std::max(part.clampFraction * part.lengthMm, 2 * part.thicknessMm);

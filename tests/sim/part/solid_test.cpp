@@ -212,7 +212,7 @@ TEST(Solid, EveryMoldOptionOverItsRangeBuildsValidSolidsOrIsRefused) {
     mold.drainMm = 1;
     std::vector<NumberField> fields;
     sim::VisitFields(mold, CollectNumbers{fields});
-    ASSERT_EQ(fields.size(), 7u);
+    ASSERT_EQ(fields.size(), 8u);
     const Case c{"shell_sine", sim::SineShape{1.3, 0.5, kPi - 0.5}, false};
     int built = 0, refused = 0;
     for (const NumberField& f : fields) {

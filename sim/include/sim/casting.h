@@ -1,0 +1,52 @@
+// Casting an exported part: the silicone's handling as its supplier states it (viscosity once mixed,
+// pot life, cure), what to mix, and how long the cavity takes to fill from its lowest point
+// (docs/guide/export.md, pouring). Pure arithmetic on the built solids; app/ reports it.
+#pragma once
+
+#include <string>
+
+#include "sim/shell.h"
+#include "sim/solid.h"
+
+namespace sim {
+
+// A silicone's handling at room temperature (23 C), from its technical bulletin.
+struct CastingDef {
+    double mixedViscosityPaS = 0;  // the parts once mixed (1 Pa s = 1000 cps); 0: not known
+    double potLifeMin = 0;         // working time from mixing, minutes
+    double cureHours = 0;          // until it can be demoulded
+    double partsAPerB = 1;         // mix ratio by weight, parts of A to one of B
+    std::string source;            // where the numbers come from
+};
+// The preset's handling (the datasheet and fitted presets of one silicone share it); a custom
+// material has none (viscosity 0).
+CastingDef CastingPresetDef(MaterialPreset preset);
+
+// How the silicone goes in: from below, by gravity from a funnel above the mold, or pushed by a syringe.
+struct PourDef {
+    double funnelAboveTopMm = 100;  // a gravity pour: the funnel's level above the block's top face, mm
+    double syringeKpa = 50;         // a syringe's gauge pressure at the sprue (about 16 N on a 20 ml syringe's plunger), kPa
+    double marginFraction = 0.3;    // silicone mixed beyond the cavity and the slots: what stays in the cup, the funnel, the tube
+    double marginMinMl = 5;         // ... and at least this much
+};
+
+struct PourPlan {
+    double cavityMl = 0;       // the part's silicone
+    double slotsMl = 0;        // the sprue and the vents, filled too
+    double mixMl = 0;          // to mix: cavity and slots plus the margin
+    double mixG = 0, partAG = 0, partBG = 0;
+    double gravityMin = 0;     // the fill's time from the funnel; NaN when the viscosity is not known
+    double syringeMin = 0;     // ... and by the syringe
+    bool gravity = false;      // gravity fills within half the pot life (the other half: mixing and degassing)
+    bool tooSlow = false;      // even the syringe needs more than half the pot life
+};
+
+// The plan for a part cast in `material` with the handling `casting`. The fill is thin-gap
+// (Poiseuille) flow from the sprue up the cavity, the front rising ring by ring: each band fills at
+// the flow that the pressure left over the column already standing drives through the resistance
+// behind it (the sprue's and the filled cavity's). Newtonian, at the bulletin's viscosity; the tube
+// from funnel or syringe to the sprue is not counted.
+PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material, const CastingDef& casting,
+                  const PourDef& pour = {});
+
+}  // namespace sim
