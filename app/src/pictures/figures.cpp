@@ -308,11 +308,37 @@ render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string
     scene.panels = {SolidsPanel(placed, surface)};
     scene.surface = surface;
     scene.title = title;
-    scene.lines = {fittings ? "fittings, core, actuator, shell A, shell B (split faces to you)" : "core, actuator, shell A, shell B (split faces to you)"};
+    auto size = [](const sim::TriangleMesh& mesh) {
+        const auto b = sim::MeshBounds(mesh);
+        return fmt::format("{:.0f} x {:.0f} x {:.0f} mm", b[3] - b[0], b[4] - b[1], b[5] - b[2]);
+    };
+    // Okabe and Ito's colour-blind-safe palette: the silicone orange, the core blue, the shells green
+    // and yellow, the fittings purple.
+    scene.categories = {{"actuator (silicone)\n" + size(solids.actuator), {0.90f, 0.62f, 0.0f}},
+                        {"core\n" + size(solids.core), {0.0f, 0.45f, 0.70f}},
+                        {"shell A (sprue, pins)\n" + size(solids.shellA), {0.0f, 0.62f, 0.45f}},
+                        {"shell B (holes)\n" + size(solids.shellB), {0.94f, 0.89f, 0.26f}}};
+    if (fittings)
+        scene.categories.insert(scene.categories.end(), {{"fitting, bottom (port)\n" + size(solids.fittingBottom), {0.80f, 0.47f, 0.65f}},
+                                                         {"fitting, top\n" + size(solids.fittingTop), {0.80f, 0.47f, 0.65f}}});
     scene.colorBy = render::ColorBy::Values;
-    scene.colorMin = 0;
-    scene.colorMax = fittings ? 5 : 3;
-    scene.colorLabel = fittings ? "part: 0 actuator\n1 core, 2 shell A\n3 shell B\n4, 5 fittings" : "part: 0 actuator\n1 core, 2 shell A\n3 shell B";
+    scene.colorLabel = "parts (x, y, z)";
+    const auto block = sim::MeshBounds(solids.shellA);
+    scene.lines = {std::string(fittings ? "fittings, core, actuator, shell A, shell B" : "core, actuator, shell A, shell B") +
+                       " (split faces to you); x, y, z sizes",
+                   fmt::format("pour: upright, from below into shell A's sprue (red arrow, {:.1f} mm)", solids.sprueGapMm),
+                   "vents: four, in the top end wall"};
+    // The pour's direction: up into the sprue's mouth on shell A's bottom face.
+    const float x = float(step + solids.sprueMouthMm[0]), y = float(solids.sprueMouthMm[1]), z = float(block[2]);
+    const float length = float(0.18 * (block[5] - block[2])), head = float(0.3 * w);
+    auto mark = [&](float ax, float az, float bx, float bz) {
+        render::Segment s{{ax, y, az}, {bx, y, bz}};
+        s.mark = true;
+        scene.panels[0].segments.push_back(s);
+    };
+    mark(x, z - length, x, z - 1);
+    mark(x, z - 1, x - head, z - 1 - 1.6f * head);
+    mark(x, z - 1, x + head, z - 1 - 1.6f * head);
     return scene;
 }
 

@@ -70,6 +70,12 @@ struct ScaleMark {
     std::string label;
 };
 
+// A named part in a fixed colour (an exploded assembly's pieces).
+struct Category {
+    std::string label;  // may hold a line break
+    Rgb color;
+};
+
 struct Scene {
     std::shared_ptr<const sim::Surface> surface;  // the panels' triangles and edges
     std::vector<Panel> panels;           // side by side, one camera, one scale
@@ -87,6 +93,9 @@ struct Scene {
                                          // (for strain, the 98th percentile: see RobustColorMax)
     std::string colorLabel;              // colour bar title; default from the colour mode
     std::vector<ScaleMark> scaleMarks;   // lines across the colour bar
+    // Parts, not a scale: with ColorBy::Values a vertex's value is the index of its category, drawn
+    // in the category's colour, and a legend of swatches replaces the colour bar.
+    std::vector<Category> categories;
 };
 
 // Per-vertex values of a colour mode (exposed for tests and for fixed scales across sequences).

@@ -270,7 +270,14 @@ Image MeshRendererGl::Render(const Scene& scene) {
     const float titleExtra = def.overlay ? std::max(0.0f, overlay.WrapTitle(fontSize * 1.37f, width - 1.4f * fontSize, scene.title).Height() - fontSize * 1.37f) : 0.0f;
     const float top = def.overlay ? fontSize * (2.2f + 1.25f * scene.lines.size()) + titleExtra : 0.0f;
     const float bottom = def.overlay ? fontSize * 1.8f : 0.0f;
-    const float barStrip = def.overlay && coloured ? std::max(width * 0.11f, fontSize * 6.0f) : 0.0f;
+    // A legend of parts is as wide as its longest line, beside a swatch.
+    const bool legend = colorBy == ColorBy::Values && !scene.categories.empty();
+    float legendText = 0;
+    for (const Category& category : scene.categories)
+        legendText = std::max(legendText, overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, category.label.c_str()).x);
+    const float barStrip = !def.overlay || !coloured ? 0.0f
+                           : legend              ? legendText + fontSize * 3.0f
+                                                 : std::max(width * 0.11f, fontSize * 6.0f);
     // A grid on two parameters keeps a band above for the column labels and one at the left for the
     // row labels, each under its axis title.
     const bool axisLabels = def.overlay && (!scene.columnLabels.empty() || !scene.rowLabels.empty());
@@ -344,7 +351,13 @@ Image MeshRendererGl::Render(const Scene& scene) {
     const Vec3 up = right.cross(forward);
     const Vec3 keyLight = (toCamera * 0.8f - right * 0.55f + up * 0.6f).normalized();
     const Vec3 fillLight = (toCamera * 0.5f + right * 0.8f - up * 0.1f).normalized();
-    auto colourOf = [&](double v) { return Viridis((v - minValue) / (maxValue - minValue)); };
+    auto colourOf = [&](double v) {
+        if (legend) {
+            const Rgb c = scene.categories[std::clamp<long>(std::lround(v), 0, long(scene.categories.size()) - 1)].color;
+            return Vec3(c.r, c.g, c.b);
+        }
+        return Viridis((v - minValue) / (maxValue - minValue));
+    };
 
     glBindVertexArray(vao);
     for (int k = 0; k < int(scene.panels.size()); ++k) {
@@ -480,7 +493,22 @@ Image MeshRendererGl::Render(const Scene& scene) {
             const float cy = rows > 1 ? cell.y1 + fontSize * 0.1f : panelArea.y1 + fontSize * 0.3f;
             draw->AddText(overlay.TextFont(), fontSize, ImVec2(cx - size.x / 2, cy), ink, caption.c_str());
         }
-        if (coloured) {
+        if (coloured && legend) {
+            // Swatches down the strip, each with its label (its lines beside it).
+            float ly = top + fontSize * 1.2f;
+            const float x0 = panelArea.x1 + fontSize * 0.6f, side = fontSize * 1.1f;
+            if (!scene.colorLabel.empty()) {
+                draw->AddText(overlay.TitleFont(), fontSize, ImVec2(x0, ly), ink, scene.colorLabel.c_str());
+                ly += fontSize * 1.6f;
+            }
+            for (const Category& category : scene.categories) {
+                const ImU32 fill = IM_COL32(int(category.color.r * 255), int(category.color.g * 255), int(category.color.b * 255), 255);
+                draw->AddRectFilled(ImVec2(x0, ly), ImVec2(x0 + side, ly + side), fill);
+                draw->AddRect(ImVec2(x0, ly), ImVec2(x0 + side, ly + side), grey);
+                draw->AddText(overlay.TextFont(), fontSize, ImVec2(x0 + side + fontSize * 0.5f, ly), ink, category.label.c_str());
+                ly += overlay.TextFont()->CalcTextSizeA(fontSize, FLT_MAX, 0, category.label.c_str()).y + fontSize * 0.7f;
+            }
+        } else if (coloured) {
             std::string label = scene.colorLabel;
             if (label.empty())
                 label = colorBy == ColorBy::Displacement ? "displacement\n(mesh units)" : colorBy == ColorBy::Strain ? "spring strain\n(percent)" : "value";

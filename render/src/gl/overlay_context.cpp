@@ -30,6 +30,9 @@ bool OverlayContext::Create(float textScale, std::string* error) {
         config.SizePixels = 13.0f * textScale;
         textFont_ = titleFont_ = io.Fonts->AddFontDefault(&config);
     }
+    // Glyph metrics exist once the atlas is built: text is measured for the layout (wrapped titles,
+    // legends) before the first frame would build it.
+    io.Fonts->Build();
     if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
         *error = "Dear ImGui's OpenGL 3 backend failed to start";
         return false;

@@ -117,6 +117,7 @@ struct PartSolids {
     double sprueDegreesBuilt = 0;    // the sprue's arc as built (whole sample cells)
     double sprueGapMm = 0;           // its width across the wall (the wall, or sprueMm when that is wider)
     double sprueResistanceShare = 0; // the sprue's viscous resistance over the full cavity's (thin-gap flow)
+    std::array<double, 3> sprueMouthMm{};  // the middle of the sprue's opening in the block's bottom face
     // The cavity the silicone fills, ring by ring from the bottom: the wall's mid-surface perimeter and
     // the distance along the wall from the bottom end (mm), for the fill-time estimate (casting.h).
     std::vector<double> cavityPerimeterMm, cavityPathMm, cavityHeightMm;

@@ -792,6 +792,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     for (int i = 0; i < nt; ++i) sprueCells += IsOpening(false, i, nt, slots);
     solids.sprueDegreesBuilt = 360.0 * sprueCells / nt;
     solids.sprueGapMm = gap;
+    solids.sprueMouthMm = {0, sprueRadius, -mold.endWallMm};
     solids.sprueResistanceShare = mold.endWallMm / (solids.sprueDegreesBuilt * std::numbers::pi / 180 * sprueRadius * gap * gap * gap) / cavityResistance;
     solids.shellA = Shell(true, outer, inner, w, part, mold, slots, solids.openingsMm3, solids.sprueMm3, solids.pinsLessHolesMm3);
     solids.shellB = Shell(false, outer, inner, w, part, mold, slots, solids.openingsMm3, solids.sprueMm3, solids.pinsLessHolesMm3);
