@@ -121,10 +121,10 @@ static int RunExport(int argc, char** argv, int first) {
         cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
         if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
         job = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
-        OverrideModelOptions(cli, model, job, ModelUse::RestShape);
+        OverrideModelOptions(cli, model, job, ModelUse::CastPart);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
-        job = BuildJob(cli, shape, model, ModelUse::RestShape);
+        job = BuildJob(cli, shape, model, ModelUse::CastPart);
     }
     const sim::PartDef part = PartDefOf(cli, partOptions, job);
     const sim::MoldDef& mold = partOptions.mold;
@@ -139,6 +139,15 @@ static int RunExport(int argc, char** argv, int first) {
             "z = {:.1f} mm, a hoop stretch of {:.2f}, more than the {:.2f} {} allows (docs/guide/export.md); give --core lost for a core printed to "
             "dissolve or melt out",
             exit.top ? "top" : "bottom", exit.coreAcrossMm, exit.openingMm, exit.zMm, exit.stretch, demouldLimit, sim::Name(material.preset)));
+
+    // The fibres as threads to wind (the models' fibres; the thesis model has none).
+    std::vector<sim::FibreWinding> winding;
+    const sim::FibreDef fibres = job.model == sim::ModelKind::Thesis ? sim::FibreDef{} : job.Shell().fibres;
+    {
+        std::string error;
+        winding = sim::PlanWinding(solids, part, fibres, &error);
+        if (!error.empty()) throw UsageError("cannot wind this design's fibres: " + error);
+    }
 
     // The folder: new or empty, so that a part's files never mix with another's.
     std::error_code ec;
@@ -232,6 +241,25 @@ static int RunExport(int argc, char** argv, int first) {
         pour["handling"] = Json{{"source", "not known for this material: give --viscosity-cps and --pot-life-min for a fill time"}};
     }
     manifest["pour"] = pour;
+    if (!winding.empty()) {
+        Json families = Json::array();
+        for (const sim::FibreWinding& w : winding) {
+            Json bands = Json::array();
+            for (const sim::WindingBand& b : w.bands)
+                bands.push_back(Json{{"from_mm", b.fromMm}, {"to_mm", b.toMm}, {"angle_deg", NumberJson(b.angleDeg)}, {"turns", b.turns},
+                                     {"pitch_mm", NumberJson(b.pitchMm)}});
+            families.push_back(Json{{"family", w.family}, {"hand", w.hand}, {"thread_mm", w.pathMm}, {"turns", w.turns}, {"bands", bands}});
+        }
+        manifest["fibres"] = Json{
+            {"layout", sim::Name(fibres.layout)},
+            {"stiffness_n_per_mm", fibres.stiffnessNPerMm},
+            {"families", families},
+            {"order", winding.size() > 1 ? "the +alpha family first, bottom to top, then the -alpha family over it, bottom to top"
+                                         : "one family, bottom to top"},
+            {"how", "the mold casts the wall without its threads (a two-stage mold with winding guides is not built yet): wind each family on "
+                    "the cured wall from a mark at 0 deg on the bottom end, at the angle and pitch of each band, and brush a thin coat of the "
+                    "same silicone over the threads to hold them"}};
+    }
     // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).
     manifest["sprue_and_vents_mm3"] = solids.openingsMm3;
     manifest["pins_less_holes_mm3"] = solids.pinsLessHolesMm3;

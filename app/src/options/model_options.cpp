@@ -135,13 +135,14 @@ void FillDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def) {
 // The options given, written over a stored def (a design from an archive). For the rest shape only
 // what shapes the part is taken; the rest is refused by RefuseWithoutEffect or here.
 void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ThesisDef& def, ModelUse use) {
-    if (use == ModelUse::RestShape) return;
+    if (use == ModelUse::RestShape || use == ModelUse::CastPart) return;
     cli.CopyGivenFields(o.thesis, def.params);
     if (cli.Given("--load")) def.params.load = ThesisLoad(o.load, "--load");
 }
 void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, ModelUse use) {
     cli.CopyGivenFields(o.shell.geometry, def.geometry);
-    if (use == ModelUse::RestShape) {
+    if (use == ModelUse::CastPart) cli.CopyGivenFields(o.shell.fibres, def.fibres);
+    if (use == ModelUse::RestShape || use == ModelUse::CastPart) {
         cli.RefuseIfGiven("--material", "does not go with --from: the material comes from the archive");
         cli.RefuseFields(o.materialFields, "does not go with --from: the material comes from the archive");
         return;
@@ -162,7 +163,7 @@ void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, Mode
 
 // Refuses the def's options that are given but have no effect on it for `use`.
 void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ThesisDef& def, ModelUse use) {
-    if (use == ModelUse::RestShape) {
+    if (use == ModelUse::RestShape || use == ModelUse::CastPart) {
         for (const auto& key : GivenKeys(cli, o.thesis))
             cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (the part is the rest shape)");
         cli.RefuseIfGiven("--load", "does not apply here: nothing is simulated (the part is the rest shape)");
@@ -173,10 +174,11 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Thesi
 }
 void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ShellDef& def, ModelUse use) {
     const std::string nothing = "does not apply here: nothing is simulated (the part is the rest shape, its geometry and silicone)";
-    if (use == ModelUse::RestShape) {
-        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.fibres),
-                                 GivenKeys(cli, o.shell.envelope)})
+    if (use == ModelUse::RestShape || use == ModelUse::CastPart) {
+        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.envelope)})
             for (const auto& key : keys) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
+        if (use == ModelUse::RestShape)  // export winds the fibres; a drawn solid has none
+            for (const auto& key : GivenKeys(cli, o.shell.fibres)) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
         cli.RefuseIfGiven("--load", nothing);
         cli.RefuseIfGiven("--ends", nothing);
         for (const auto& key : GivenKeys(cli, o.materialFields))

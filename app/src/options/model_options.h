@@ -26,7 +26,8 @@ enum class ModelUse {
     Simulate,   // one evaluation under the given load (simulate)
     Weighed,    // evaluations whose silicone is weighed too (characterize: work per gram)
     BothLoads,  // the thesis model under inflation and the stretch test, a shell model under its load (render)
-    RestShape,  // nothing simulated: the rest shape, its geometry and its silicone (export, render --solid)
+    RestShape,  // nothing simulated: the rest shape, its geometry and its silicone (render --solid)
+    CastPart,   // the rest shape, its silicone and its fibres, to wind (export)
 };
 
 // Adds the model options (thesis constants unless `withThesis` is false).

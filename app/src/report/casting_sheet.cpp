@@ -83,6 +83,24 @@ std::string CastingSheet(const Json& m) {
     if (!how.empty()) how[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(how[0])));
     out += "Open the shells along the split plane. " + how;
     out += ". Trim the sprue's and the vents' tabs from the ends.\n";
+    if (m.contains("fibres")) {
+        const Json& f = m["fibres"];
+        out += fmt::format("\n## {}. Fibres\n\n{} ({} N/mm per family): {}. Winding order: {}.\n\n", m.contains("fittings") ? 7 : 6,
+                           f["layout"].get<std::string>(), Number(f, "stiffness_n_per_mm"), f["how"].get<std::string>(), f["order"].get<std::string>());
+        out += "| family | hand | band (mm from the bottom) | angle to the meridian (deg) | turns | pitch (mm per turn) |\n|---|---|---|---|---|---|\n";
+        for (const Json& family : f["families"])
+            for (const Json& b : family["bands"]) {
+                const double angle = Number(b, "angle_deg"), pitch = Number(b, "pitch_mm");
+                out += fmt::format("| {} | {} | {:.1f} to {:.1f} | {} | {:.2f} | {} |\n", family["family"].get<std::string>(),
+                                   family["hand"].get<std::string>(), Number(b, "from_mm"), Number(b, "to_mm"),
+                                   std::isfinite(angle) ? fmt::format("{:.1f}", angle) : "by sector", Number(b, "turns"),
+                                   std::isfinite(pitch) ? fmt::format("{:.1f}", pitch) : "straight");
+            }
+        for (const Json& family : f["families"])
+            out += fmt::format("\nThe {} thread: {:.0f} mm on the wall, {:.2f} turns.", family["family"].get<std::string>(), Number(family, "thread_mm"),
+                               Number(family, "turns"));
+        out += "\n";
+    }
     if (m.contains("fittings"))
         out += fmt::format("\n## 6. Fittings\n\nPush fitting_bottom (its {:g} mm port for the air line) and fitting_top into the ends, bond them "
                            "with a silicone adhesive, and clamp over the inserts.\n",

@@ -49,4 +49,25 @@ struct PourPlan {
 PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material, const CastingDef& casting,
                   const PourDef& pour = {});
 
+// How a design's fibres are wound onto its wall (the models' fibres as threads): each family as
+// one continuous thread from the bottom end to the top at the design's angle to the meridian,
+// integrated over the wall's mid-surface ring by ring (on a bulb the thread turns faster where the
+// radius is smaller: dtheta = tan(alpha) ds / r).
+struct WindingBand {
+    double fromMm = 0, toMm = 0;  // heights, from the bottom end
+    double angleDeg = 0;          // to the meridian; NaN for sector angles (they change around the tube)
+    double turns = 0;             // around the axis over the band
+    double pitchMm = 0;           // height per turn; NaN where the thread runs straight up (no turns)
+};
+struct FibreWinding {
+    std::string family;  // "+alpha" or "-alpha" (the models' names)
+    std::string hand;    // "left-handed" (+alpha: clockwise seen from the top, going up), "right-handed", "straight" (meridian)
+    double pathMm = 0;   // the thread's length on the wall, mm
+    double turns = 0;    // around the axis, bottom to top
+    std::vector<WindingBand> bands;
+};
+// Empty for a design without fibres. Hoop fibres (90 degrees) are rings, not a thread wound up the
+// tube: `error` says so, and so it does for angles of 89 degrees or more.
+std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, std::string* error);
+
 }  // namespace sim

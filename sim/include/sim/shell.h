@@ -140,6 +140,10 @@ struct FibreDef {
     bool plus = true, minus = true;       // which families are on (+alpha, and a braid's -alpha): GA genes
 };
 
+// The angle to the meridian (degrees) of the +alpha family at a rest point: by band of its height
+// (a fraction of the length), by sector of its angle (radians from +x), or the def's one angle.
+double FibreAngleDegAt(const FibreDef& fibres, double heightFraction, double angle);
+
 struct SolverDef {
     double tolerance = 1e-8;   // converged when the largest free-node force is below this x mu h l
     int maxIterations = 200;   // Newton iterations per load step (wrinkled walls need 100+)

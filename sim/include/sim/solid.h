@@ -121,6 +121,10 @@ struct PartSolids {
     // The cavity the silicone fills, ring by ring from the bottom: the wall's mid-surface perimeter and
     // the distance along the wall from the bottom end (mm), for the fill-time estimate (casting.h).
     std::vector<double> cavityPerimeterMm, cavityPathMm, cavityHeightMm;
+    // That mid-surface's samples, ring j (from the bottom) sample i (from +x counter-clockwise) at
+    // j * midAround + i: where the fibres lie (the models put them in the wall's mid-surface).
+    std::vector<std::array<double, 3>> midSurfaceMm;
+    int midAround = 0;
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
     double drainInBlockMm3 = 0;      // a lost core's drain within the block (in no part)
     double drainMm = 0;              // its diameter as built

@@ -78,4 +78,81 @@ PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& 
     return plan;
 }
 
+std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, std::string* error) {
+    std::vector<FibreWinding> out;
+    if (fibres.layout == FibreLayout::None || (!fibres.plus && !fibres.minus)) return out;
+    const int nt = solids.midAround, nz = nt > 0 ? static_cast<int>(solids.midSurfaceMm.size()) / nt : 0;
+    if (nz < 2) {
+        *error = "no wall to wind on";
+        return {};
+    }
+    const double pi = std::numbers::pi, degree = pi / 180;
+    // The mid-surface at ring j and angle theta, interpolated around the ring.
+    auto at = [&](int j, double theta) {
+        double u = theta / (2 * pi) * nt;
+        u -= nt * std::floor(u / nt);
+        const int i = static_cast<int>(u) % nt;
+        const double f = u - std::floor(u);
+        const auto& a = solids.midSurfaceMm[static_cast<size_t>(j) * nt + i];
+        const auto& b = solids.midSurfaceMm[static_cast<size_t>(j) * nt + (i + 1) % nt];
+        return std::array<double, 3>{a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])};
+    };
+    // The bands as the design has them (the model's angles by band, or one for the whole length).
+    std::vector<std::pair<double, double>> ranges;
+    if (!fibres.bands.empty())
+        for (const FibreBand& band : fibres.bands) ranges.push_back({band.from, band.to});
+    else ranges.push_back({0, 1});
+    const bool sectors = fibres.bands.empty() && !fibres.sectorAnglesDeg.empty();
+    std::vector<std::pair<const char*, double>> families;  // +alpha winds theta down going up (the hoop direction is normal x meridian)
+    const bool braid = fibres.layout == FibreLayout::Braid;
+    if (fibres.layout == FibreLayout::Meridian) families.push_back({"+alpha", 0});
+    else {
+        if (fibres.plus) families.push_back({"+alpha", -1});
+        if (braid && fibres.minus) families.push_back({"-alpha", 1});
+    }
+    for (const auto& [name, sign] : families) {
+        FibreWinding w;
+        w.family = name;
+        double theta = 0;
+        size_t band = 0;
+        WindingBand current{0, 0, NAN, 0, NAN};
+        for (int j = 0; j + 1 < nz; ++j) {
+            const auto p0 = at(j, theta);
+            const double t = 0.5 * (p0[2] + at(j + 1, theta)[2]) / part.lengthMm;
+            double alpha = fibres.layout == FibreLayout::Meridian ? 0
+                           : fibres.layout == FibreLayout::Hoop   ? 90
+                                                                  : FibreAngleDegAt(fibres, t, theta);
+            if (std::fabs(alpha) >= 89) {
+                *error = "fibres at 89 degrees or more to the meridian are rings around the tube, not a thread wound along it: wind them as a "
+                         "close helix by hand";
+                return {};
+            }
+            // The meridian step here, and the turn it brings.
+            const auto p1 = at(j + 1, theta);
+            const double ds = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) + (p1[2] - p0[2]) * (p1[2] - p0[2]));
+            const double r = 0.5 * (std::hypot(p0[0], p0[1]) + std::hypot(p1[0], p1[1]));
+            const double dtheta = sign * std::tan(alpha * degree) * ds / r;
+            w.pathMm += ds / std::cos(alpha * degree);
+            w.turns += std::fabs(dtheta) / (2 * pi);
+            theta += dtheta;
+            // Band by band.
+            while (band + 1 < ranges.size() && t > ranges[band].second) {
+                current.toMm = p0[2];
+                current.pitchMm = current.turns > 1e-9 ? (current.toMm - current.fromMm) / current.turns : NAN;
+                w.bands.push_back(current);
+                ++band;
+                current = {p0[2], 0, NAN, 0, NAN};
+            }
+            current.angleDeg = sectors ? NAN : alpha;
+            current.turns += std::fabs(dtheta) / (2 * pi);
+        }
+        current.toMm = part.lengthMm;
+        current.pitchMm = current.turns > 1e-9 ? (current.toMm - current.fromMm) / current.turns : NAN;
+        w.bands.push_back(current);
+        w.hand = w.turns < 1e-9 ? "straight" : sign < 0 ? "left-handed" : "right-handed";
+        out.push_back(w);
+    }
+    return out;
+}
+
 }  // namespace sim

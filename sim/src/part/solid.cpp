@@ -760,6 +760,8 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     Grid middle = inner;
     for (size_t k = 0; k < middle.p.size(); ++k)
         for (int c = 0; c < 3; ++c) middle.p[k][c] = 0.5 * (inner.p[k][c] + outer.p[k][c]);
+    solids.midSurfaceMm = middle.p;
+    solids.midAround = nt;
     for (int j = 0; j < nz; ++j) {
         solids.cavityPerimeterMm[j] = RingPerimeter(middle, j);
         solids.cavityHeightMm[j] = middle.At(j, 0)[2];

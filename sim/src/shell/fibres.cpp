@@ -14,22 +14,6 @@ Eigen::Vector3d At(const Positions& p, int v) { return {p.x[v], p.y[v], p.z[v]};
 
 constexpr double kDegree = std::numbers::pi / 180;
 
-// The fibre angle at a rest point: by band of its height, by sector of its angle, or the def's.
-double AngleAt(const FibreDef& f, double heightFraction, double angle) {
-    if (!f.bands.empty()) {
-        for (const FibreBand& band : f.bands)
-            if (heightFraction >= band.from && heightFraction <= band.to) return band.angleDeg;
-        return f.bands.back().angleDeg;  // unreachable for a def that passed ShellDefError
-    }
-    if (!f.sectorAnglesDeg.empty()) {
-        double turn = angle / (2 * std::numbers::pi);
-        turn -= std::floor(turn);
-        const int sectors = static_cast<int>(f.sectorAnglesDeg.size());
-        return f.sectorAnglesDeg[static_cast<size_t>(std::min(sectors - 1, static_cast<int>(turn * sectors)))];
-    }
-    return f.angleDeg;
-}
-
 // The rest triangle's tangent frame, as MakeMembraneRest builds it: t1 along the first edge.
 void RestFrame(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1, const Eigen::Vector3d& x2, Eigen::Vector3d& t1, Eigen::Vector3d& t2,
                Eigen::Vector3d& normal) {
@@ -48,6 +32,21 @@ void MeridianAndHoop(const Eigen::Vector3d& normal, Eigen::Vector3d& meridian, E
 }
 
 }  // namespace
+
+double FibreAngleDegAt(const FibreDef& f, double heightFraction, double angle) {
+    if (!f.bands.empty()) {
+        for (const FibreBand& band : f.bands)
+            if (heightFraction >= band.from && heightFraction <= band.to) return band.angleDeg;
+        return f.bands.back().angleDeg;  // unreachable for a def that passed ShellDefError
+    }
+    if (!f.sectorAnglesDeg.empty()) {
+        double turn = angle / (2 * std::numbers::pi);
+        turn -= std::floor(turn);
+        const int sectors = static_cast<int>(f.sectorAnglesDeg.size());
+        return f.sectorAnglesDeg[static_cast<size_t>(std::min(sectors - 1, static_cast<int>(turn * sectors)))];
+    }
+    return f.angleDeg;
+}
 
 double FibreDensity(const Matrix32& F, const double a[2], double stiffness, Vector6* gradient, Matrix6* hessian, bool tautAtKink) {
     const Eigen::Vector3d d = F.col(0) * a[0] + F.col(1) * a[1];
@@ -99,7 +98,7 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
         switch (f.layout) {
             case FibreLayout::Meridian: angle = 0; break;
             case FibreLayout::Hoop: angle = 90; break;
-            default: angle = AngleAt(f, centroid.z() / lengthMm, std::atan2(centroid.y(), centroid.x()));
+            default: angle = FibreAngleDegAt(f, centroid.z() / lengthMm, std::atan2(centroid.y(), centroid.x()));
         }
         std::vector<double> angles;
         if (f.layout == FibreLayout::Braid) {

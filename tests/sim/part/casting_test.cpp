@@ -138,3 +138,65 @@ TEST_F(CastingCli, ExportWritesThePourAndTheStepsInOrder) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
+
+TEST(Casting, FibresAreWoundAsHelicesWithTheClosedFormTurnsAndLength) {
+    const sim::PartDef part;  // R 5 mm, L 150 mm: the mid-surface is the 5 mm cylinder
+    const sim::PartSolids solids = Cylinder();
+    sim::FibreDef braid;
+    braid.layout = sim::FibreLayout::Braid;
+    braid.angleDeg = 40;
+    std::string error;
+    const auto winding = sim::PlanWinding(solids, part, braid, &error);
+    ASSERT_EQ(error, "");
+    ASSERT_EQ(winding.size(), 2u);
+    const double alpha = 40 * std::numbers::pi / 180;
+    // Between samples the thread runs on the 120-gon's chords, up to 0.03 % inside the circle.
+    const double chords = 5e-4;
+    for (const auto& w : winding) {
+        EXPECT_NEAR(w.turns, std::tan(alpha) * 150 / (2 * std::numbers::pi * 5), chords * w.turns) << w.family;
+        EXPECT_NEAR(w.pathMm, 150 / std::cos(alpha), 1e-9) << "the meridian steps are exact";
+        ASSERT_EQ(w.bands.size(), 1u);
+        EXPECT_NEAR(w.bands[0].pitchMm, 2 * std::numbers::pi * 5 / std::tan(alpha), chords * w.bands[0].pitchMm);
+    }
+    EXPECT_EQ(winding[0].hand, "left-handed");
+    EXPECT_EQ(winding[1].hand, "right-handed");
+    // Bands wind at their own angles; a single family is one thread; meridian threads run straight.
+    sim::FibreDef banded;
+    banded.layout = sim::FibreLayout::Single;
+    banded.bands = {{0, 0.5, 20}, {0.5, 1, 60}};
+    const auto single = sim::PlanWinding(solids, part, banded, &error);
+    ASSERT_EQ(single.size(), 1u);
+    ASSERT_EQ(single[0].bands.size(), 2u);
+    EXPECT_NEAR(single[0].bands[0].toMm, 75, 150.0 / 120 + 1e-9) << "the band's end at the ring nearest it";
+    EXPECT_NEAR(single[0].bands[1].pitchMm, 2 * std::numbers::pi * 5 / std::tan(60 * std::numbers::pi / 180), chords * 18.14);
+    EXPECT_NEAR(single[0].bands[0].pitchMm, 2 * std::numbers::pi * 5 / std::tan(20 * std::numbers::pi / 180), chords * 86.31);
+    sim::FibreDef meridian;
+    meridian.layout = sim::FibreLayout::Meridian;
+    const auto straight = sim::PlanWinding(solids, part, meridian, &error);
+    ASSERT_EQ(straight.size(), 1u);
+    EXPECT_EQ(straight[0].hand, "straight");
+    EXPECT_NEAR(straight[0].pathMm, 150, 1e-9);
+    // Hoop fibres are rings: they are not wound along the tube, and the export says so.
+    sim::FibreDef hoop;
+    hoop.layout = sim::FibreLayout::Hoop;
+    EXPECT_TRUE(sim::PlanWinding(solids, part, hoop, &error).empty());
+    EXPECT_THAT(error, HasSubstr("rings around the tube"));
+    // Families switched off (a GA gene) leave nothing to wind.
+    braid.plus = braid.minus = false;
+    error.clear();
+    EXPECT_TRUE(sim::PlanWinding(solids, part, braid, &error).empty());
+    EXPECT_EQ(error, "");
+}
+
+TEST_F(CastingCli, AFibreDesignGetsItsWindingPlanAndHoopFibresAreRefused) {
+    Result r = Run("export --model shell --shape cylinder --fibres braid --fibre-angle-deg 50 --out " + Path("braid"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto manifest = nlohmann::json::parse(Slurp(dir_ / "braid" / "manifest.json"));
+    ASSERT_EQ(manifest["fibres"]["families"].size(), 2u);
+    EXPECT_NEAR(manifest["fibres"]["families"][0]["turns"].get<double>(), std::tan(50 * std::numbers::pi / 180) * 150 / (2 * std::numbers::pi * 5), 3e-3);
+    EXPECT_THAT(Slurp(dir_ / "braid" / "casting.md"), HasSubstr("Winding order: the +alpha family first"));
+    r = Run("export --model shell --shape cylinder --fibres hoop --out " + Path("hoop"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("cannot wind this design's fibres"));
+    EXPECT_FALSE(fs::exists(dir_ / "hoop"));
+}
