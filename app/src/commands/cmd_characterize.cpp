@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "commands/registry.h"
+#include "formats/archive.h"
 #include "evaluation/characterize.h"
 #include "formats/csv.h"
 #include "formats/evaluation_log.h"
@@ -62,6 +63,12 @@ static int RunCharacterize(int argc, char** argv, int first) {
     int points = 6, threads = 0;
     AddShapeOptions(cli, shape);
     AddModelOptions(cli, model);
+    std::string from;
+    int index = 0;
+    cli.Group("Design from an archive");
+    cli.Text("--from", from, "characterize a stored design: an archive (DIR/evaluations.capnp) with --index; its model settings are kept")
+        ->type_name("ARCHIVE");
+    cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
     cli.Group("Curves");
     cli.Text("--pressures-kpa", pressuresText, "the isobaric curves' pressures, increasing; the highest is the isometric and free-stroke curves' end")
         ->type_name("LIST");
@@ -72,14 +79,35 @@ static int RunCharacterize(int argc, char** argv, int first) {
     cli.Flag("--overwrite", overwrite, "replace the files of an earlier characterize in --out");
     cli.Examples(
         "  actuator characterize --shape cylinder --fibres braid --fibre-angle-deg 30 --out curves/braid\n"
-        "  actuator characterize --shape sine --amplitude 1.3 --fibres single --fibre-angle-deg 40 --twist held --pressures-kpa 2,4 --out curves/held\n");
+        "  actuator characterize --shape sine --amplitude 1.3 --fibres single --fibre-angle-deg 40 --twist held --pressures-kpa 2,4 --out curves/held\n"
+        "  actuator characterize --from runs/pareto/evaluations.capnp --index 91 --pressures-kpa 0.2,0.4 --out curves/best\n");
     if (!cli.Parse(argc, argv, first)) return 0;
 
     if (!cli.Given("--out")) throw UsageError("--out DIR is required (where the table and the plots go)");
     for (const char* option : {"--load", "--pressure-kpa", "--stroke-percent", "--stroke-mm", "--volume-ratio", "--isobaric-points"})
         cli.RefuseIfGiven(option, "is set by characterize at each point of its curves (give --pressures-kpa)");
     const std::vector<double> pressures = ParsePressures(pressuresText);
-    const sim::EvalJob base = BuildJob(cli, shape, model, ModelUse::Weighed);
+    sim::EvalJob base;
+    if (cli.Given("--from")) {
+        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
+        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
+        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
+        base = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
+        // The design and its model are the record's; the load is characterize's to set at each point
+        // (a record may be a held stroke or a blocked test).
+        if (sim::ModelOf(base).physical) {
+            sim::LoadDef& load = base.Shell().load;
+            load.kind = sim::ShellLoad::Inflate;
+            load.forceN = 0;
+            load.isobaricPoints = 0;
+            load.strokePercent = load.strokeMm = 0;
+        }
+        OverrideModelOptions(cli, model, base, ModelUse::Weighed);
+        if (const std::string error = sim::JobError(base); !error.empty()) throw UsageError(error);
+    } else {
+        cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
+        base = BuildJob(cli, shape, model, ModelUse::Weighed);
+    }
     if (const CharacterizeRefusal refusal = CharacterizeJobError(base); !refusal.reason.empty())
         throw UsageError(refusal.Text(OptionName(refusal.key.c_str())));
 
@@ -93,7 +121,7 @@ static int RunCharacterize(int argc, char** argv, int first) {
     folders.Create(folder, "--out");
     for (const auto& name : files) {
         CheckOutputPath((folder / name).string(), "--out");
-        RefuseOutputThatIsInput((folder / name).string(), "--out", {shape.meshFile, shape.offsets});
+        RefuseOutputThatIsInput((folder / name).string(), "--out", {shape.meshFile, shape.offsets, from});
     }
 
     const CharacteristicCurves curves = Characterize(base, pressures, points, threads);

@@ -296,6 +296,14 @@ TEST_F(ShellCli, CharacterizeDrawsTheMusclesCurvesFromItsOwnTests) {
     ASSERT_EQ(Run("characterize" + design + " --pressures-kpa 5 --points 3 --overwrite --out " + Path("c")).exitCode, 0);
     EXPECT_EQ(app::Table::Read(Path("c/evaluations.csv")).Rows(), 3u + 1u);
 
+    // A stored design is characterized as it was simulated: the archive's record 0 is this design's
+    // free inflation at 5 kPa, with the same model settings.
+    const Result stored = Run("characterize --from " + Path("c/evaluations.capnp") + " --index 0 --pressures-kpa 5 --points 3 --out " + Path("s"));
+    ASSERT_EQ(stored.exitCode, 0) << stored.err;
+    EXPECT_EQ(Slurp(dir_ / "s" / "characteristic.csv"), Slurp(dir_ / "c" / "characteristic.csv"));
+    EXPECT_EQ(Run("characterize --from " + Path("c/evaluations.capnp") + " --pressures-kpa 5 --out " + Path("t")).exitCode, 2) << "--index is needed";
+    EXPECT_EQ(Run("characterize --from " + Path("c/evaluations.capnp") + " --index 0 --shape sine --out " + Path("t")).exitCode, 2);
+
     for (const std::string& bad : {std::string("characterize --model thesis --shape sine --out ") + Path("t"),
                                    "characterize" + design + " --pressures-kpa 10,5 --out " + Path("t"),
                                    "characterize" + design + " --pressure-kpa 10 --out " + Path("t"), "characterize" + design}) {
