@@ -47,7 +47,7 @@ Json PrintHint(const std::string& name, const std::array<double, 6>& b, const st
     const double dx = b[3] - b[0], dy = b[4] - b[1], dz = b[5] - b[2];
     std::string orientation;
     std::array<double, 3> size{};  // on the bed: two sides, then the height
-    if (name.rfind("mold_shell", 0) == 0) {
+    if (name.find("_shell_") != std::string::npos) {
         orientation = "split face (y = 0) on the bed, cavity facing up";
         size = {dx, dz, dy};
     } else if (name == "mold_core") {
@@ -71,7 +71,9 @@ static int RunExport(int argc, char** argv, int first) {
                       "handle through each end of the block), mold_shell_a.stl and mold_shell_b.stl (the block around the actuator split "
                       "through its axis at y = 0, with registration pins on A and holes in B, a sprue in A's bottom wall to fill from below "
                       "and four vents in the top wall), "
-                      "with --fittings fitting_bottom.stl and fitting_top.stl (end plugs, the bottom one bored for the air line), "
+                      "with --fittings fitting_bottom.stl and fitting_top.stl (end plugs, the bottom one bored for the air line), for a fibre design "
+                      "the first stage's mold (stage1_shell_a.stl, stage1_shell_b.stl: the wall's inner half with guide grooves along the "
+                      "threads, stage1_layer.stl) and winding_guides.png, "
                       "mold_assembly.png (the parts side by side), casting.md (what to print, mix and pour, in order) and manifest.json "
                       "(each file's volume in mm^3, bounds, triangles, print orientation; the silicone to mix and the fill's time). The design is given as for simulate. Under --model thesis one design unit is --unit-mm "
                       "millimetres (the 30-turn mesh is 30 units long); under membrane and shell the geometry options give radius, length "
@@ -148,6 +150,11 @@ static int RunExport(int argc, char** argv, int first) {
         winding = sim::PlanWinding(solids, part, fibres, &error);
         if (!error.empty()) throw UsageError("cannot wind this design's fibres: " + error);
     }
+    // A fibre design is cast in two stages: the wall's inner half in a first mold whose cavity has
+    // ribs along the threads (the layer's guide grooves), wound, then overmoulded in the full mold.
+    const bool twoStages = !winding.empty();
+    const sim::PartDef firstPart = twoStages ? sim::FirstStagePart(part, winding) : part;
+    const sim::PartSolids firstStage = twoStages ? BuildSolids(job, firstPart, mold) : sim::PartSolids{};
 
     // The folder: new or empty, so that a part's files never mix with another's.
     std::error_code ec;
@@ -162,6 +169,8 @@ static int RunExport(int argc, char** argv, int first) {
     std::vector<std::pair<std::string, const sim::TriangleMesh*>> files{
         {"actuator", &solids.actuator}, {"mold_core", &solids.core}, {"mold_shell_a", &solids.shellA}, {"mold_shell_b", &solids.shellB}};
     if (partOptions.fittings.enabled) files.insert(files.end(), {{"fitting_bottom", &solids.fittingBottom}, {"fitting_top", &solids.fittingTop}});
+    if (twoStages)
+        files.insert(files.end(), {{"stage1_layer", &firstStage.actuator}, {"stage1_shell_a", &firstStage.shellA}, {"stage1_shell_b", &firstStage.shellB}});
     Json manifest;
     manifest["units"] = "mm";
     Json list = Json::array();
@@ -175,8 +184,8 @@ static int RunExport(int argc, char** argv, int first) {
                             {"bounds_mm", Json{{"min", {b[0], b[1], b[2]}}, {"max", {b[3], b[4], b[5]}}}},
                             {"triangles", mesh->triangles.size()},
                             {"vertices", mesh->vertices.size()}});
-        if (name == "actuator") {
-            list.back()["print"] = Json{{"orientation", "cast in silicone, not printed"}};
+        if (name == "actuator" || name == "stage1_layer") {
+            list.back()["print"] = Json{{"orientation", name == "actuator" ? "cast in silicone, not printed" : "the first stage's silicone layer, not printed"}};
             continue;
         }
         list.back()["print"] = PrintHint(name, b, printer);
@@ -186,6 +195,11 @@ static int RunExport(int argc, char** argv, int first) {
         auto renderer = MakeRenderer(1400, 1000);
         WritePng((fs::path(out) / "mold_assembly.png").string(),
                  renderer->Render(ExplodedMoldScene(solids, fmt::format("mold for {}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm))), 6);
+    }
+    if (twoStages) {  // the layer with its grooves and the threads to wind in them
+        auto renderer = MakeRenderer(1400, 1000);
+        WritePng((fs::path(out) / "winding_guides.png").string(),
+                 renderer->Render(WindingGuidesScene(firstStage, winding, fmt::format("winding guides for {}", ShapeTitle(job.shape)))), 6);
     }
     manifest["files"] = list;
     manifest["printer_mm"] = {printer[0], printer[1], printer[2]};
@@ -215,32 +229,44 @@ static int RunExport(int argc, char** argv, int first) {
     if (cli.Given("--viscosity-cps")) casting.mixedViscosityPaS = viscosityCps / 1000, casting.source = "given (--viscosity-cps)";
     if (cli.Given("--pot-life-min")) casting.potLifeMin = potLifeMin;
     const sim::PourDef pourDef;
-    const sim::PourPlan plan = sim::PlanPour(solids, part, mold, material, casting, pourDef);
-    Json pour{{"orientation", "upright: the axis vertical, the bottom end (z = 0) down, the sprue in shell A's bottom end wall, the vents up"},
-              {"sprue", Json{{"where", "shell A, bottom end wall, centred at 90 deg"},
-                             {"arc_deg", solids.sprueDegreesBuilt},
-                             {"across_mm", solids.sprueGapMm},
-                             {"volume_mm3", solids.sprueMm3},
-                             {"share_of_fill_resistance", solids.sprueResistanceShare}}},
-              {"vents", Json{{"where", "top end wall at 45 and 135 deg (shell A), 225 and 315 deg (shell B)"}, {"arc_deg", mold.ventDegrees}}},
-              {"silicone_ml", Json{{"cavity", plan.cavityMl}, {"sprue_and_vents", plan.slotsMl}, {"to_mix", plan.mixMl}}},
-              {"margin", fmt::format("{:g} % of cavity and slots, at least {:g} ml", 100 * pourDef.marginFraction, pourDef.marginMinMl)},
-              {"to_mix_g", Json{{"total", plan.mixG}, {"part_a", plan.partAG}, {"part_b", plan.partBG}}},
-              {"mix_ratio_a_to_b_by_weight", fmt::format("{:g}:1", casting.partsAPerB)}};
-    if (casting.mixedViscosityPaS > 0) {
-        pour["handling"] = Json{{"mixed_viscosity_cps", casting.mixedViscosityPaS * 1000},
-                                {"pot_life_min", NumberJson(casting.potLifeMin > 0 ? casting.potLifeMin : NAN)},
-                                {"cure_h", NumberJson(casting.cureHours > 0 ? casting.cureHours : NAN)},
-                                {"source", casting.source}};
-        pour["fill"] = Json{{"gravity_min", NumberJson(plan.gravityMin)},
-                            {"funnel_above_top_mm", pourDef.funnelAboveTopMm},
-                            {"syringe_min", NumberJson(plan.syringeMin)},
-                            {"syringe_kpa", pourDef.syringeKpa},
-                            {"method", casting.potLifeMin > 0 ? (plan.gravity ? "gravity" : plan.tooSlow ? "too slow" : "syringe") : "either"}};
-    } else {
-        pour["handling"] = Json{{"source", "not known for this material: give --viscosity-cps and --pot-life-min for a fill time"}};
-    }
-    manifest["pour"] = pour;
+    // The pour of a mold (the only one, or the second stage over the wound layer): from below, what
+    // to mix, the fill's time.
+    auto pourJson = [&](const sim::PourPlan& plan, const sim::PartSolids& mouldSolids, const char* shell) {
+        Json pour{{"orientation", fmt::format("upright: the axis vertical, the bottom end (z = 0) down, the sprue in {}'s bottom end wall, the vents up", shell)},
+                  {"sprue", Json{{"where", fmt::format("{}, bottom end wall, centred at 90 deg", shell)},
+                                 {"arc_deg", mouldSolids.sprueDegreesBuilt},
+                                 {"across_mm", mouldSolids.sprueGapMm},
+                                 {"volume_mm3", mouldSolids.sprueMm3},
+                                 {"share_of_fill_resistance", mouldSolids.sprueResistanceShare}}},
+                  {"vents", Json{{"where", "top end wall at 45 and 135 deg (shell A), 225 and 315 deg (shell B)"}, {"arc_deg", mold.ventDegrees}}},
+                  {"silicone_ml", Json{{"cavity", plan.cavityMl}, {"sprue_and_vents", plan.slotsMl}, {"to_mix", plan.mixMl}}},
+                  {"margin", fmt::format("{:g} % of cavity and slots, at least {:g} ml", 100 * pourDef.marginFraction, pourDef.marginMinMl)},
+                  {"to_mix_g", Json{{"total", plan.mixG}, {"part_a", plan.partAG}, {"part_b", plan.partBG}}},
+                  {"mix_ratio_a_to_b_by_weight", fmt::format("{:g}:1", casting.partsAPerB)}};
+        if (casting.mixedViscosityPaS > 0) {
+            pour["handling"] = Json{{"mixed_viscosity_cps", casting.mixedViscosityPaS * 1000},
+                                    {"pot_life_min", NumberJson(casting.potLifeMin > 0 ? casting.potLifeMin : NAN)},
+                                    {"cure_h", NumberJson(casting.cureHours > 0 ? casting.cureHours : NAN)},
+                                    {"source", casting.source}};
+            pour["fill"] = Json{{"gravity_min", NumberJson(plan.gravityMin)},
+                                {"funnel_above_top_mm", pourDef.funnelAboveTopMm},
+                                {"syringe_min", NumberJson(plan.syringeMin)},
+                                {"syringe_kpa", pourDef.syringeKpa},
+                                {"method", casting.potLifeMin > 0 ? (plan.gravity ? "gravity" : plan.tooSlow ? "too slow" : "syringe") : "either"}};
+        } else {
+            pour["handling"] = Json{{"source", "not known for this material: give --viscosity-cps and --pot-life-min for a fill time"}};
+        }
+        return pour;
+    };
+    const sim::PourPlan plan = twoStages ? sim::PlanPour(solids, part, mold, material, casting, pourDef, firstPart.layerMm, sim::MeshVolume(firstStage.actuator))
+                                         : sim::PlanPour(solids, part, mold, material, casting, pourDef);
+    manifest["pour"] = pourJson(plan, solids, "mold_shell_a");
+    const sim::PourPlan firstPlan = twoStages ? sim::PlanPour(firstStage, firstPart, mold, material, casting, pourDef) : sim::PourPlan{};
+    if (twoStages)
+        manifest["first_stage"] = Json{{"layer_mm", firstPart.layerMm},
+                                       {"guides", Json{{"depth_mm", firstPart.guides.depthMm}, {"width_mm", firstPart.guides.widthMm}}},
+                                       {"files", {"mold_core" + extension, "stage1_shell_a" + extension, "stage1_shell_b" + extension}},
+                                       {"pour", pourJson(firstPlan, firstStage, "stage1_shell_a")}};
     if (!winding.empty()) {
         Json families = Json::array();
         for (const sim::FibreWinding& w : winding) {
@@ -256,9 +282,9 @@ static int RunExport(int argc, char** argv, int first) {
             {"families", families},
             {"order", winding.size() > 1 ? "the +alpha family first, bottom to top, then the -alpha family over it, bottom to top"
                                          : "one family, bottom to top"},
-            {"how", "the mold casts the wall without its threads (a two-stage mold with winding guides is not built yet): wind each family on "
-                    "the cured wall from a mark at 0 deg on the bottom end, at the angle and pitch of each band, and brush a thin coat of the "
-                    "same silicone over the threads to hold them"}};
+            {"how", fmt::format("wound on the first stage's layer (the wall's inner {:g} mm, on the core) in its guide grooves ({:g} mm deep, "
+                                "{:g} mm wide), each family from its groove's start at 0 deg on the bottom end, then overmoulded",
+                                firstPart.layerMm, firstPart.guides.depthMm, firstPart.guides.widthMm)}};
     }
     // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).
     manifest["sprue_and_vents_mm3"] = solids.openingsMm3;
@@ -279,8 +305,8 @@ static int RunExport(int argc, char** argv, int first) {
     WriteFileAtomically((fs::path(out) / "casting.md").string(), CastingSheet(manifest));
     batch.Commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 3}, {"seconds", seconds}};
-    if (plan.tooSlow)
+    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 3 + (twoStages ? 1 : 0)}, {"seconds", seconds}};
+    if (plan.tooSlow || firstPlan.tooSlow)
         summary["warning_pour"] = fmt::format("{:.1f} min to fill by syringe, more than half the {:g} min pot life (casting.md, pour)", plan.syringeMin,
                                               casting.potLifeMin);
     if (!tooLarge.empty()) {

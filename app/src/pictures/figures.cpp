@@ -342,6 +342,38 @@ render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string
     return scene;
 }
 
+render::Scene WindingGuidesScene(const sim::PartSolids& layer, const std::vector<sim::FibreWinding>& winding, const std::string& title) {
+    std::shared_ptr<sim::Surface> surface;
+    render::Scene scene;
+    scene.panels = {SolidsPanel({{&layer.actuator, 0, false}}, surface)};
+    scene.surface = surface;
+    scene.title = title;
+    std::string families;
+    for (size_t f = 0; f < winding.size(); ++f) {
+        const sim::FibreWinding& w = winding[f];
+        families += fmt::format("{}{} {}: {:.2f} turns, {:.0f} mm", f ? ";  " : "", w.family, w.hand, w.turns, w.pathMm);
+        for (size_t k = 0; k + 1 < w.pointsMm.size(); ++k) {
+            const auto& a = w.pointsMm[k];
+            const auto& b = w.pointsMm[k + 1];
+            render::Segment s{{float(a[0]), float(a[1]), float(a[2])}, {float(b[0]), float(b[1]), float(b[2])}};
+            s.value = float(f);
+            scene.panels[0].segments.push_back(s);
+        }
+    }
+    scene.lines = {"the first stage's layer on the core, its guide grooves along the threads", families};
+    // The layer in the silicone's colour, the threads in the families' (first purple, second yellow).
+    for (auto& v : scene.panels[0].values) v = 0;
+    scene.colorBy = render::ColorBy::Values;
+    scene.categories = {{"layer (silicone)", {0.90f, 0.62f, 0.0f}}};
+    for (size_t f = 0; f < winding.size(); ++f) {
+        const render::Rgb c = render::ViridisColor(winding.size() > 1 ? double(f) / (winding.size() - 1) : 0.0);
+        scene.categories.push_back({winding[f].family + " thread", {0.85f * c.r, 0.85f * c.g, 0.85f * c.b}});  // the segments' shade
+    }
+    scene.colorMin = 0;
+    scene.colorMax = std::max<double>(1, winding.size() - 1);
+    return scene;
+}
+
 render::Scene CutawayScene(const sim::PartSolids& solids, const std::string& title) {
     std::shared_ptr<sim::Surface> surface;
     render::Scene scene;

@@ -14,6 +14,7 @@
 #include "render/mesh_renderer.h"
 #include "sim/batch.h"
 #include "sim/names.h"
+#include "sim/casting.h"
 #include "sim/solid.h"
 
 namespace app {
@@ -72,6 +73,9 @@ render::Image PairsImage(const render::Scene& scene);
 // to the camera, each part its own colour; and the actuator's wall cut open along its axis, the cut
 // showing its thickness.
 render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title);
+// A fibre design's first-stage layer with its guide grooves, and the threads to wind in them (each
+// family in its colour): the winding picture of an export.
+render::Scene WindingGuidesScene(const sim::PartSolids& layer, const std::vector<sim::FibreWinding>& winding, const std::string& title);
 render::Scene CutawayScene(const sim::PartSolids& solids, const std::string& title);
 
 // Throws UsageError when no renderer can be made.

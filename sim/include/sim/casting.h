@@ -3,7 +3,9 @@
 // (docs/guide/export.md, pouring). Pure arithmetic on the built solids; app/ reports it.
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "sim/shell.h"
 #include "sim/solid.h"
@@ -46,8 +48,10 @@ struct PourPlan {
 // the flow that the pressure left over the column already standing drives through the resistance
 // behind it (the sprue's and the filled cavity's). Newtonian, at the bulletin's viscosity; the tube
 // from funnel or syringe to the sprue is not counted.
+// A first-stage layer's solids (part.layerMm > 0) fill a gap of the layer. The second stage, with the
+// full wall's solids and the layer given (its thickness and volume), fills the wall less the layer.
 PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material, const CastingDef& casting,
-                  const PourDef& pour = {});
+                  const PourDef& pour = {}, double overLayerMm = 0, double overLayerMm3 = 0);
 
 // How a design's fibres are wound onto its wall (the models' fibres as threads): each family as
 // one continuous thread from the bottom end to the top at the design's angle to the meridian,
@@ -65,9 +69,16 @@ struct FibreWinding {
     double pathMm = 0;   // the thread's length on the wall, mm
     double turns = 0;    // around the axis, bottom to top
     std::vector<WindingBand> bands;
+    std::vector<double> anglePerRing;   // the thread's angle about the axis at each ring of the part (radians from +x)
+    std::vector<double> cosinePerRing;  // cos of its angle to the meridian there (for GuideDef)
+    std::vector<std::array<double, 3>> pointsMm;  // where it crosses each ring, on the mid-surface
 };
 // Empty for a design without fibres. Hoop fibres (90 degrees) are rings, not a thread wound up the
 // tube: `error` says so, and so it does for angles of 89 degrees or more.
 std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, std::string* error);
+
+// A fibre design's first stage (docs/guide/export.md, fibres): the wall's inner half, its outer face
+// (the mid-surface, where the models' fibres lie) grooved along every family's thread.
+PartDef FirstStagePart(const PartDef& part, const std::vector<FibreWinding>& winding);
 
 }  // namespace sim

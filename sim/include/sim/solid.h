@@ -28,6 +28,15 @@ enum class WallSide {
     Outward,  // the rest surface is the inside of the wall
 };
 
+// Guide grooves for the fibres in the outer face of a first-stage layer (PartDef::layerMm): one per
+// family, following its thread ring by ring.
+struct GuideDef {
+    double depthMm = 0.3;  // the thread lies in a groove this deep (a polyester or aramid thread of 0.2-0.3 mm)
+    double widthMm = 1;    // and this wide across the thread (a cosine profile)
+    std::vector<std::vector<double>> anglePerRing;   // per family: the thread's angle about the axis at each ring (radians from +x)
+    std::vector<std::vector<double>> cosinePerRing;  // per family: cos of its angle to the meridian there
+};
+
 // How a design becomes a part. Defaults are the shell models' geometry defaults.
 struct PartDef {
     double radiusMm = 5;        // one design unit of radius
@@ -38,6 +47,10 @@ struct PartDef {
     int angularSamples = 120;   // around the tube; a multiple of 8 (the mold splits at 0 and 180 degrees, its block corners lie at 45)
     int axialSamples = 121;     // along the tube, end rings included
     bool helixAngles = false;   // thesis-model designs: sector angles run as the helix's (x = sin, y = cos), not from +x counter-clockwise
+    // A fibre design's first stage: the wall's inner layer this thick, its outer face grooved along
+    // the threads (guides). 0: the whole wall.
+    double layerMm = 0;
+    GuideDef guides;
 };
 
 // A design's radius, in units of the base radius, at height fraction t (0..1) and at an angle

@@ -30,9 +30,11 @@ CastingDef CastingPresetDef(MaterialPreset preset) {
 }
 
 PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material, const CastingDef& casting,
-                  const PourDef& pour) {
+                  const PourDef& pour, double overLayerMm, double overLayerMm3) {
     PourPlan plan;
-    plan.cavityMl = MeshVolume(solids.actuator) / 1000;
+    // The gap the silicone fills: the wall, a first stage's layer, or the wall over a layer.
+    const double gapMm = overLayerMm > 0 ? part.thicknessMm - overLayerMm : part.layerMm > 0 ? part.layerMm : part.thicknessMm;
+    plan.cavityMl = (MeshVolume(solids.actuator) - (overLayerMm > 0 ? overLayerMm3 : 0)) / 1000;
     plan.slotsMl = solids.openingsMm3 / 1000;
     const double needed = plan.cavityMl + plan.slotsMl;
     plan.mixMl = needed + std::max(pour.marginFraction * needed, pour.marginMinMl);
@@ -47,7 +49,7 @@ PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& 
     }
     // In SI: a gap h wide, of perimeter P, resists the flow Q = dp / R over a length ds with
     // R = 12 mu ds / (P h^3); the sprue's resistance is its share of the full cavity's.
-    const double h = part.thicknessMm * 1e-3;
+    const double h = gapMm * 1e-3;
     const auto& perimeter = solids.cavityPerimeterMm;
     const auto& path = solids.cavityPathMm;
     const auto& height = solids.cavityHeightMm;
@@ -117,7 +119,9 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
         size_t band = 0;
         WindingBand current{0, 0, NAN, 0, NAN};
         for (int j = 0; j + 1 < nz; ++j) {
+            w.anglePerRing.push_back(theta);
             const auto p0 = at(j, theta);
+            w.pointsMm.push_back(p0);
             const double t = 0.5 * (p0[2] + at(j + 1, theta)[2]) / part.lengthMm;
             double alpha = fibres.layout == FibreLayout::Meridian ? 0
                            : fibres.layout == FibreLayout::Hoop   ? 90
@@ -132,6 +136,7 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
             const double ds = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) + (p1[2] - p0[2]) * (p1[2] - p0[2]));
             const double r = 0.5 * (std::hypot(p0[0], p0[1]) + std::hypot(p1[0], p1[1]));
             const double dtheta = sign * std::tan(alpha * degree) * ds / r;
+            w.cosinePerRing.push_back(std::cos(alpha * degree));
             w.pathMm += ds / std::cos(alpha * degree);
             w.turns += std::fabs(dtheta) / (2 * pi);
             theta += dtheta;
@@ -146,6 +151,9 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
             current.angleDeg = sectors ? NAN : alpha;
             current.turns += std::fabs(dtheta) / (2 * pi);
         }
+        w.anglePerRing.push_back(theta);
+        w.cosinePerRing.push_back(w.cosinePerRing.back());
+        w.pointsMm.push_back(at(nz - 1, theta));
         current.toMm = part.lengthMm;
         current.pitchMm = current.turns > 1e-9 ? (current.toMm - current.fromMm) / current.turns : NAN;
         w.bands.push_back(current);
@@ -153,6 +161,18 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
         out.push_back(w);
     }
     return out;
+}
+
+PartDef FirstStagePart(const PartDef& part, const std::vector<FibreWinding>& winding) {
+    PartDef first = part;
+    first.layerMm = 0.5 * part.thicknessMm;
+    // A groove the thread's depth, at most 40 % of the layer (the layer keeps most of itself under it).
+    first.guides.depthMm = std::min(first.guides.depthMm, 0.4 * first.layerMm);
+    for (const FibreWinding& w : winding) {
+        first.guides.anglePerRing.push_back(w.anglePerRing);
+        first.guides.cosinePerRing.push_back(w.cosinePerRing);
+    }
+    return first;
 }
 
 }  // namespace sim

@@ -216,6 +216,10 @@ std::string RestSurface(const Shape& shape, const PartDef& part, const RadiusFie
     return "";
 }
 
+// The guide grooves cut into a layer's outer face: each sample moved in along the normal by the
+// deepest of the families' cosine profiles at its distance across their threads.
+std::string CutGuides(const PartDef& part, const std::vector<Vec>& normals, Grid* outer);
+
 // Unit normals of the rest surface from its samples (steep steps between B-spline sectors included),
 // kept horizontal on the end rings (the end faces stay flat) and in the plane y = 0 on the meridians
 // at 0 and 180 degrees (the mold's split plane).
@@ -272,6 +276,34 @@ std::string FoldError(const Grid& g, const Grid& rest, const char* which, const 
                        Format(" wall surface folds over itself near z = %.4g mm, angle %.4g deg: a wall of %.3g mm is thicker than the surface's "
                               "radius of curvature there (a thinner wall, or --wall outward, may fit)",
                               g.At(j, i)[2], Degrees(i, g.nt), part.thicknessMm);
+        }
+    return "";
+}
+
+std::string CutGuides(const PartDef& part, const std::vector<Vec>& normals, Grid* outer) {
+    const GuideDef& g = part.guides;
+    if (g.anglePerRing.empty()) return "";
+    if (part.layerMm <= 0) return "guide grooves are cut into a first-stage layer (PartDef::layerMm)";
+    if (!(g.depthMm > 0 && g.depthMm < 0.5 * part.layerMm) || !(g.widthMm > 0))
+        return Format("guide grooves %.3g mm deep and %.3g mm wide do not fit a %.3g mm layer (at most half of it deep)", g.depthMm, g.widthMm,
+                      part.layerMm);
+    const int nz = outer->nz, nt = outer->nt;
+    for (size_t f = 0; f < g.anglePerRing.size(); ++f)
+        if (static_cast<int>(g.anglePerRing[f].size()) != nz || g.cosinePerRing.size() <= f || static_cast<int>(g.cosinePerRing[f].size()) != nz)
+            return "the guides need one angle and one cosine per ring of the part";
+    for (int j = 0; j < nz; ++j)
+        for (int i = 0; i < nt; ++i) {
+            Vec& p = outer->At(j, i);
+            const double r = std::hypot(p[0], p[1]), theta = std::atan2(p[1], p[0]);
+            double depth = 0;
+            for (size_t f = 0; f < g.anglePerRing.size(); ++f) {
+                // Across the thread: the arc to it along the ring, times the cosine of its angle to the meridian.
+                const double across = std::fabs(std::remainder(theta - g.anglePerRing[f][j], 2 * std::numbers::pi)) * r * g.cosinePerRing[f][j];
+                const double u = across / (0.5 * g.widthMm);
+                if (u < 1) depth = std::max(depth, 0.5 * g.depthMm * (1 + std::cos(std::numbers::pi * u)));
+            }
+            const Vec& n = normals[static_cast<size_t>(j) * nt + i];
+            for (int c = 0; c < 3; ++c) p[c] -= depth * n[c];
         }
     return "";
 }
@@ -648,10 +680,15 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     for (size_t k = 0; k < normals.size(); ++k)
         if (Dot(normals[k], normals[k]) == 0)
             return Format("the surface has no normal at z = %.4g mm, angle %.4g deg", rest.p[k][2], Degrees(static_cast<int>(k) % rest.nt, rest.nt));
-    const double h = part.thicknessMm;
-    const Grid outer = Offset(rest, normals, part.wall == WallSide::Centred ? h / 2 : h);
-    const Grid inner = part.wall == WallSide::Centred ? Offset(rest, normals, -h / 2) : rest;
-    for (const auto& [grid, which] : {std::pair{&outer, "outer"}, std::pair{&inner, "inner"}})
+    // The solid's thickness: the wall's, or a first stage's inner layer of it.
+    if (part.layerMm < 0 || (part.layerMm > 0 && !(part.layerMm < part.thicknessMm)))
+        return Format("a first-stage layer of %.3g mm does not fit a %.3g mm wall (it is the wall's inner part)", part.layerMm, part.thicknessMm);
+    const double h = part.layerMm > 0 ? part.layerMm : part.thicknessMm;
+    const double innerOffset = part.wall == WallSide::Centred ? -part.thicknessMm / 2 : 0;
+    Grid outer = Offset(rest, normals, innerOffset + h);
+    const Grid inner = part.wall == WallSide::Centred ? Offset(rest, normals, innerOffset) : rest;
+    if (std::string error = CutGuides(part, normals, &outer); !error.empty()) return error;
+    for (const auto& [grid, which] : {std::pair<const Grid*, const char*>{&outer, "outer"}, std::pair{&inner, "inner"}})
         if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
     if (std::string error = PinError(outer, part, mold); !error.empty()) return error;
     const int nz = rest.nz, nt = rest.nt;

@@ -1,6 +1,7 @@
 // The pour of an exported mold: the sprue in the bottom end wall and the vents in the top one, the
 // fill's time against thin-gap flow's closed forms, and the choice of gravity or syringe against
 // each silicone's pot life; `export` writes it in manifest.json and casting.md.
+#include <Eigen/Dense>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -123,10 +124,12 @@ TEST_F(CastingCli, ExportWritesThePourAndTheStepsInOrder) {
     const std::string sheet = Slurp(dir_ / "tube" / "casting.md");
     const auto at = [&](const char* heading) { return sheet.find(heading); };
     ASSERT_NE(at("## 1. Print"), std::string::npos) << sheet;
-    EXPECT_LT(at("## 1. Print"), at("## 2. Prepare and assemble"));
-    EXPECT_LT(at("## 2. Prepare and assemble"), at("## 3. Mix"));
-    EXPECT_LT(at("## 3. Mix"), at("## 4. Pour from below"));
-    EXPECT_LT(at("## 4. Pour from below"), at("## 5. Cure and demould"));
+    EXPECT_LT(at("## 1. Print"), at("## 2. Prepare"));
+    EXPECT_LT(at("## 2. Prepare"), at("## 3. Assemble, mix and pour"));
+    EXPECT_LT(at("## 3. Assemble, mix and pour"), at("**Mix**"));
+    EXPECT_LT(at("**Mix**"), at("**Pour from below.**"));
+    EXPECT_LT(at("**Pour from below.**"), at("## 4. Demould"));
+    EXPECT_EQ(at("stage1"), std::string::npos) << "one stage without fibres";
     EXPECT_THAT(sheet, HasSubstr("pour by gravity"));
     EXPECT_THAT(sheet, HasSubstr(fmt::format("{:.1f} g of part A", manifest["pour"]["to_mix_g"]["part_a"].get<double>())));
     // A batch's own bulletin: a paste that cannot be filled in its pot life is said, and still written.
@@ -194,9 +197,79 @@ TEST_F(CastingCli, AFibreDesignGetsItsWindingPlanAndHoopFibresAreRefused) {
     const auto manifest = nlohmann::json::parse(Slurp(dir_ / "braid" / "manifest.json"));
     ASSERT_EQ(manifest["fibres"]["families"].size(), 2u);
     EXPECT_NEAR(manifest["fibres"]["families"][0]["turns"].get<double>(), std::tan(50 * std::numbers::pi / 180) * 150 / (2 * std::numbers::pi * 5), 3e-3);
-    EXPECT_THAT(Slurp(dir_ / "braid" / "casting.md"), HasSubstr("Winding order: the +alpha family first"));
+    const std::string sheet = Slurp(dir_ / "braid" / "casting.md");
+    EXPECT_THAT(sheet, HasSubstr("Winding order: the +alpha family first"));
+    // Two stages: the inner layer in its own mold, wound, then overmoulded in the wall's mold.
+    EXPECT_LT(sheet.find("## 3. First stage: the inner layer"), sheet.find("## 4. Wind the fibres"));
+    EXPECT_LT(sheet.find("## 4. Wind the fibres"), sheet.find("## 5. Second stage: the overmould"));
+    for (const char* file : {"stage1_shell_a.stl", "stage1_shell_b.stl", "stage1_layer.stl", "winding_guides.png"})
+        EXPECT_TRUE(fs::exists(dir_ / "braid" / file)) << file;
+    const auto& first = manifest["first_stage"];
+    EXPECT_EQ(first["layer_mm"], 0.5);
+    const double layerMl = first["pour"]["silicone_ml"]["cavity"].get<double>(), overMl = manifest["pour"]["silicone_ml"]["cavity"].get<double>();
+    EXPECT_NEAR(layerMl + overMl, manifest["silicone"]["volume_mm3"].get<double>() / 1000, 1e-9) << "the two pours make the wall";
+    EXPECT_NEAR(first["pour"]["fill"]["gravity_min"].get<double>(), 4 * 4.5, 1) << "a half-wall gap fills 4x slower than the whole wall (4.5 min)";
     r = Run("export --model shell --shape cylinder --fibres hoop --out " + Path("hoop"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("cannot wind this design's fibres"));
     EXPECT_FALSE(fs::exists(dir_ / "hoop"));
+}
+
+// The first stage's guide grooves lie on the threads: at every ring, the layer's surface point
+// nearest each thread's crossing is the groove's bottom, straight under it (across the thread within
+// a tenth of the wall) and the groove's depth down.
+TEST(Casting, TheFirstStagesGuideGroovesLieOnTheFibrePaths) {
+    sim::PartDef part;
+    part.angularSamples = 240;  // 0.13 mm around at R 5: the nearest sample is within 0.07 mm of any point
+    const std::pair<const char*, sim::Shape> designs[] = {{"cylinder", sim::CylinderShape{}},
+                                                          {"bspline", sim::BSplineShape{sim::SplineRegion::Middle, {{1, 1.3, 1.6, 1.3, 1}}}}};
+    for (const auto& [name, shape] : designs) {
+        SCOPED_TRACE(name);
+        sim::PartSolids full;
+        ASSERT_EQ(sim::BuildPartSolids(shape, part, {}, &full), "");
+        sim::FibreDef braid;
+        braid.layout = sim::FibreLayout::Braid;
+        braid.angleDeg = 40;
+        std::string error;
+        const auto winding = sim::PlanWinding(full, part, braid, &error);
+        ASSERT_EQ(winding.size(), 2u) << error;
+        const sim::PartDef first = sim::FirstStagePart(part, winding);
+        EXPECT_DOUBLE_EQ(first.layerMm, 0.5);
+        EXPECT_DOUBLE_EQ(first.guides.depthMm, 0.2);
+        sim::PartSolids layer;
+        ASSERT_EQ(sim::BuildPartSolids(shape, first, {}, &layer), "");
+        const auto& v = layer.actuator.vertices;
+        double worstAcross = 0, worstDepth = 0;
+        int checked = 0;
+        for (const auto& w : winding)
+            for (size_t k = 4; k + 4 < w.pointsMm.size(); ++k) {
+                const auto& p = w.pointsMm[k];
+                size_t best = 0;
+                double nearest = INFINITY;
+                for (size_t n = 0; n < v.size(); ++n)
+                    if (std::fabs(v[n][2] - p[2]) < 0.6)
+                        if (const double d = std::hypot(v[n][0] - p[0], v[n][1] - p[1], v[n][2] - p[2]); d < nearest) nearest = d, best = n;
+                // The thread's direction, the surface's normal (near-radial on these gentle slopes) and across.
+                const auto& a = w.pointsMm[k - 1];
+                const auto& b = w.pointsMm[k + 1];
+                Eigen::Vector3d tangent(b[0] - a[0], b[1] - a[1], b[2] - a[2]), normal(p[0], p[1], 0), offset(v[best][0] - p[0], v[best][1] - p[1], v[best][2] - p[2]);
+                tangent.normalize();
+                normal = (normal - normal.dot(tangent) * tangent).normalized();
+                const Eigen::Vector3d across = tangent.cross(normal).normalized();
+                worstAcross = std::max(worstAcross, std::fabs(offset.dot(across)));
+                worstDepth = std::max(worstDepth, std::fabs(-offset.dot(normal) - first.guides.depthMm));
+                ++checked;
+            }
+        EXPECT_GT(checked, 200);
+        EXPECT_LT(worstAcross, 0.1 * part.thicknessMm) << "the groove's bottom across the thread from it, mm";
+        EXPECT_LT(worstDepth, 0.05) << "the groove's depth under the thread, mm";
+        // The layer and its molds are valid solids that fill their block.
+        const auto a = sim::MeshBounds(layer.shellA), b = sim::MeshBounds(layer.shellB);
+        const double block = (std::max(a[3], b[3]) - std::min(a[0], b[0])) * (std::max(a[4], b[4]) - std::min(a[1], b[1])) * (a[5] - a[2]);
+        const double pieces = sim::MeshVolume(layer.shellA) + sim::MeshVolume(layer.shellB) + sim::MeshVolume(layer.actuator) + sim::MeshVolume(layer.core) -
+                              layer.coreOutsideBlockMm3 + layer.openingsMm3 - layer.pinsLessHolesMm3;
+        EXPECT_NEAR(pieces / block, 1, 1e-6);
+        EXPECT_LT(sim::MeshVolume(layer.actuator), 0.5 * sim::MeshVolume(full.actuator)) << "the inner half, less its grooves";
+        EXPECT_EQ(layer.core.vertices, full.core.vertices) << "one core for both stages";
+    }
 }

@@ -21,6 +21,7 @@
 #include "png.h"
 #include "sim/fields.h"
 #include "formats/solid_io.h"
+#include "sim/casting.h"
 #include "sim/solid.h"
 
 namespace fs = std::filesystem;
@@ -488,4 +489,36 @@ TEST_F(ExportCli, AFreeXyDesignExports) {
     const auto manifest = nlohmann::json::parse(Slurp(dir_ / "xy" / "manifest.json"));
     const double volume = manifest["silicone"]["volume_mm3"];
     EXPECT_NEAR(volume / (kPi * (5.5 * 5.5 - 4.5 * 4.5) * 150), 1.0, 2e-3) << "a 5 mm tube with a 1 mm wall, 150 mm long";
+}
+
+// A fibre design's first stage (its inner layer with guide grooves) and its mold are valid solids.
+TEST(Solid, TheFirstStagesGroovedLayerAndItsMoldAreValidSolids) {
+    for (const Case& c : {Case{"shell_sine", sim::SineShape{1.3, 0.5, kPi - 0.5}, false},
+                          Case{"shell_four_splines_outward", sim::BSplineShape{sim::SplineRegion::Middle, {{1, 1.4, 1, 1.2}, {1.1, 0.8, 1.3, 1}, {1, 1.2, 1.2, 1}, {0.9, 1.3, 0.9, 1.1}}},
+                               false, sim::WallSide::Outward}}) {
+        SCOPED_TRACE(c.name);
+        const sim::PartDef part = PartOf(c);
+        sim::PartSolids full;
+        ASSERT_EQ(sim::BuildPartSolids(c.shape, part, {}, &full), "");
+        sim::FibreDef braid;
+        braid.layout = sim::FibreLayout::Braid;
+        braid.angleDeg = 35;
+        std::string error;
+        const sim::PartDef first = sim::FirstStagePart(part, sim::PlanWinding(full, part, braid, &error));
+        ASSERT_EQ(first.guides.anglePerRing.size(), 2u) << error;
+        sim::PartSolids layer;
+        ASSERT_EQ(sim::BuildPartSolids(c.shape, first, {}, &layer), "");
+        for (const auto& [name, mesh] : {std::pair{"layer", &layer.actuator}, std::pair{"shell A", &layer.shellA}, std::pair{"shell B", &layer.shellB}})
+            EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty()) << name;
+    }
+    // A layer as thick as the wall, or grooves deeper than half the layer, are refused.
+    sim::PartDef part;
+    part.layerMm = 1;
+    sim::PartSolids untouched;
+    EXPECT_THAT(sim::BuildPartSolids(sim::CylinderShape{}, part, {}, &untouched), HasSubstr("does not fit a 1 mm wall"));
+    part.layerMm = 0.5;
+    part.guides.depthMm = 0.3;
+    part.guides.anglePerRing = {std::vector<double>(121, 0.0)};
+    part.guides.cosinePerRing = {std::vector<double>(121, 1.0)};
+    EXPECT_THAT(sim::BuildPartSolids(sim::CylinderShape{}, part, {}, &untouched), HasSubstr("at most half of it deep"));
 }
