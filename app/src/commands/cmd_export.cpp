@@ -261,6 +261,23 @@ static int RunExport(int argc, char** argv, int first) {
     const sim::PourPlan plan = twoStages ? sim::PlanPour(solids, part, mold, material, casting, pourDef, firstPart.layerMm, sim::MeshVolume(firstStage.actuator))
                                          : sim::PlanPour(solids, part, mold, material, casting, pourDef);
     manifest["pour"] = pourJson(plan, solids, "mold_shell_a");
+    // The core held at both ends; spacers where it is too slender to stay centred while filling.
+    const sim::CoreSupport support = sim::CheckCoreSupport(solids, part, mold, material, pourDef);
+    Json spacers = Json::array();
+    for (const double z : support.stationsMm) spacers.push_back(Json{{"z_mm", z}, {"angles_deg", {30, 150, 270}}});
+    manifest["core"]["support"] = Json{{"held", "at both ends, its handles in both shells' end walls"},
+                                       {"slenderness", support.slenderness},
+                                       {"thinnest_mm", support.thinnestMm},
+                                       {"deflection_mm", support.deflectionMm},
+                                       {"allowed_mm", support.allowedMm},
+                                       {"modulus_gpa", support.modulusGpa},
+                                       {"spacers", spacers}};
+    if (!spacers.empty())
+        manifest["core"]["support"]["how"] = fmt::format(
+            "before closing each mold, press a pad of the same cured silicone, {0:g} mm thick and about 3 x 3 mm (cut from a sheet cast "
+            "{0:g} mm thick), onto the core at each spacer's height and angles: the pads hold the core centred and cure into the wall, "
+            "where they show as faint squares",
+            twoStages ? firstPart.layerMm : part.thicknessMm);
     const sim::PourPlan firstPlan = twoStages ? sim::PlanPour(firstStage, firstPart, mold, material, casting, pourDef) : sim::PourPlan{};
     if (twoStages)
         manifest["first_stage"] = Json{{"layer_mm", firstPart.layerMm},

@@ -90,6 +90,16 @@ std::string CastingSheet(const Json& m) {
     out += "Clear every sprue (shell A's bottom end wall), the four vents of each mold (the top end wall) and the core's channels of "
            "stringing. Coat the cavity faces and the core with a release agent for platinum silicone. Keep sulphur clays, latex and "
            "uncured resin prints away from the silicone: they inhibit its cure.\n\n";
+    const Json& support = core["support"];
+    if (support.contains("how")) {
+        std::string heights;
+        for (const Json& s : support["spacers"]) heights += fmt::format("{}{:.0f}", heights.empty() ? "" : ", ", Number(s, "z_mm"));
+        std::string how = Text(support, "how");
+        if (!how.empty()) how[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(how[0])));
+        out += fmt::format("**Spacers.** The core is {:.1f} mm across at its thinnest, {:.0f} times as long: held only at its ends it could bend {:.2f} mm "
+                           "under the fill's head, more than a tenth of the wall. {}: at heights {} mm, at 30, 150 and 270 deg.\n\n",
+                           Number(support, "thinnest_mm"), Number(support, "slenderness"), Number(support, "deflection_mm"), how, heights);
+    }
     const std::string close = "lay the core in shell B, its handles in the end walls' channels; close shell A over it, pins into holes, and "
                               "clamp or tape the halves together along their length.";
     if (twoStages) {

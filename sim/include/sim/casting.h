@@ -53,6 +53,23 @@ struct PourPlan {
 PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material, const CastingDef& casting,
                   const PourDef& pour = {}, double overLayerMm = 0, double overLayerMm3 = 0);
 
+// Whether the core stays centred while the silicone flows in. It is held at both ends (its handles
+// in the end walls), a beam clamped at both ends; the worst lateral load is the fill's whole head
+// on one side of it (a front rising faster on the sprue's side), rho g H over its widest section.
+// Its deflection at mid-span, with its thinnest section's bending stiffness along all of it (on the
+// safe side), must stay within a tenth of the wall; otherwise the span is split by stations of
+// spacers until each part's deflection does.
+struct CoreSupport {
+    double deflectionMm = 0;       // unsupported, at mid-span
+    double allowedMm = 0;          // a tenth of the wall
+    double slenderness = 0;        // the core's length over its thinnest section's diameter
+    double thinnestMm = 0;         // that diameter (perimeter / pi)
+    std::vector<double> stationsMm;  // spacer stations, heights from the bottom end (empty: none needed)
+    double modulusGpa = 0;         // the core's material, as assumed
+};
+CoreSupport CheckCoreSupport(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material,
+                             const PourDef& pour = {});
+
 // How a design's fibres are wound onto its wall (the models' fibres as threads): each family as
 // one continuous thread from the bottom end to the top at the design's angle to the meridian,
 // integrated over the wall's mid-surface ring by ring (on a bulb the thread turns faster where the

@@ -138,6 +138,7 @@ struct PartSolids {
     // j * midAround + i: where the fibres lie (the models put them in the wall's mid-surface).
     std::vector<std::array<double, 3>> midSurfaceMm;
     int midAround = 0;
+    std::vector<double> corePerimeterMm;  // the core's section at each ring (the wall's inner perimeter), mm
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
     double drainInBlockMm3 = 0;      // a lost core's drain within the block (in no part)
     double drainMm = 0;              // its diameter as built

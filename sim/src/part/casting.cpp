@@ -80,6 +80,29 @@ PourPlan PlanPour(const PartSolids& solids, const PartDef& part, const MoldDef& 
     return plan;
 }
 
+CoreSupport CheckCoreSupport(const PartSolids& solids, const PartDef& part, const MoldDef& mold, const MaterialDef& material, const PourDef& pour) {
+    CoreSupport c;
+    // Printed PLA (a rigid core) about 3.5 GPa; PVA about 2 GPa (a wax core is far softer: not counted).
+    c.modulusGpa = mold.core == CoreKind::Rigid ? 3.5 : 2.0;
+    c.allowedMm = 0.1 * part.thicknessMm;
+    double thinnest = INFINITY, widest = 0;
+    for (const double p : solids.corePerimeterMm) thinnest = std::min(thinnest, p / std::numbers::pi), widest = std::max(widest, p / std::numbers::pi);
+    if (!std::isfinite(thinnest) || !(thinnest > 0)) return c;
+    c.thinnestMm = thinnest;
+    const double span = part.lengthMm + 2 * mold.endWallMm;  // between the end walls' outer faces, where it is held
+    c.slenderness = span / thinnest;
+    const double head = (part.lengthMm + mold.endWallMm + pour.funnelAboveTopMm) * 1e-3;
+    const double load = material.densityKgPerM3 * 9.81 * head * widest * 1e-3;                     // N/m
+    const double stiffness = c.modulusGpa * 1e9 * std::numbers::pi * std::pow(thinnest * 1e-3, 4) / 64;  // E I, N m^2
+    auto deflection = [&](double lengthMm) { return load * std::pow(lengthMm * 1e-3, 4) / (384 * stiffness) * 1e3; };  // clamped-clamped, mm
+    c.deflectionMm = deflection(span);
+    if (c.deflectionMm <= c.allowedMm) return c;
+    // n parts, each clamped at its stations as a first approximation: deflection / n^4.
+    const int parts = static_cast<int>(std::ceil(std::pow(c.deflectionMm / c.allowedMm, 0.25)));
+    for (int k = 1; k < parts; ++k) c.stationsMm.push_back(-mold.endWallMm + span * k / parts);
+    return c;
+}
+
 std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, std::string* error) {
     std::vector<FibreWinding> out;
     if (fibres.layout == FibreLayout::None || (!fibres.plus && !fibres.minus)) return out;

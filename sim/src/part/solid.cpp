@@ -799,7 +799,9 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
         for (int c = 0; c < 3; ++c) middle.p[k][c] = 0.5 * (inner.p[k][c] + outer.p[k][c]);
     solids.midSurfaceMm = middle.p;
     solids.midAround = nt;
+    solids.corePerimeterMm.resize(nz);
     for (int j = 0; j < nz; ++j) {
+        solids.corePerimeterMm[j] = RingPerimeter(inner, j);
         solids.cavityPerimeterMm[j] = RingPerimeter(middle, j);
         solids.cavityHeightMm[j] = middle.At(j, 0)[2];
         if (j == 0) continue;

@@ -137,6 +137,15 @@ TEST_F(CastingCli, ExportWritesThePourAndTheStepsInOrder) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_THAT(r.out, HasSubstr("more than half the 5 min pot life"));
     EXPECT_THAT(Slurp(dir_ / "paste" / "casting.md"), HasSubstr("even the syringe needs more than half of it"));
+    EXPECT_TRUE(manifest["core"]["support"]["spacers"].empty()) << "a plain tube's core needs none";
+    EXPECT_EQ(sheet.find("**Spacers.**"), std::string::npos);
+    // A thin neck's core gets spacers, and the sheet says where to put them.
+    r = Run("export --model shell --shape bspline --region middle --control-points 1,0.5,0.5,0.5,1 --out " + Path("neck"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto neck = nlohmann::json::parse(Slurp(dir_ / "neck" / "manifest.json"));
+    ASSERT_EQ(neck["core"]["support"]["spacers"].size(), 1u);
+    EXPECT_NEAR(neck["core"]["support"]["spacers"][0]["z_mm"].get<double>(), 75, 1e-9);
+    EXPECT_THAT(Slurp(dir_ / "neck" / "casting.md"), HasSubstr("at heights 75 mm, at 30, 150 and 270 deg"));
     r = Run("export --model shell --shape cylinder --viscosity-cps 0 --out " + Path("bad"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_FALSE(fs::exists(dir_ / "bad"));
@@ -272,4 +281,30 @@ TEST(Casting, TheFirstStagesGuideGroovesLieOnTheFibrePaths) {
         EXPECT_LT(sim::MeshVolume(layer.actuator), 0.5 * sim::MeshVolume(full.actuator)) << "the inner half, less its grooves";
         EXPECT_EQ(layer.core.vertices, full.core.vertices) << "one core for both stages";
     }
+}
+
+// The core is held at both ends; a plain tube's bends microns under the fill's head, a thin neck's
+// a wall's worth, and spacers then split its span until each part bends less than a tenth of the wall.
+TEST(Casting, ASlenderCoreGetsSpacersAndAStoutOneNone) {
+    const sim::PartDef part;
+    const sim::MoldDef mold;
+    const sim::MaterialDef ecoflex = sim::MaterialPresetDef(sim::MaterialPreset::Ecoflex0030);
+    const sim::CoreSupport stout = sim::CheckCoreSupport(Cylinder(mold), part, mold, ecoflex);
+    // w = rho g H D over a clamped-clamped span L: w L^4 / (384 E pi D^4 / 64), D the 9 mm core.
+    const double D = 9e-3 * 120 / std::numbers::pi * std::sin(std::numbers::pi / 120), L = 0.16, H = 0.255;  // H: the funnel 100 mm over the block's top
+    const double w = 1070 * 9.81 * H * D, EI = 3.5e9 * std::numbers::pi * std::pow(D, 4) / 64;
+    EXPECT_NEAR(stout.deflectionMm, w * std::pow(L, 4) / (384 * EI) * 1e3, 1e-6 * stout.deflectionMm);
+    EXPECT_LT(stout.deflectionMm, 0.05) << "a 9 mm PLA core bends under 50 um";
+    EXPECT_TRUE(stout.stationsMm.empty());
+    EXPECT_NEAR(stout.slenderness, 160 / D / 1e3, 1e-9);
+    // A neck of half the radius over the middle: a 4 mm core there.
+    sim::PartSolids necked;
+    ASSERT_EQ(sim::BuildPartSolids(sim::BSplineShape{sim::SplineRegion::Middle, {{1, 0.5, 0.5, 0.5, 1}}}, part, mold, &necked), "");
+    const sim::CoreSupport slender = sim::CheckCoreSupport(necked, part, mold, ecoflex);
+    EXPECT_GT(slender.deflectionMm, slender.allowedMm);
+    ASSERT_FALSE(slender.stationsMm.empty());
+    const double parts = slender.stationsMm.size() + 1.0;
+    EXPECT_LE(slender.deflectionMm / std::pow(parts, 4), slender.allowedMm) << "each part within a tenth of the wall";
+    EXPECT_GT(slender.deflectionMm / std::pow(parts - 1, 4), slender.allowedMm) << "and no more stations than that needs";
+    for (const double z : slender.stationsMm) EXPECT_TRUE(z > 0 && z < part.lengthMm) << z;
 }
