@@ -4,6 +4,7 @@
 // before the first file is written: a design that cannot be made writes nothing.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -50,7 +51,7 @@ Json PrintHint(const std::string& name, const std::array<double, 6>& b, const st
     if (name.find("_shell_") != std::string::npos) {
         orientation = "split face (y = 0) on the bed, cavity facing up";
         size = {dx, dz, dy};
-    } else if (name == "mold_core") {
+    } else if (name.find("mold_core") != std::string::npos) {
         const bool upright = dz <= printer[2];
         orientation = upright ? "standing on its bottom handle, axis vertical" : "lying along the bed, axis horizontal, with supports";
         size = upright ? std::array<double, 3>{dx, dy, dz} : std::array<double, 3>{dz, dx, dy};
@@ -100,6 +101,12 @@ static int RunExport(int argc, char** argv, int first) {
                                           "checked against it")
         ->type_name("WxDxH")
         ->default_str(printerText);
+    sim::CastKind cast = sim::CastKind::Whole;
+    double flangeMm = 3;
+    cli.Group("Casting");
+    cli.Enum("--cast", cast, "whole: one mold; halves: cut across the axis at the widest section into two pieces, each in its own mold with a "
+                             "one-piece core that leaves through the cut, bonded at their flanges (docs/guide/export.md)");
+    cli.Number("--flange-mm", flangeMm, "with --cast halves: the bonding flange beyond the wall's outer face at the cut, mm", 0.5, 50)->default_str("3");
     double viscosityCps = 0, potLifeMin = 0;
     cli.Group("Pour");
     cli.Number("--viscosity-cps", viscosityCps, "the mixed silicone's viscosity, cps = mPa s, for the fill-time estimate (default: the preset's bulletin; "
@@ -135,12 +142,51 @@ static int RunExport(int argc, char** argv, int first) {
     const sim::MaterialDef material = CastMaterialOf(job);
     const sim::CoreExit& exit = solids.coreExit;
     const double demouldLimit = sim::DemouldingStretchLimit(material);
-    if (mold.core == sim::CoreKind::Rigid && exit.stretch > demouldLimit)
-        throw UsageError(fmt::format(
-            "cannot demould this design's one-piece core: to leave through the {} end, its {:.1f} mm section must pass the wall's {:.1f} mm section at "
-            "z = {:.1f} mm, a hoop stretch of {:.2f}, more than the {:.2f} {} allows (docs/guide/export.md); give --core lost for a core printed to "
-            "dissolve or melt out",
-            exit.top ? "top" : "bottom", exit.coreAcrossMm, exit.openingMm, exit.zMm, exit.stretch, demouldLimit, sim::Name(material.preset)));
+    const bool halves = cast == sim::CastKind::Halves;
+    if (cli.Given("--flange-mm") && !halves) throw UsageError("--flange-mm goes with --cast halves (the flange the halves are bonded at)");
+    auto refuseCore = [&](const sim::CoreExit& e, const std::string& which, double offsetMm, const std::string& ways) {
+        if (mold.core == sim::CoreKind::Rigid && e.stretch > demouldLimit)
+            throw UsageError(fmt::format(
+                "cannot demould {}one-piece core: to leave through the {} end, its {:.1f} mm section must pass the wall's {:.1f} mm section at "
+                "z = {:.1f} mm, a hoop stretch of {:.2f}, more than the {:.2f} {} allows (docs/guide/export.md); {}",
+                which, e.top ? "top" : "bottom", e.coreAcrossMm, e.openingMm, e.zMm + offsetMm, e.stretch, demouldLimit, sim::Name(material.preset), ways));
+    };
+    if (!halves)
+        refuseCore(exit, "this design's ", 0,
+                   "give --core lost for a core printed to dissolve or melt out, or --cast halves to cut it at its widest section");
+    // Cast in halves: cut across the axis at the widest section (of the core, the inner wall), each
+    // half's core leaving through the cut.
+    struct Half {
+        std::string name;
+        sim::PartDef part;
+        sim::PartSolids solids;
+    };
+    std::vector<Half> pieces;
+    if (halves) {
+        if (job.model != sim::ModelKind::Thesis && job.Shell().fibres.layout != sim::FibreLayout::None)
+            throw UsageError("--cast halves is for designs without fibres (a wound layer would cross the cut); cast a fibre design whole");
+        if (mold.core == sim::CoreKind::Rigid && exit.stretch <= demouldLimit)
+            throw UsageError(fmt::format("--cast halves: the whole part's one-piece core leaves through its {} end (a hoop stretch of {:.2f}, within "
+                                         "{:.2f}); cast it whole, without a bond line",
+                                         exit.top ? "top" : "bottom", exit.stretch, demouldLimit));
+        const auto& perimeter = solids.corePerimeterMm;
+        const int nz = static_cast<int>(perimeter.size());
+        const int widest = static_cast<int>(std::max_element(perimeter.begin(), perimeter.end()) - perimeter.begin());
+        if (widest < 2 || widest > nz - 3)
+            throw UsageError(fmt::format("--cast halves: the design is widest at its {} end; a one-piece core leaves through it, so cast it whole",
+                                         widest < 2 ? "bottom" : "top"));
+        for (const bool top : {false, true}) {
+            Half h{top ? "top" : "bottom", part, {}};
+            const double cut = static_cast<double>(widest) / (nz - 1);
+            (top ? h.part.fromFraction : h.part.toFraction) = cut;
+            h.part.axialSamples = top ? nz - widest : widest + 1;  // the whole part's rings
+            h.part.flangeMm = flangeMm;
+            h.solids = BuildSolids(job, h.part, mold);
+            refuseCore(h.solids.coreExit, "the " + h.name + " half's ", top ? cut * part.lengthMm : 0,
+                       "give --core lost: one cut at the widest section is not enough for this design");
+            pieces.push_back(std::move(h));
+        }
+    }
 
     // The fibres as threads to wind (the models' fibres; the thesis model has none).
     std::vector<sim::FibreWinding> winding;
@@ -171,6 +217,12 @@ static int RunExport(int argc, char** argv, int first) {
     if (partOptions.fittings.enabled) files.insert(files.end(), {{"fitting_bottom", &solids.fittingBottom}, {"fitting_top", &solids.fittingTop}});
     if (twoStages)
         files.insert(files.end(), {{"stage1_layer", &firstStage.actuator}, {"stage1_shell_a", &firstStage.shellA}, {"stage1_shell_b", &firstStage.shellB}});
+    if (halves) {  // the halves' own molds replace the whole one's
+        files.erase(std::remove_if(files.begin(), files.end(), [](const auto& f) { return f.first.rfind("mold_", 0) == 0; }), files.end());
+        for (const Half& h : pieces)
+            files.insert(files.end(), {{h.name + "_half", &h.solids.actuator}, {h.name + "_mold_core", &h.solids.core},
+                                       {h.name + "_mold_shell_a", &h.solids.shellA}, {h.name + "_mold_shell_b", &h.solids.shellB}});
+    }
     Json manifest;
     manifest["units"] = "mm";
     Json list = Json::array();
@@ -184,8 +236,10 @@ static int RunExport(int argc, char** argv, int first) {
                             {"bounds_mm", Json{{"min", {b[0], b[1], b[2]}}, {"max", {b[3], b[4], b[5]}}}},
                             {"triangles", mesh->triangles.size()},
                             {"vertices", mesh->vertices.size()}});
-        if (name == "actuator" || name == "stage1_layer") {
-            list.back()["print"] = Json{{"orientation", name == "actuator" ? "cast in silicone, not printed" : "the first stage's silicone layer, not printed"}};
+        if (name == "actuator" || name == "stage1_layer" || name.size() > 5 && name.compare(name.size() - 5, 5, "_half") == 0) {
+            list.back()["print"] = Json{{"orientation", name == "actuator"       ? (halves ? "the bonded halves, cast in silicone, not printed" : "cast in silicone, not printed")
+                                                        : name == "stage1_layer" ? "the first stage's silicone layer, not printed"
+                                                                                 : "a half, cast in silicone, not printed"}};
             continue;
         }
         list.back()["print"] = PrintHint(name, b, printer);
@@ -194,7 +248,15 @@ static int RunExport(int argc, char** argv, int first) {
     {  // The exploded assembly, to look at before printing.
         auto renderer = MakeRenderer(1400, 1000);
         WritePng((fs::path(out) / "mold_assembly.png").string(),
-                 renderer->Render(ExplodedMoldScene(solids, fmt::format("mold for {}  -  wall {:g} mm", ShapeTitle(job.shape), part.thicknessMm))), 6);
+                 renderer->Render(ExplodedMoldScene(halves ? pieces[0].solids : solids,
+                                                    fmt::format("{}mold for {}  -  wall {:g} mm", halves ? "bottom half's " : "", ShapeTitle(job.shape),
+                                                                part.thicknessMm))),
+                 6);
+        if (halves)
+            WritePng((fs::path(out) / "mold_assembly_top.png").string(),
+                     renderer->Render(ExplodedMoldScene(pieces[1].solids, fmt::format("top half's mold for {}  -  wall {:g} mm", ShapeTitle(job.shape),
+                                                                                      part.thicknessMm))),
+                     6);
     }
     if (twoStages) {  // the layer with its grooves and the threads to wind in them
         auto renderer = MakeRenderer(1400, 1000);
@@ -261,6 +323,30 @@ static int RunExport(int argc, char** argv, int first) {
     const sim::PourPlan plan = twoStages ? sim::PlanPour(solids, part, mold, material, casting, pourDef, firstPart.layerMm, sim::MeshVolume(firstStage.actuator))
                                          : sim::PlanPour(solids, part, mold, material, casting, pourDef);
     manifest["pour"] = pourJson(plan, solids, "mold_shell_a");
+    if (halves) {
+        Json list = Json::array();
+        for (const Half& h : pieces) {
+            const sim::PourPlan p = sim::PlanPour(h.solids, h.part, mold, material, casting, pourDef);
+            list.push_back(Json{{"half", h.name},
+                                {"from_mm", h.part.fromFraction * part.lengthMm},
+                                {"to_mm", h.part.toFraction * part.lengthMm},
+                                {"files", {h.name + "_mold_core" + extension, h.name + "_mold_shell_a" + extension, h.name + "_mold_shell_b" + extension}},
+                                {"core_exit", h.solids.coreExit.top ? "top" : "bottom"},
+                                {"demoulding_stretch", h.solids.coreExit.stretch},
+                                {"pour", pourJson(p, h.solids, (h.name + "_mold_shell_a").c_str())}});
+        }
+        const double cutMm = pieces[0].part.toFraction * part.lengthMm;
+        manifest["halves"] = Json{
+            {"cut_z_mm", cutMm},
+            {"flange_mm", flangeMm},
+            {"pieces", list},
+            {"bond", fmt::format("the halves meet at z = {:.1f} mm, the design's widest section: coat both flanges' faces with a silicone adhesive "
+                                 "for platinum silicone (or a thin layer of the same silicone, freshly mixed), align the halves on a rod through both "
+                                 "cores' channels, press the flanges together with a clamp ring or tape and cure; the flange stays, {:g} mm proud of "
+                                 "the wall",
+                                 cutMm, flangeMm)}};
+        manifest.erase("pour");  // each half has its own
+    }
     // The core held at both ends; spacers where it is too slender to stay centred while filling.
     const sim::CoreSupport support = sim::CheckCoreSupport(solids, part, mold, material, pourDef);
     Json spacers = Json::array();
@@ -322,7 +408,7 @@ static int RunExport(int argc, char** argv, int first) {
     WriteFileAtomically((fs::path(out) / "casting.md").string(), CastingSheet(manifest));
     batch.Commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 3 + (twoStages ? 1 : 0)}, {"seconds", seconds}};
+    Json summary{{"out", out}, {"silicone_volume_mm3", silicone}, {"files", files.size() + 3 + (twoStages ? 1 : 0) + (halves ? 1 : 0)}, {"seconds", seconds}};
     if (plan.tooSlow || firstPlan.tooSlow)
         summary["warning_pour"] = fmt::format("{:.1f} min to fill by syringe, more than half the {:g} min pot life (casting.md, pour)", plan.syringeMin,
                                               casting.potLifeMin);

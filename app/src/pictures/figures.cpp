@@ -330,7 +330,7 @@ render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string
                    "vents: four, in the top end wall"};
     // The pour's direction: up into the sprue's mouth on shell A's bottom face.
     const float x = float(step + solids.sprueMouthMm[0]), y = float(solids.sprueMouthMm[1]), z = float(block[2]);
-    const float length = float(0.18 * (block[5] - block[2])), head = float(0.3 * w);
+    const float length = float(0.18 * (block[5] - block[2])), head = std::min(float(0.3 * w), 0.3f * length);
     auto mark = [&](float ax, float az, float bx, float bz) {
         render::Segment s{{ax, y, az}, {bx, y, bz}};
         s.mark = true;

@@ -128,16 +128,34 @@ std::string CastingSheet(const Json& m) {
         out += steps.Heading("Second stage: the overmould");
         out += "Into mold_shell_b and mold_shell_a, the core with its wound layer: " + close + "\n\n";
         out += MixAndPour(m["pour"], "the wall's outer part");
+    } else if (m.contains("halves")) {
+        const Json& halves = m["halves"];
+        for (const Json& piece : halves["pieces"]) {
+            const std::string half = Text(piece, "half");
+            out += steps.Heading("The " + half + " half");
+            out += fmt::format("Into {0}_mold_shell_b and {0}_mold_shell_a, {0}_mold_core: {1} The cavity is the wall from z = {2:.1f} to {3:.1f} mm, "
+                               "its flange at the cut.\n\n",
+                               half, close, Number(piece, "from_mm"), Number(piece, "to_mm"));
+            out += MixAndPour(piece["pour"], "the " + half + " half");
+            out += fmt::format("Open the shells and pull {}_mold_core out through the cut ({} end, a hoop stretch of {:.2f}).\n\n", half,
+                               Text(piece, "core_exit"), Number(piece, "demoulding_stretch"));
+        }
+        out += steps.Heading("Bond the halves");
+        std::string bond = Text(halves, "bond");
+        if (!bond.empty()) bond[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(bond[0])));
+        out += bond + ". Trim the sprues' and vents' tabs. Test it under water at a low pressure before use: the bond is its weakest line.\n";
     } else {
         out += steps.Heading("Assemble, mix and pour");
         std::string sentence = close;
         sentence[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(sentence[0])));
         out += sentence + "\n\n" + MixAndPour(m["pour"], "the cavity");
     }
-    out += steps.Heading("Demould");
-    std::string how = Text(core, "how");
-    if (!how.empty()) how[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(how[0])));
-    out += "Open the shells along the split plane. " + how + ". Trim the sprue's and the vents' tabs from the ends.\n";
+    if (!m.contains("halves")) {
+        out += steps.Heading("Demould");
+        std::string how = Text(core, "how");
+        if (!how.empty()) how[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(how[0])));
+        out += "Open the shells along the split plane. " + how + ". Trim the sprue's and the vents' tabs from the ends.\n";
+    }
     if (m.contains("fittings")) {
         out += "\n" + steps.Heading("Fittings");
         out += fmt::format("Push fitting_bottom (its {:g} mm port for the air line) and fitting_top into the ends, bond them with a silicone adhesive, "

@@ -51,6 +51,18 @@ struct PartDef {
     // the threads (guides). 0: the whole wall.
     double layerMm = 0;
     GuideDef guides;
+    // A piece of the design cast on its own (CastKind::Halves): the heights it spans, as fractions of
+    // the length; its solids start at z = 0. At a cut end (not the design's own end) the wall ends
+    // in a bonding flange this far beyond its outer face, one sample band thick.
+    double fromFraction = 0, toFraction = 1;
+    double flangeMm = 0;
+};
+
+// How the actuator is cast (docs/guide/export.md, casting in halves).
+enum class CastKind {
+    Whole,   // in one mold
+    Halves,  // cut across the axis at its widest section into two pieces, each in its own mold with a
+             // core that leaves through the cut, bonded at their flanges
 };
 
 // A design's radius, in units of the base radius, at height fraction t (0..1) and at an angle
@@ -162,6 +174,10 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
 template <>
 struct sim::EnumNames<sim::CoreKind> {
     static constexpr std::array<std::pair<sim::CoreKind, const char*>, 2> table{{{sim::CoreKind::Rigid, "rigid"}, {sim::CoreKind::Lost, "lost"}}};
+};
+template <>
+struct sim::EnumNames<sim::CastKind> {
+    static constexpr std::array<std::pair<sim::CastKind, const char*>, 2> table{{{sim::CastKind::Whole, "whole"}, {sim::CastKind::Halves, "halves"}}};
 };
 template <>
 struct sim::EnumNames<sim::WallSide> {

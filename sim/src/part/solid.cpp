@@ -202,15 +202,17 @@ std::string RestSurface(const Shape& shape, const PartDef& part, const RadiusFie
         const double w = u * u * (3 - 2 * u);  // smoothstep: level with each sector where it meets it
         return (1 - w) * before + w * after;
     };
+    // A piece spans its fractions of the design's length, its own heights from 0.
+    const double from = part.fromFraction, to = part.toFraction, pieceMm = (to - from) * part.lengthMm;
     for (int j = 0; j < rest->nz; ++j) {
-        const double t = static_cast<double>(j) / (rest->nz - 1);
+        const double u = static_cast<double>(j) / (rest->nz - 1), t = from + (to - from) * u;
         for (int i = 0; i < rest->nt; ++i) {
             const double rho = radius(t, 2 * std::numbers::pi * i / rest->nt);
             if (!(rho > 0))
                 return Format("the design's radius is %.3g mm at z = %.4g mm, angle %.4g deg: a part needs a positive radius everywhere",
                               rho * part.radiusMm, t * part.lengthMm, Degrees(i, rest->nt));
             const auto [c, s] = Direction(i, rest->nt);
-            rest->At(j, i) = {part.radiusMm * rho * c, part.radiusMm * rho * s, j == rest->nz - 1 ? part.lengthMm : t * part.lengthMm};
+            rest->At(j, i) = {part.radiusMm * rho * c, part.radiusMm * rho * s, j == rest->nz - 1 ? pieceMm : u * pieceMm};
         }
     }
     return "";
@@ -665,8 +667,15 @@ std::string Fitting(const Grid& inner, const Grid& outer, bool atTop, double por
     return "";
 }
 
-std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldDef& mold, PartSolids* out, const FittingDef& fittings,
+std::string BuildPartSolids(const Shape& shape, const PartDef& design, const MoldDef& mold, PartSolids* out, const FittingDef& fittings,
                             const RadiusField& measured) {
+    if (!(design.fromFraction >= 0 && design.fromFraction < design.toFraction && design.toFraction <= 1))
+        return "a piece spans heights 0 <= from < to <= 1 of the design";
+    if (!(design.flangeMm >= 0)) return "a flange's width must not be negative";
+    // From here on the part is the piece: its length, its heights from 0 (the design's surface is
+    // sampled over the piece's span).
+    PartDef part = design;
+    part.lengthMm = (design.toFraction - design.fromFraction) * design.lengthMm;
     if (part.angularSamples < 8 || part.angularSamples % 8 != 0) return "the samples around the tube must be a multiple of 8, at least 8";
     if (part.axialSamples < 3) return "at least 3 samples along the tube";
     if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
@@ -675,7 +684,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
         return "the sprue spans 0 to 120 degrees (0: sized) and each vent 0 to 60";
     if (!(mold.sprueMm > 0)) return "the sprue's width must be positive";
     Grid rest;
-    if (std::string error = RestSurface(shape, part, measured, &rest); !error.empty()) return error;
+    if (std::string error = RestSurface(shape, design, measured, &rest); !error.empty()) return error;
     const std::vector<Vec> normals = Normals(rest);
     for (size_t k = 0; k < normals.size(); ++k)
         if (Dot(normals[k], normals[k]) == 0)
@@ -688,6 +697,18 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& part, const MoldD
     Grid outer = Offset(rest, normals, innerOffset + h);
     const Grid inner = part.wall == WallSide::Centred ? Offset(rest, normals, innerOffset) : rest;
     if (std::string error = CutGuides(part, normals, &outer); !error.empty()) return error;
+    // A cut end's bonding flange: the end ring and the one next to it carried out by the flange's
+    // width (a rim one band thick, its underside chamfered to the wall).
+    if (design.flangeMm > 0)
+        for (const bool atTop : {false, true}) {
+            if (atTop ? design.toFraction >= 1 : design.fromFraction <= 0) continue;  // the design's own end
+            const int e = atTop ? outer.nz - 1 : 0, n = atTop ? e - 1 : 1;
+            for (int i = 0; i < outer.nt; ++i) {
+                const Vec rim = Beyond(inner.At(e, i), outer.At(e, i), design.flangeMm);
+                outer.At(e, i) = {rim[0], rim[1], outer.At(e, i)[2]};
+                outer.At(n, i) = {rim[0], rim[1], outer.At(n, i)[2]};
+            }
+        }
     for (const auto& [grid, which] : {std::pair<const Grid*, const char*>{&outer, "outer"}, std::pair{&inner, "inner"}})
         if (std::string error = FoldError(*grid, rest, which, part); !error.empty()) return error;
     if (std::string error = PinError(outer, part, mold); !error.empty()) return error;

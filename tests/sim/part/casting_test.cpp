@@ -308,3 +308,35 @@ TEST(Casting, ASlenderCoreGetsSpacersAndAStoutOneNone) {
     EXPECT_GT(slender.deflectionMm / std::pow(parts - 1, 4), slender.allowedMm) << "and no more stations than that needs";
     for (const double z : slender.stationsMm) EXPECT_TRUE(z > 0 && z < part.lengthMm) << z;
 }
+
+TEST_F(CastingCli, TheBulbIsRefusedWholeAndCastInHalvesBondedAtTheirFlanges) {
+    const std::string bulb = "export --model shell --shape bspline --region middle --control-points 1,8,8,1";
+    Result r = Run(bulb + " --out " + Path("whole"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("--cast halves"));
+    EXPECT_FALSE(fs::exists(dir_ / "whole"));
+    r = Run(bulb + " --cast halves --out " + Path("halves"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto manifest = nlohmann::json::parse(Slurp(dir_ / "halves" / "manifest.json"));
+    EXPECT_NEAR(manifest["halves"]["cut_z_mm"].get<double>(), 75, 1e-9);
+    ASSERT_EQ(manifest["halves"]["pieces"].size(), 2u);
+    for (const auto& piece : manifest["halves"]["pieces"]) EXPECT_LT(piece["demoulding_stretch"].get<double>(), 1.01);
+    for (const char* file : {"bottom_half.stl", "bottom_mold_core.stl", "bottom_mold_shell_a.stl", "top_mold_shell_b.stl", "mold_assembly_top.png"})
+        EXPECT_TRUE(fs::exists(dir_ / "halves" / file)) << file;
+    EXPECT_FALSE(fs::exists(dir_ / "halves" / "mold_core.stl")) << "the halves' molds replace the whole one's";
+    const std::string sheet = Slurp(dir_ / "halves" / "casting.md");
+    EXPECT_LT(sheet.find("The bottom half"), sheet.find("The top half"));
+    EXPECT_LT(sheet.find("The top half"), sheet.find("Bond the halves"));
+    // It also casts with a lost core; halves refuse fibres, and a flange without halves.
+    EXPECT_EQ(Run(bulb + " --core lost --out " + Path("lost")).exitCode, 0);
+    r = Run(bulb + " --cast halves --fibres braid --out " + Path("fibres"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("without fibres"));
+    EXPECT_EQ(Run(bulb + " --flange-mm 2 --core lost --out " + Path("flange")).exitCode, 2);
+    EXPECT_FALSE(fs::exists(dir_ / "fibres"));
+    EXPECT_FALSE(fs::exists(dir_ / "flange"));
+    // A plain tube is widest everywhere (its first ring): halves are refused, it is cast whole.
+    r = Run("export --model shell --shape cylinder --cast halves --out " + Path("tube"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_THAT(r.err, HasSubstr("cast it whole"));
+}

@@ -522,3 +522,43 @@ TEST(Solid, TheFirstStagesGroovedLayerAndItsMoldAreValidSolids) {
     part.guides.cosinePerRing = {std::vector<double>(121, 1.0)};
     EXPECT_THAT(sim::BuildPartSolids(sim::CylinderShape{}, part, {}, &untouched), HasSubstr("at most half of it deep"));
 }
+
+// Cast in halves: cut across the axis at the widest section, each half's wall ends there in a
+// bonding flange, its mold fills its block, and its one-piece core leaves through the cut.
+TEST(Solid, HalvesCutAtTheWidestSectionAreValidAndTheirCoresLeaveThroughTheCut) {
+    const Case c{"bulb", sim::BSplineShape{sim::SplineRegion::Middle, {{1, 8, 8, 1}}}, false};
+    const sim::PartDef part = PartOf(c);
+    sim::PartSolids full;
+    ASSERT_EQ(sim::BuildPartSolids(c.shape, part, {}, &full), "");
+    EXPECT_GT(full.coreExit.stretch, 8) << "whole, the bulb's core cannot leave";
+    const auto& perimeter = full.corePerimeterMm;
+    const int nz = static_cast<int>(perimeter.size());
+    const int widest = static_cast<int>(std::max_element(perimeter.begin(), perimeter.end()) - perimeter.begin());
+    ASSERT_EQ(widest, (nz - 1) / 2) << "a symmetric bulb is widest at mid-length";
+    double halvesMm3 = 0;
+    for (const bool top : {false, true}) {
+        SCOPED_TRACE(top ? "top" : "bottom");
+        sim::PartDef half = part;
+        (top ? half.fromFraction : half.toFraction) = static_cast<double>(widest) / (nz - 1);
+        half.axialSamples = top ? nz - widest : widest + 1;
+        half.flangeMm = 3;
+        sim::PartSolids solids;
+        ASSERT_EQ(sim::BuildPartSolids(c.shape, half, {}, &solids), "");
+        for (const auto& [name, mesh] : {std::pair{"half", &solids.actuator}, std::pair{"core", &solids.core}, std::pair{"shell A", &solids.shellA},
+                                         std::pair{"shell B", &solids.shellB}})
+            EXPECT_THAT(SolidProblems(*mesh), ::testing::IsEmpty()) << name;
+        EXPECT_LT(solids.coreExit.stretch, 1.01) << "the core's widest section is the cut";
+        EXPECT_EQ(solids.coreExit.top, !top) << "it leaves through the cut";
+        const auto a = sim::MeshBounds(solids.shellA), b = sim::MeshBounds(solids.shellB);
+        EXPECT_NEAR(a[5] - a[2], 0.5 * part.lengthMm + 10, 1e-9) << "half the length and two end walls";
+        const double block = (std::max(a[3], b[3]) - std::min(a[0], b[0])) * (std::max(a[4], b[4]) - std::min(a[1], b[1])) * (a[5] - a[2]);
+        const double pieces = sim::MeshVolume(solids.shellA) + sim::MeshVolume(solids.shellB) + sim::MeshVolume(solids.actuator) + sim::MeshVolume(solids.core) -
+                              solids.coreOutsideBlockMm3 + solids.openingsMm3 - solids.pinsLessHolesMm3;
+        EXPECT_NEAR(pieces / block, 1, 1e-6);
+        halvesMm3 += sim::MeshVolume(solids.actuator);
+    }
+    // The halves are the whole wall and two flanges, each about its annulus times a band (2.5 mm at 61 samples).
+    const double rim = sim::MeshBounds(full.actuator)[3], band = part.lengthMm / (nz - 1);
+    const double flanges = 2 * std::numbers::pi * ((rim + 3) * (rim + 3) - rim * rim) * band;
+    EXPECT_NEAR(halvesMm3 - sim::MeshVolume(full.actuator), flanges, 0.5 * flanges);
+}
