@@ -107,6 +107,10 @@ static int RunExport(int argc, char** argv, int first) {
     cli.Enum("--cast", cast, "whole: one mold; halves: cut across the axis at the widest section into two pieces, each in its own mold with a "
                              "one-piece core that leaves through the cut, bonded at their flanges (docs/guide/export.md)");
     cli.Number("--flange-mm", flangeMm, "with --cast halves: the bonding flange beyond the wall's outer face at the cut, mm", 0.5, 50)->default_str("3");
+    double threadSpacingMm = 3;
+    cli.Number("--thread-spacing-mm", threadSpacingMm, "fibre designs: the threads of a family at most this far apart across, where the tube is "
+                                                       "widest (sets the threads per family and the EA each needs)", 0.5, 100)
+        ->default_str("3");
     double viscosityCps = 0, potLifeMin = 0;
     cli.Group("Pour");
     cli.Number("--viscosity-cps", viscosityCps, "the mixed silicone's viscosity, cps = mPa s, for the fill-time estimate (default: the preset's bulletin; "
@@ -193,7 +197,7 @@ static int RunExport(int argc, char** argv, int first) {
     const sim::FibreDef fibres = job.model == sim::ModelKind::Thesis ? sim::FibreDef{} : job.Shell().fibres;
     {
         std::string error;
-        winding = sim::PlanWinding(solids, part, fibres, &error);
+        winding = sim::PlanWinding(solids, part, fibres, threadSpacingMm, &error);
         if (!error.empty()) throw UsageError("cannot wind this design's fibres: " + error);
     }
     // A fibre design is cast in two stages: the wall's inner half in a first mold whose cavity has
@@ -377,16 +381,27 @@ static int RunExport(int argc, char** argv, int first) {
             for (const sim::WindingBand& b : w.bands)
                 bands.push_back(Json{{"from_mm", b.fromMm}, {"to_mm", b.toMm}, {"angle_deg", NumberJson(b.angleDeg)}, {"turns", b.turns},
                                      {"pitch_mm", NumberJson(b.pitchMm)}});
-            families.push_back(Json{{"family", w.family}, {"hand", w.hand}, {"thread_mm", w.pathMm}, {"turns", w.turns}, {"bands", bands}});
+            Json starts = Json::array();
+            for (const sim::ThreadPath& t : w.threads) starts.push_back(t.startDeg);
+            families.push_back(Json{{"family", w.family},
+                                    {"hand", w.hand},
+                                    {"threads", w.threads.size()},
+                                    {"start_angles_deg", starts},
+                                    {"thread_mm", w.pathMm},
+                                    {"turns", w.turns},
+                                    {"spacing_mm", {w.spacingMinMm, w.spacingMaxMm}},
+                                    {"ea_per_thread_n", w.eaPerThreadN},
+                                    {"bands", bands}});
         }
         manifest["fibres"] = Json{
             {"layout", sim::Name(fibres.layout)},
             {"stiffness_n_per_mm", fibres.stiffnessNPerMm},
             {"families", families},
-            {"order", winding.size() > 1 ? "the +alpha family first, bottom to top, then the -alpha family over it, bottom to top"
-                                         : "one family, bottom to top"},
+            {"thread_spacing_mm", threadSpacingMm},
+            {"order", winding.size() > 1 ? "the +alpha family's threads first, each bottom to top, then the -alpha family's over them"
+                                         : "one family, each thread bottom to top"},
             {"how", fmt::format("wound on the first stage's layer (the wall's inner {:g} mm, on the core) in its guide grooves ({:g} mm deep, "
-                                "{:g} mm wide), each family from its groove's start at 0 deg on the bottom end, then overmoulded",
+                                "{:g} mm wide), each thread from its groove's start on the bottom end, then overmoulded",
                                 firstPart.layerMm, firstPart.guides.depthMm, firstPart.guides.widthMm)}};
     }
     // The block = the shells + the actuator + the core inside it + the sprue and vents - (pins - holes).

@@ -351,14 +351,15 @@ render::Scene WindingGuidesScene(const sim::PartSolids& layer, const std::vector
     std::string families;
     for (size_t f = 0; f < winding.size(); ++f) {
         const sim::FibreWinding& w = winding[f];
-        families += fmt::format("{}{} {}: {:.2f} turns, {:.0f} mm", f ? ";  " : "", w.family, w.hand, w.turns, w.pathMm);
-        for (size_t k = 0; k + 1 < w.pointsMm.size(); ++k) {
-            const auto& a = w.pointsMm[k];
-            const auto& b = w.pointsMm[k + 1];
-            render::Segment s{{float(a[0]), float(a[1]), float(a[2])}, {float(b[0]), float(b[1]), float(b[2])}};
-            s.value = float(f);
-            scene.panels[0].segments.push_back(s);
-        }
+        families += fmt::format("{}{} {}: {} threads, {:.2f} turns, {:.0f} mm each", f ? ";  " : "", w.family, w.hand, w.threads.size(), w.turns, w.pathMm);
+        for (const sim::ThreadPath& thread : w.threads)
+            for (size_t k = 0; k + 1 < thread.pointsMm.size(); ++k) {
+                const auto& a = thread.pointsMm[k];
+                const auto& b = thread.pointsMm[k + 1];
+                render::Segment s{{float(a[0]), float(a[1]), float(a[2])}, {float(b[0]), float(b[1]), float(b[2])}};
+                s.value = float(f);
+                scene.panels[0].segments.push_back(s);
+            }
     }
     scene.lines = {"the first stage's layer on the core, its guide grooves along the threads", families};
     // The layer in the silicone's colour, the threads in the families' (first purple, second yellow).

@@ -10,6 +10,7 @@ namespace app {
 namespace {
 
 double Number(const Json& j, const char* key) { return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN; }
+double Number(const Json& j, size_t index) { return j.is_array() && index < j.size() && j[index].is_number() ? j[index].get<double>() : NAN; }
 std::string Text(const Json& j, const char* key) { return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : ""; }
 
 // What each printed file is best printed in: the core as its kind needs, the rest in a rigid plastic.
@@ -121,9 +122,16 @@ std::string CastingSheet(const Json& m) {
                                    Number(b, "to_mm"), std::isfinite(angle) ? fmt::format("{:.1f}", angle) : "by sector", Number(b, "turns"),
                                    std::isfinite(pitch) ? fmt::format("{:.1f}", pitch) : "straight");
             }
-        for (const Json& family : f["families"])
-            out += fmt::format("\nThe {} thread: {:.0f} mm on the wall, {:.2f} turns.", Text(family, "family"), Number(family, "thread_mm"),
-                               Number(family, "turns"));
+        for (const Json& family : f["families"]) {
+            std::string starts;
+            for (const Json& a : family["start_angles_deg"]) starts += fmt::format("{}{:.0f}", starts.empty() ? "" : ", ", a.get<double>());
+            out += fmt::format("\nThe {} family: {} threads, each {:.0f} mm on the wall and {:.2f} turns, starting at {} deg on the bottom end; "
+                               "{:.1f} to {:.1f} mm apart across; each thread of EA {:.0f} N (its stiffness, force per unit strain) is the "
+                               "model's {:g} N/mm family at the mean spacing.",
+                               Text(family, "family"), family["threads"].get<int>(), Number(family, "thread_mm"), Number(family, "turns"), starts,
+                               Number(family["spacing_mm"], size_t{0}), Number(family["spacing_mm"], size_t{1}), Number(family, "ea_per_thread_n"),
+                               Number(f, "stiffness_n_per_mm"));
+        }
         out += " Tie each thread off at the ends, where the clamps will hold it. winding_guides.png shows the grooves and the threads.\n\n";
         out += steps.Heading("Second stage: the overmould");
         out += "Into mold_shell_b and mold_shell_a, the core with its wound layer: " + close + "\n\n";

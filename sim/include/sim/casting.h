@@ -71,7 +71,7 @@ CoreSupport CheckCoreSupport(const PartSolids& solids, const PartDef& part, cons
                              const PourDef& pour = {});
 
 // How a design's fibres are wound onto its wall (the models' fibres as threads): each family as
-// one continuous thread from the bottom end to the top at the design's angle to the meridian,
+// threads from the bottom end to the top at the design's angle to the meridian,
 // integrated over the wall's mid-surface ring by ring (on a bulb the thread turns faster where the
 // radius is smaller: dtheta = tan(alpha) ds / r).
 struct WindingBand {
@@ -80,19 +80,31 @@ struct WindingBand {
     double turns = 0;             // around the axis over the band
     double pitchMm = 0;           // height per turn; NaN where the thread runs straight up (no turns)
 };
+// One thread of a family, ring by ring.
+struct ThreadPath {
+    double startDeg = 0;                // its start at the bottom end, degrees from +x
+    std::vector<double> anglePerRing;   // its angle about the axis at each ring of the part (radians from +x)
+    std::vector<double> cosinePerRing;  // cos of its angle to the meridian there (for GuideDef)
+    std::vector<std::array<double, 3>> pointsMm;  // where it crosses each ring, on the mid-surface
+};
 struct FibreWinding {
     std::string family;  // "+alpha" or "-alpha" (the models' names)
     std::string hand;    // "left-handed" (+alpha: clockwise seen from the top, going up), "right-handed", "straight" (meridian)
     double pathMm = 0;   // the thread's length on the wall, mm
     double turns = 0;    // around the axis, bottom to top
     std::vector<WindingBand> bands;
-    std::vector<double> anglePerRing;   // the thread's angle about the axis at each ring of the part (radians from +x)
-    std::vector<double> cosinePerRing;  // cos of its angle to the meridian there (for GuideDef)
-    std::vector<std::array<double, 3>> pointsMm;  // where it crosses each ring, on the mid-surface
+    // The family as threads: equally spaced at the bottom end, as many as keep them the spacing
+    // apart where the tube is widest. The models' fibres are a continuous family of a stiffness per
+    // unit width; threads of EA newtons each, this far apart, are that family where the spacing is
+    // its mean (stiffer where the tube is narrower, softer where it is wider).
+    std::vector<ThreadPath> threads;
+    double spacingMinMm = 0, spacingMaxMm = 0;  // across the threads, over the length
+    double eaPerThreadN = 0;                    // the stiffness per unit width times the mean spacing
 };
 // Empty for a design without fibres. Hoop fibres (90 degrees) are rings, not a thread wound up the
 // tube: `error` says so, and so it does for angles of 89 degrees or more.
-std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, std::string* error);
+std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, double threadSpacingMm,
+                                      std::string* error);
 
 // A fibre design's first stage (docs/guide/export.md, fibres): the wall's inner half, its outer face
 // (the mid-surface, where the models' fibres lie) grooved along every family's thread.

@@ -103,7 +103,8 @@ CoreSupport CheckCoreSupport(const PartSolids& solids, const PartDef& part, cons
     return c;
 }
 
-std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, std::string* error) {
+std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& part, const FibreDef& fibres, double threadSpacingMm,
+                                      std::string* error) {
     std::vector<FibreWinding> out;
     if (fibres.layout == FibreLayout::None || (!fibres.plus && !fibres.minus)) return out;
     const int nt = solids.midAround, nz = nt > 0 ? static_cast<int>(solids.midSurfaceMm.size()) / nt : 0;
@@ -135,31 +136,28 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
         if (fibres.plus) families.push_back({"+alpha", -1});
         if (braid && fibres.minus) families.push_back({"-alpha", 1});
     }
-    for (const auto& [name, sign] : families) {
-        FibreWinding w;
-        w.family = name;
-        double theta = 0;
+    // One thread of a family from its start angle at the bottom end, ring by ring.
+    auto march = [&](double start, double sign, FibreWinding& w, ThreadPath& path) {
+        double theta = start;
         size_t band = 0;
         WindingBand current{0, 0, NAN, 0, NAN};
+        w.pathMm = w.turns = 0;
+        w.bands.clear();
         for (int j = 0; j + 1 < nz; ++j) {
-            w.anglePerRing.push_back(theta);
+            path.anglePerRing.push_back(theta);
             const auto p0 = at(j, theta);
-            w.pointsMm.push_back(p0);
+            path.pointsMm.push_back(p0);
             const double t = 0.5 * (p0[2] + at(j + 1, theta)[2]) / part.lengthMm;
-            double alpha = fibres.layout == FibreLayout::Meridian ? 0
-                           : fibres.layout == FibreLayout::Hoop   ? 90
-                                                                  : FibreAngleDegAt(fibres, t, theta);
-            if (std::fabs(alpha) >= 89) {
-                *error = "fibres at 89 degrees or more to the meridian are rings around the tube, not a thread wound along it: wind them as a "
-                         "close helix by hand";
-                return {};
-            }
+            const double alpha = fibres.layout == FibreLayout::Meridian ? 0
+                                 : fibres.layout == FibreLayout::Hoop   ? 90
+                                                                        : FibreAngleDegAt(fibres, t, theta);
+            if (std::fabs(alpha) >= 89) return false;
             // The meridian step here, and the turn it brings.
             const auto p1 = at(j + 1, theta);
             const double ds = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) + (p1[2] - p0[2]) * (p1[2] - p0[2]));
             const double r = 0.5 * (std::hypot(p0[0], p0[1]) + std::hypot(p1[0], p1[1]));
             const double dtheta = sign * std::tan(alpha * degree) * ds / r;
-            w.cosinePerRing.push_back(std::cos(alpha * degree));
+            path.cosinePerRing.push_back(std::cos(alpha * degree));
             w.pathMm += ds / std::cos(alpha * degree);
             w.turns += std::fabs(dtheta) / (2 * pi);
             theta += dtheta;
@@ -174,12 +172,43 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
             current.angleDeg = sectors ? NAN : alpha;
             current.turns += std::fabs(dtheta) / (2 * pi);
         }
-        w.anglePerRing.push_back(theta);
-        w.cosinePerRing.push_back(w.cosinePerRing.back());
-        w.pointsMm.push_back(at(nz - 1, theta));
+        path.anglePerRing.push_back(theta);
+        path.cosinePerRing.push_back(path.cosinePerRing.back());
+        path.pointsMm.push_back(at(nz - 1, theta));
         current.toMm = part.lengthMm;
         current.pitchMm = current.turns > 1e-9 ? (current.toMm - current.fromMm) / current.turns : NAN;
         w.bands.push_back(current);
+        return true;
+    };
+    for (const auto& [name, sign] : families) {
+        FibreWinding w;
+        w.family = name;
+        ThreadPath first;
+        if (!march(0, sign, w, first)) {
+            *error = "fibres at 89 degrees or more to the meridian are rings around the tube, not a thread wound along it: wind them as a "
+                     "close helix by hand";
+            return {};
+        }
+        // As many threads as keep them at most threadSpacingMm apart across (perimeter x cos(alpha) / n)
+        // where the tube is widest, equally spaced around at the bottom end.
+        double widest = 0, narrowest = INFINITY, mean = 0;
+        for (int j = 0; j < nz; ++j) {
+            const double across = solids.cavityPerimeterMm[j] * first.cosinePerRing[j];
+            widest = std::max(widest, across), narrowest = std::min(narrowest, across), mean += across / nz;
+        }
+        const int n = std::max(1, static_cast<int>(std::ceil(widest / threadSpacingMm - 1e-9)));
+        w.spacingMaxMm = widest / n;
+        w.spacingMinMm = narrowest / n;
+        w.eaPerThreadN = fibres.stiffnessNPerMm * mean / n;
+        first.startDeg = 0;
+        w.threads.push_back(std::move(first));
+        for (int k = 1; k < n; ++k) {
+            FibreWinding again = w;  // the same turns and bands, only the start differs (on a round tube; measured anyway)
+            ThreadPath path;
+            path.startDeg = 360.0 * k / n;
+            march(2 * pi * k / n, sign, again, path);
+            w.threads.push_back(std::move(path));
+        }
         w.hand = w.turns < 1e-9 ? "straight" : sign < 0 ? "left-handed" : "right-handed";
         out.push_back(w);
     }
@@ -191,10 +220,11 @@ PartDef FirstStagePart(const PartDef& part, const std::vector<FibreWinding>& win
     first.layerMm = 0.5 * part.thicknessMm;
     // A groove the thread's depth, at most 40 % of the layer (the layer keeps most of itself under it).
     first.guides.depthMm = std::min(first.guides.depthMm, 0.4 * first.layerMm);
-    for (const FibreWinding& w : winding) {
-        first.guides.anglePerRing.push_back(w.anglePerRing);
-        first.guides.cosinePerRing.push_back(w.cosinePerRing);
-    }
+    for (const FibreWinding& w : winding)
+        for (const ThreadPath& thread : w.threads) {
+            first.guides.anglePerRing.push_back(thread.anglePerRing);
+            first.guides.cosinePerRing.push_back(thread.cosinePerRing);
+        }
     return first;
 }
 

@@ -158,7 +158,7 @@ TEST(Casting, FibresAreWoundAsHelicesWithTheClosedFormTurnsAndLength) {
     braid.layout = sim::FibreLayout::Braid;
     braid.angleDeg = 40;
     std::string error;
-    const auto winding = sim::PlanWinding(solids, part, braid, &error);
+    const auto winding = sim::PlanWinding(solids, part, braid, 3, &error);
     ASSERT_EQ(error, "");
     ASSERT_EQ(winding.size(), 2u);
     const double alpha = 40 * std::numbers::pi / 180;
@@ -172,11 +172,27 @@ TEST(Casting, FibresAreWoundAsHelicesWithTheClosedFormTurnsAndLength) {
     }
     EXPECT_EQ(winding[0].hand, "left-handed");
     EXPECT_EQ(winding[1].hand, "right-handed");
+    // As threads at most 3 mm apart across: n = ceil(P cos(alpha) / 3), equally spaced, each the
+    // family's stiffness per width times its spacing.
+    const double across = solids.cavityPerimeterMm[0] * std::cos(alpha);
+    const size_t n = static_cast<size_t>(std::ceil(across / 3));
+    EXPECT_EQ(n, 9u);
+    for (const auto& w : winding) {
+        ASSERT_EQ(w.threads.size(), n);
+        EXPECT_NEAR(w.spacingMaxMm, across / n, 1e-9);
+        EXPECT_NEAR(w.spacingMinMm, across / n, 1e-9);
+        EXPECT_NEAR(w.eaPerThreadN, braid.stiffnessNPerMm * across / n, 1e-9);
+        for (size_t k = 0; k < n; ++k) {
+            EXPECT_NEAR(w.threads[k].startDeg, 360.0 * k / n, 1e-12);
+            // On a round tube each thread is the first turned by its start.
+            EXPECT_NEAR(w.threads[k].anglePerRing.back() - w.threads[0].anglePerRing.back(), 2 * std::numbers::pi * k / n, 1e-3);
+        }
+    }
     // Bands wind at their own angles; a single family is one thread; meridian threads run straight.
     sim::FibreDef banded;
     banded.layout = sim::FibreLayout::Single;
     banded.bands = {{0, 0.5, 20}, {0.5, 1, 60}};
-    const auto single = sim::PlanWinding(solids, part, banded, &error);
+    const auto single = sim::PlanWinding(solids, part, banded, 3, &error);
     ASSERT_EQ(single.size(), 1u);
     ASSERT_EQ(single[0].bands.size(), 2u);
     EXPECT_NEAR(single[0].bands[0].toMm, 75, 150.0 / 120 + 1e-9) << "the band's end at the ring nearest it";
@@ -184,19 +200,20 @@ TEST(Casting, FibresAreWoundAsHelicesWithTheClosedFormTurnsAndLength) {
     EXPECT_NEAR(single[0].bands[0].pitchMm, 2 * std::numbers::pi * 5 / std::tan(20 * std::numbers::pi / 180), chords * 86.31);
     sim::FibreDef meridian;
     meridian.layout = sim::FibreLayout::Meridian;
-    const auto straight = sim::PlanWinding(solids, part, meridian, &error);
+    const auto straight = sim::PlanWinding(solids, part, meridian, 3, &error);
     ASSERT_EQ(straight.size(), 1u);
     EXPECT_EQ(straight[0].hand, "straight");
     EXPECT_NEAR(straight[0].pathMm, 150, 1e-9);
+    EXPECT_EQ(straight[0].threads.size(), 11u) << "a 31.4 mm perimeter at most 3 mm apart";
     // Hoop fibres are rings: they are not wound along the tube, and the export says so.
     sim::FibreDef hoop;
     hoop.layout = sim::FibreLayout::Hoop;
-    EXPECT_TRUE(sim::PlanWinding(solids, part, hoop, &error).empty());
+    EXPECT_TRUE(sim::PlanWinding(solids, part, hoop, 3, &error).empty());
     EXPECT_THAT(error, HasSubstr("rings around the tube"));
     // Families switched off (a GA gene) leave nothing to wind.
     braid.plus = braid.minus = false;
     error.clear();
-    EXPECT_TRUE(sim::PlanWinding(solids, part, braid, &error).empty());
+    EXPECT_TRUE(sim::PlanWinding(solids, part, braid, 3, &error).empty());
     EXPECT_EQ(error, "");
 }
 
@@ -207,7 +224,8 @@ TEST_F(CastingCli, AFibreDesignGetsItsWindingPlanAndHoopFibresAreRefused) {
     ASSERT_EQ(manifest["fibres"]["families"].size(), 2u);
     EXPECT_NEAR(manifest["fibres"]["families"][0]["turns"].get<double>(), std::tan(50 * std::numbers::pi / 180) * 150 / (2 * std::numbers::pi * 5), 3e-3);
     const std::string sheet = Slurp(dir_ / "braid" / "casting.md");
-    EXPECT_THAT(sheet, HasSubstr("Winding order: the +alpha family first"));
+    EXPECT_THAT(sheet, HasSubstr("Winding order: the +alpha family's threads first"));
+    EXPECT_EQ(manifest["fibres"]["families"][0]["threads"], 7) << "ceil(31.4 cos 50 deg / 3)";
     // Two stages: the inner layer in its own mold, wound, then overmoulded in the wall's mold.
     EXPECT_LT(sheet.find("## 3. First stage: the inner layer"), sheet.find("## 4. Wind the fibres"));
     EXPECT_LT(sheet.find("## 4. Wind the fibres"), sheet.find("## 5. Second stage: the overmould"));
@@ -240,7 +258,7 @@ TEST(Casting, TheFirstStagesGuideGroovesLieOnTheFibrePaths) {
         braid.layout = sim::FibreLayout::Braid;
         braid.angleDeg = 40;
         std::string error;
-        const auto winding = sim::PlanWinding(full, part, braid, &error);
+        const auto winding = sim::PlanWinding(full, part, braid, 3, &error);
         ASSERT_EQ(winding.size(), 2u) << error;
         const sim::PartDef first = sim::FirstStagePart(part, winding);
         EXPECT_DOUBLE_EQ(first.layerMm, 0.5);
@@ -251,16 +269,17 @@ TEST(Casting, TheFirstStagesGuideGroovesLieOnTheFibrePaths) {
         double worstAcross = 0, worstDepth = 0;
         int checked = 0;
         for (const auto& w : winding)
-            for (size_t k = 4; k + 4 < w.pointsMm.size(); ++k) {
-                const auto& p = w.pointsMm[k];
+            for (const auto& thread : w.threads)
+            for (size_t k = 4; k + 4 < thread.pointsMm.size(); ++k) {
+                const auto& p = thread.pointsMm[k];
                 size_t best = 0;
                 double nearest = INFINITY;
                 for (size_t n = 0; n < v.size(); ++n)
                     if (std::fabs(v[n][2] - p[2]) < 0.6)
                         if (const double d = std::hypot(v[n][0] - p[0], v[n][1] - p[1], v[n][2] - p[2]); d < nearest) nearest = d, best = n;
                 // The thread's direction, the surface's normal (near-radial on these gentle slopes) and across.
-                const auto& a = w.pointsMm[k - 1];
-                const auto& b = w.pointsMm[k + 1];
+                const auto& a = thread.pointsMm[k - 1];
+                const auto& b = thread.pointsMm[k + 1];
                 Eigen::Vector3d tangent(b[0] - a[0], b[1] - a[1], b[2] - a[2]), normal(p[0], p[1], 0), offset(v[best][0] - p[0], v[best][1] - p[1], v[best][2] - p[2]);
                 tangent.normalize();
                 normal = (normal - normal.dot(tangent) * tangent).normalized();
