@@ -253,8 +253,9 @@ static int RunExport(int argc, char** argv, int first) {
         auto renderer = MakeRenderer(1400, 1000);
         WritePng((fs::path(out) / "mold_assembly.png").string(),
                  renderer->Render(ExplodedMoldScene(halves ? pieces[0].solids : solids,
-                                                    fmt::format("{}mold for {}  -  wall {:g} mm", halves ? "bottom half's " : "", ShapeTitle(job.shape),
-                                                                part.thicknessMm))),
+                                                    fmt::format("{}mold for {}  -  wall {:g} mm", halves ? "bottom half's " : twoStages ? "two-stage " : "",
+                                                                ShapeTitle(job.shape), part.thicknessMm),
+                                                    twoStages ? &firstStage : nullptr)),
                  6);
         if (halves)
             WritePng((fs::path(out) / "mold_assembly_top.png").string(),

@@ -298,13 +298,15 @@ render::Panel SolidsPanel(const std::vector<PlacedSolid>& solids, std::shared_pt
 
 }  // namespace
 
-render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title) {
+render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title, const sim::PartSolids* firstStage) {
     const double w = sim::MeshBounds(solids.shellA)[3], step = 2.7 * w;
     std::shared_ptr<sim::Surface> surface;
     render::Scene scene;
     std::vector<PlacedSolid> placed{{&solids.actuator, 0, false}, {&solids.core, -step, false}, {&solids.shellA, step, false}, {&solids.shellB, 2 * step, true}};
     const bool fittings = !solids.fittingBottom.triangles.empty();
     if (fittings) placed.insert(placed.end(), {{&solids.fittingBottom, -2 * step, false}, {&solids.fittingTop, -2 * step, false}});
+    if (firstStage)  // beyond shell B: the first stage's shells and its layer
+        placed.insert(placed.end(), {{&firstStage->shellA, 3 * step, false}, {&firstStage->shellB, 4 * step, true}, {&firstStage->actuator, 5 * step, false}});
     scene.panels = {SolidsPanel(placed, surface)};
     scene.surface = surface;
     scene.title = title;
@@ -321,11 +323,17 @@ render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string
     if (fittings)
         scene.categories.insert(scene.categories.end(), {{"fitting, bottom (port)\n" + size(solids.fittingBottom), {0.80f, 0.47f, 0.65f}},
                                                          {"fitting, top\n" + size(solids.fittingTop), {0.80f, 0.47f, 0.65f}}});
+    if (firstStage) {
+        // The categories follow the placed solids' order (the fittings, when there are, come first).
+        scene.categories.insert(scene.categories.end(), {{"stage 1 shell A\n" + size(firstStage->shellA), {0.34f, 0.71f, 0.91f}},
+                                                         {"stage 1 shell B\n" + size(firstStage->shellB), {0.84f, 0.37f, 0.0f}},
+                                                         {"stage 1 layer (silicone)\n" + size(firstStage->actuator), {0.95f, 0.80f, 0.45f}}});
+    }
     scene.colorBy = render::ColorBy::Values;
     scene.colorLabel = "parts (x, y, z)";
     const auto block = sim::MeshBounds(solids.shellA);
     scene.lines = {std::string(fittings ? "fittings, core, actuator, shell A, shell B" : "core, actuator, shell A, shell B") +
-                       " (split faces to you); x, y, z sizes",
+                       (firstStage ? ", then the first stage's shells and layer" : "") + " (split faces to you); x, y, z sizes",
                    fmt::format("pour: upright, from below into shell A's sprue (red arrow, {:.1f} mm)", solids.sprueGapMm),
                    "vents: four, in the top end wall"};
     // The pour's direction: up into the sprue's mouth on shell A's bottom face.

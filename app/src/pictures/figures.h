@@ -72,7 +72,9 @@ render::Image PairsImage(const render::Scene& scene);
 // An exported part's solids (sim/solid.h): the parts side by side with the mold's split faces turned
 // to the camera, each part its own colour; and the actuator's wall cut open along its axis, the cut
 // showing its thickness.
-render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title);
+// `firstStage`: a fibre design's first-stage mold (its shells drawn beside the second's, its layer
+// beside the wall).
+render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string& title, const sim::PartSolids* firstStage = nullptr);
 // A fibre design's first-stage layer with its guide grooves, and the threads to wind in them (each
 // family in its colour): the winding picture of an export.
 render::Scene WindingGuidesScene(const sim::PartSolids& layer, const std::vector<sim::FibreWinding>& winding, const std::string& title);
