@@ -89,21 +89,16 @@ static int RunCharacterize(int argc, char** argv, int first) {
     const std::vector<double> pressures = ParsePressures(pressuresText);
     sim::EvalJob base;
     if (cli.Given("--from")) {
-        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
-        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
-        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
-        base = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
         // The design and its model are the record's; the load is characterize's to set at each point
         // (a record may be a held stroke or a blocked test).
-        if (sim::ModelOf(base).physical) {
-            sim::LoadDef& load = base.Shell().load;
+        base = ArchivedJob(cli, model, from, index, ModelUse::Weighed, [](sim::EvalJob& job) {
+            if (!sim::ModelOf(job).physical) return;
+            sim::LoadDef& load = job.Shell().load;
             load.kind = sim::ShellLoad::Inflate;
             load.forceN = 0;
             load.isobaricPoints = 0;
             load.strokePercent = load.strokeMm = 0;
-        }
-        OverrideModelOptions(cli, model, base, ModelUse::Weighed);
-        if (const std::string error = sim::JobError(base); !error.empty()) throw UsageError(error);
+        });
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
         base = BuildJob(cli, shape, model, ModelUse::Weighed);

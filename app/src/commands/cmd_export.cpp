@@ -130,11 +130,7 @@ static int RunExport(int argc, char** argv, int first) {
 
     sim::EvalJob job;
     if (cli.Given("--from")) {
-        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
-        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
-        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
-        job = ReadArchiveRecord(from, static_cast<std::uint64_t>(index)).job;
-        OverrideModelOptions(cli, model, job, ModelUse::CastPart);
+        job = ArchivedJob(cli, model, from, index, ModelUse::CastPart);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
         job = BuildJob(cli, shape, model, ModelUse::CastPart);
@@ -195,6 +191,8 @@ static int RunExport(int argc, char** argv, int first) {
     // The fibres as threads to wind (the models' fibres; the thesis model has none).
     std::vector<sim::FibreWinding> winding;
     const sim::FibreDef fibres = job.model == sim::ModelKind::Thesis ? sim::FibreDef{} : job.Shell().fibres;
+    if (cli.Given("--thread-spacing-mm") && (fibres.layout == sim::FibreLayout::None || (!fibres.plus && !fibres.minus)))
+        throw UsageError("--thread-spacing-mm applies to a design with fibres (it spaces their threads); this one has none");
     {
         std::string error;
         winding = sim::PlanWinding(solids, part, fibres, threadSpacingMm, &error);
@@ -325,9 +323,11 @@ static int RunExport(int argc, char** argv, int first) {
         }
         return pour;
     };
-    const sim::PourPlan plan = twoStages ? sim::PlanPour(solids, part, mold, material, casting, pourDef, firstPart.layerMm, sim::MeshVolume(firstStage.actuator))
-                                         : sim::PlanPour(solids, part, mold, material, casting, pourDef);
-    manifest["pour"] = pourJson(plan, solids, "mold_shell_a");
+    // Halves are poured each in its own mold (below); a whole part in the one, or over its first stage.
+    const sim::PourPlan plan = halves      ? sim::PourPlan{}
+                               : twoStages ? sim::PlanPour(solids, part, mold, material, casting, pourDef, firstPart.layerMm, sim::MeshVolume(firstStage.actuator))
+                                           : sim::PlanPour(solids, part, mold, material, casting, pourDef);
+    if (!halves) manifest["pour"] = pourJson(plan, solids, "mold_shell_a");
     if (halves) {
         Json list = Json::array();
         for (const Half& h : pieces) {
@@ -350,7 +350,6 @@ static int RunExport(int argc, char** argv, int first) {
                                  "cores' channels, press the flanges together with a clamp ring or tape and cure; the flange stays, {:g} mm proud of "
                                  "the wall",
                                  cutMm, flangeMm)}};
-        manifest.erase("pour");  // each half has its own
     }
     // The core held at both ends; spacers where it is too slender to stay centred while filling.
     const sim::CoreSupport support = sim::CheckCoreSupport(solids, part, mold, material, pourDef);

@@ -58,14 +58,7 @@ static int RunSimulate(int argc, char** argv, int first) {
 
     sim::EvalJob job;
     if (cli.Given("--from")) {
-        for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
-        if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
-        const ArchiveRecord record = ReadArchiveRecord(from, static_cast<std::uint64_t>(index));
-        job = record.job;
-        // Model settings given on this command line override the stored ones.
-        cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
-        OverrideModelOptions(cli, model, job, ModelUse::Simulate);
-        if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
+        job = ArchivedJob(cli, model, from, index, ModelUse::Simulate);
     } else {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
         job = BuildJob(cli, shape, model, ModelUse::Simulate);

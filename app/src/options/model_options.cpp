@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "formats/archive.h"
 #include "materials/material_file.h"
+#include "options/shape_options.h"
 #include "sim/fields.h"
 
 namespace app {
@@ -262,6 +264,19 @@ void RefuseModelOptions(const Cli& cli, const ModelOptions& o, const std::string
     cli.RefuseIfGiven("--load", why);
     for (const DefOfModels& each : DefsOfModels())
         for (const auto& option : DefOptionNamesOf(o, each.def)) cli.RefuseIfGiven(option, why);
+}
+
+sim::EvalJob ArchivedJob(const Cli& cli, const ModelOptions& options, const std::string& archive, int index, ModelUse use,
+                         const std::function<void(sim::EvalJob&)>& prepare) {
+    for (const auto& name : ShapeOptionNames()) cli.RefuseIfGiven(name, "does not go with --from: the design comes from the archive");
+    cli.RefuseIfGiven("--model", "does not go with --from: the model comes from the archive");
+    if (!cli.Given("--index")) throw UsageError("--from ARCHIVE needs --index K (list them with actuator inspect)");
+    sim::EvalJob job = ReadArchiveRecord(archive, static_cast<std::uint64_t>(index)).job;
+    if (prepare) prepare(job);
+    // Model settings given on this command line override the stored ones.
+    OverrideModelOptions(cli, options, job, use);
+    if (const std::string error = sim::JobError(job); !error.empty()) throw UsageError(error);
+    return job;
 }
 
 }  // namespace app

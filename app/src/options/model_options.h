@@ -3,6 +3,7 @@
 // load and solver. Options that do not apply to the chosen model are refused.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "options/cli.h"
@@ -46,6 +47,12 @@ void RefuseOptionsWithoutEffect(const Cli& cli, const ModelOptions& options, con
 // The options given written over a stored job's def (simulate and export --from: the design and
 // the model are the archive's), then RefuseOptionsWithoutEffect. Throws UsageError.
 void OverrideModelOptions(const Cli& cli, const ModelOptions& options, sim::EvalJob& job, ModelUse use);
+
+// A stored design for `--from ARCHIVE --index K`: refuses the shape options and --model (they come
+// from the archive) and a missing --index; `prepare` may change the stored job before the options
+// given override its model settings. Throws UsageError.
+sim::EvalJob ArchivedJob(const Cli& cli, const ModelOptions& options, const std::string& archive, int index, ModelUse use,
+                         const std::function<void(sim::EvalJob&)>& prepare = {});
 
 // Refuses every model option given, --model and --load included, with `why` (render --from draws
 // what was stored). Throws UsageError.

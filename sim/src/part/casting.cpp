@@ -202,11 +202,11 @@ std::vector<FibreWinding> PlanWinding(const PartSolids& solids, const PartDef& p
         w.eaPerThreadN = fibres.stiffnessNPerMm * mean / n;
         first.startDeg = 0;
         w.threads.push_back(std::move(first));
+        FibreWinding scratch;  // the others' turns and bands: the first's on a round tube, each followed anyway
         for (int k = 1; k < n; ++k) {
-            FibreWinding again = w;  // the same turns and bands, only the start differs (on a round tube; measured anyway)
             ThreadPath path;
             path.startDeg = 360.0 * k / n;
-            march(2 * pi * k / n, sign, again, path);
+            march(2 * pi * k / n, sign, scratch, path);
             w.threads.push_back(std::move(path));
         }
         w.hand = w.turns < 1e-9 ? "straight" : sign < 0 ? "left-handed" : "right-handed";

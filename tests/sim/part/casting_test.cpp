@@ -236,6 +236,9 @@ TEST_F(CastingCli, AFibreDesignGetsItsWindingPlanAndHoopFibresAreRefused) {
     const double layerMl = first["pour"]["silicone_ml"]["cavity"].get<double>(), overMl = manifest["pour"]["silicone_ml"]["cavity"].get<double>();
     EXPECT_NEAR(layerMl + overMl, manifest["silicone"]["volume_mm3"].get<double>() / 1000, 1e-9) << "the two pours make the wall";
     EXPECT_NEAR(first["pour"]["fill"]["gravity_min"].get<double>(), 4 * 4.5, 1) << "a half-wall gap fills 4x slower than the whole wall (4.5 min)";
+    r = Run("export --model shell --shape cylinder --thread-spacing-mm 2 --out " + Path("bare"));
+    EXPECT_EQ(r.exitCode, 2) << "a spacing for threads a design without fibres does not have is refused, not ignored";
+    EXPECT_FALSE(fs::exists(dir_ / "bare"));
     r = Run("export --model shell --shape cylinder --fibres hoop --out " + Path("hoop"));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_THAT(r.err, HasSubstr("cannot wind this design's fibres"));
