@@ -238,7 +238,7 @@ static int RunExport(int argc, char** argv, int first) {
                             {"bounds_mm", Json{{"min", {b[0], b[1], b[2]}}, {"max", {b[3], b[4], b[5]}}}},
                             {"triangles", mesh->triangles.size()},
                             {"vertices", mesh->vertices.size()}});
-        if (name == "actuator" || name == "stage1_layer" || name.size() > 5 && name.compare(name.size() - 5, 5, "_half") == 0) {
+        if (name == "actuator" || name == "stage1_layer" || (name.size() > 5 && name.compare(name.size() - 5, 5, "_half") == 0)) {
             list.back()["print"] = Json{{"orientation", name == "actuator"       ? (halves ? "the bonded halves, cast in silicone, not printed" : "cast in silicone, not printed")
                                                         : name == "stage1_layer" ? "the first stage's silicone layer, not printed"
                                                                                  : "a half, cast in silicone, not printed"}};
@@ -297,7 +297,11 @@ static int RunExport(int argc, char** argv, int first) {
     // The pour of a mold (the only one, or the second stage over the wound layer): from below, what
     // to mix, the fill's time.
     auto pourJson = [&](const sim::PourPlan& plan, const sim::PartSolids& mouldSolids, const char* shell) {
-        Json pour{{"orientation", fmt::format("upright: the axis vertical, the bottom end (z = 0) down, the sprue in {}'s bottom end wall, the vents up", shell)},
+        const std::string upright = mouldSolids.markDepthMm > 0 ? fmt::format("upright, the arrow engraved on {}'s back pointing up", shell) : std::string("upright");
+        Json pour{{"orientation", fmt::format("{}: the axis vertical, the bottom end (z = 0) down, the sprue in {}'s bottom end wall, the vents up", upright, shell)},
+                  {"mark", Json{{"what", "an arrow pointing up, engraved on the back of " + std::string(shell) + ", over the sprue"},
+                                {"depth_mm", mouldSolids.markDepthMm},
+                                {"volume_mm3", mouldSolids.markMm3}}},
                   {"sprue", Json{{"where", fmt::format("{}, bottom end wall, centred at 90 deg", shell)},
                                  {"arc_deg", mouldSolids.sprueDegreesBuilt},
                                  {"across_mm", mouldSolids.sprueGapMm},

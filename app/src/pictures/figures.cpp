@@ -336,6 +336,7 @@ render::Scene ExplodedMoldScene(const sim::PartSolids& solids, const std::string
                        (firstStage ? ", then the first stage's shells and layer" : "") + " (split faces to you); x, y, z sizes",
                    fmt::format("pour: upright, from below into shell A's sprue (red arrow, {:.1f} mm)", solids.sprueGapMm),
                    "vents: four, in the top end wall"};
+    if (solids.markDepthMm > 0) scene.lines.push_back("up: where the arrow engraved on shell A's back points");
     // The pour's direction: up into the sprue's mouth on shell A's bottom face.
     const float x = float(step + solids.sprueMouthMm[0]), y = float(solids.sprueMouthMm[1]), z = float(block[2]);
     const float length = float(0.18 * (block[5] - block[2])), head = std::min(float(0.3 * w), 0.3f * length);

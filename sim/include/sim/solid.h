@@ -108,6 +108,10 @@ struct MoldDef {
     // Registration: four square pins on shell A's split face (in the margin, near each end), tapered
     // by this clearance at their tops, into holes of their feet's size in shell B.
     double pinClearanceMm = 0.15;
+    // The pour mark: an arrow pointing up, engraved this deep in shell A's back (the block's side at
+    // y = +w, over the sprue), so that the mold stands the right way up with its sprue found; never
+    // deeper than a quarter of the margin. 0: none.
+    double markDepthMm = 0.6;
     CoreKind core = CoreKind::Rigid;
     double drainMm = 0;  // a lost core's drain, a bore along its axis handle to handle: its diameter; 0: up to 4 mm,
                          // leaving 1 mm of core around it
@@ -152,6 +156,8 @@ struct PartSolids {
     int midAround = 0;
     std::vector<double> corePerimeterMm;  // the core's section at each ring (the wall's inner perimeter), mm
     double pinsLessHolesMm3 = 0;     // shell A's pins less shell B's holes (the clearance's share)
+    double markMm3 = 0;              // the pour mark's pocket in shell A's back (in no part)
+    double markDepthMm = 0;          // its depth as built (0: unmarked)
     double drainInBlockMm3 = 0;      // a lost core's drain within the block (in no part)
     double drainMm = 0;              // its diameter as built
     CoreExit coreExit;               // how a one-piece core would leave (for a lost core too: the reason to lose it)

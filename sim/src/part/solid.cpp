@@ -401,8 +401,80 @@ bool InPin(int band, int nz, int length) {
     return false;
 }
 
+// The pour mark: an arrow pointing up, engraved in the block's side at y = +w (shell A's back, over
+// the sprue at 90 degrees), centred at x = 0 and in height: a shaft 2s wide from zA to zB, a head 2h
+// wide at its base zB with its tip at zT; the head's edges cross the shaft's sides at zQ.
+struct PourArrow {
+    double h = 0, s = 0, zA = 0, zB = 0, zQ = 0, zT = 0;
+};
+
+PourArrow PourArrowOn(double w, double zLow, double zHigh) {
+    PourArrow a;
+    a.h = std::min(0.6 * w, (zHigh - zLow) / 7.5);
+    a.s = 0.4 * a.h;
+    a.zA = 0.5 * (zLow + zHigh) - 2.25 * a.h;
+    a.zB = a.zA + 3 * a.h;
+    a.zT = a.zB + 1.5 * a.h;
+    a.zQ = a.zB + (a.zT - a.zB) * (a.h - a.s) / a.h;
+    return a;
+}
+
+// The side with the arrow `depth` deep. The side is `bottomEdge` (its points on the block's bottom
+// face, x from +w to -w) and `topEdge` (x from -w to +w); its corner edges carry points at zA and zT
+// (the neighbouring sides have them too). The face is cut in columns at the arrow's corners so that
+// every piece is convex, and the pocket's walls and floor close it. Returns the pocket's volume (mm^3).
+double EngravedSide(Builder& b, const std::vector<int>& bottomEdge, const std::vector<int>& topEdge, double w, const PourArrow& arrow,
+                    double depth) {
+    const Vec face{0, 1, 0};
+    const auto [h, s, zA, zB, zQ, zT] = arrow;
+    auto V = [&](double x, double z, double y) { return b.Vertex({x, y, z}); };
+    auto F = [&](double x, double z) { return V(x, z, w); };
+    auto fanFromCentre = [&](const std::vector<int>& polygon) {
+        Vec centre{0, 0, 0};
+        for (int v : polygon)
+            for (int c = 0; c < 3; ++c) centre[c] += b.At(v)[c] / polygon.size();
+        centre[1] = w;
+        const int middle = b.Vertex(centre);
+        for (size_t k = 0; k < polygon.size(); ++k) b.Facing(middle, polygon[k], polygon[(k + 1) % polygon.size()], face);
+    };
+    // Below the arrow and above it: the side's own edge and a line across at zA (zT).
+    std::vector<int> below = bottomEdge;
+    for (const double x : {-w, -h, -s, s, h, w}) below.push_back(F(x, zA));
+    fanFromCentre(below);
+    std::vector<int> above;
+    for (const double x : {w, h, s, 0.0, -s, -h, -w}) above.push_back(F(x, zT));
+    above.insert(above.end(), topEdge.begin(), topEdge.end());
+    fanFromCentre(above);
+    // Beside it, mirrored: the outer column, the column beside the shaft below and beside the head
+    // above, and the corner between the head and the top line over the shaft.
+    for (const double side : {-1.0, 1.0}) {
+        b.Fan({F(side * w, zA), F(side * h, zA), F(side * h, zB), F(side * h, zT), F(side * w, zT)}, face);
+        b.Fan({F(side * h, zA), F(side * s, zA), F(side * s, zB), F(side * h, zB)}, face);
+        b.Fan({F(side * h, zB), F(side * s, zQ), F(side * s, zT), F(side * h, zT)}, face);
+        b.Facing(F(side * s, zQ), F(0, zT), F(side * s, zT), face);
+    }
+    // The pocket: its outline around the arrow, walls facing into it, its floor facing out. The point
+    // just above the head's base sees every edge from inside (the arrow is star-shaped about it).
+    const std::vector<std::array<double, 2>> outline{{-s, zA}, {s, zA}, {s, zB}, {h, zB}, {s, zQ}, {0, zT}, {-s, zQ}, {-h, zB}, {-s, zB}};
+    const std::array<double, 2> kernel{0, zB + 0.1 * (zT - zB)};
+    const int floorCentre = V(kernel[0], kernel[1], w - depth);
+    for (size_t k = 0; k < outline.size(); ++k) {
+        const auto& p = outline[k];
+        const auto& q = outline[(k + 1) % outline.size()];
+        // The edge's normal in the face's plane, toward the kernel point: into the pocket.
+        Vec normal{-(q[1] - p[1]), 0, q[0] - p[0]};
+        if (normal[0] * (kernel[0] - p[0]) + normal[2] * (kernel[1] - p[1]) < 0) normal = {-normal[0], 0, -normal[2]};
+        b.FacingQuad(F(p[0], p[1]), F(q[0], q[1]), V(q[0], q[1], w - depth), V(p[0], p[1], w - depth), normal);
+        b.Facing(floorCentre, V(p[0], p[1], w - depth), V(q[0], q[1], w - depth), face);
+    }
+    return depth * (2 * s * (zB - zA) + h * (zT - zB));
+}
+
 TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, const PartDef& part, const MoldDef& mold, const Slots& slots,
-                   double& openings, double& sprue, double& pins) {
+                   PartSolids* volumes) {
+    double& openings = volumes->openingsMm3;
+    double& sprue = volumes->sprueMm3;
+    double& pins = volumes->pinsLessHolesMm3;
     const int nt = outer.nt, nz = outer.nz, half = nt / 2, first = upper ? 0 : half;
     const double bottom = -mold.endWallMm, top = part.lengthMm + mold.endWallMm;
     const Vec up{0, 0, 1}, down{0, 0, -1};
@@ -544,13 +616,29 @@ TriangleMesh Shell(bool upper, const Grid& outer, const Grid& inner, double w, c
         L(top);
         lineOf[i % nt] = line;
     }
+    // Shell A's back carries the pour mark; the corner edges it shares with the neighbouring sides
+    // are cut where the arrow's band begins and ends.
+    const double markDepth = std::min(mold.markDepthMm, 0.25 * mold.marginMm);
+    const bool marked = upper && markDepth > 0;
+    const PourArrow arrow = PourArrowOn(w, bottom, top);
+    if (marked)
+        for (const int corner : {nt / 8, 3 * nt / 8})
+            for (const double z : {bottom, arrow.zA, arrow.zT, top}) lineOf[corner].push_back(b.Vertex(BoxPoint(corner, nt, w, z)));
     // The box's sides in this half, each a rectangle fanned from its centre: its bottom and top edges
-    // carry the rays' points, an edge on the split plane carries that meridian's line.
+    // carry the rays' points, an edge on the split plane (or a cut corner) carries its line.
     for (int side = 0; side < 4; ++side) {
         std::vector<int> samples;
         for (int k = 0; k <= half; ++k)
             if (OnSide(first + k, nt, side)) samples.push_back(first + k);
         if (samples.size() < 2) continue;
+        if (marked && side == 1) {
+            std::vector<int> bottomEdge, topEdge;
+            for (int i : samples) bottomEdge.push_back(b.Vertex(BoxPoint(i, nt, w, bottom)));
+            for (auto it = samples.rbegin(); it != samples.rend(); ++it) topEdge.push_back(b.Vertex(BoxPoint(*it, nt, w, top)));
+            volumes->markMm3 += EngravedSide(b, bottomEdge, topEdge, w, arrow, markDepth);
+            volumes->markDepthMm = markDepth;
+            continue;
+        }
         std::vector<int> loop;
         for (int i : samples) loop.push_back(b.Vertex(BoxPoint(i, nt, w, bottom)));
         if (lineOf.count(samples.back() % nt))
@@ -680,6 +768,7 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& design, const Mol
     if (part.axialSamples < 3) return "at least 3 samples along the tube";
     if (!(part.radiusMm > 0) || !(part.lengthMm > 0) || !(part.thicknessMm > 0)) return "radius, length and wall thickness must be positive";
     if (!(mold.marginMm > 0) || !(mold.endWallMm > 0) || !(mold.handleMm > 0)) return "the mold's margin, end walls and handles must be positive";
+    if (!(mold.markDepthMm >= 0)) return "the pour mark's depth must not be negative";
     if (!(mold.sprueDegrees >= 0 && mold.sprueDegrees <= 120) || !(mold.ventDegrees >= 0 && mold.ventDegrees <= 60))
         return "the sprue spans 0 to 120 degrees (0: sized) and each vent 0 to 60";
     if (!(mold.sprueMm > 0)) return "the sprue's width must be positive";
@@ -856,8 +945,8 @@ std::string BuildPartSolids(const Shape& shape, const PartDef& design, const Mol
     solids.sprueGapMm = gap;
     solids.sprueMouthMm = {0, sprueRadius, -mold.endWallMm};
     solids.sprueResistanceShare = mold.endWallMm / (solids.sprueDegreesBuilt * std::numbers::pi / 180 * sprueRadius * gap * gap * gap) / cavityResistance;
-    solids.shellA = Shell(true, outer, inner, w, part, mold, slots, solids.openingsMm3, solids.sprueMm3, solids.pinsLessHolesMm3);
-    solids.shellB = Shell(false, outer, inner, w, part, mold, slots, solids.openingsMm3, solids.sprueMm3, solids.pinsLessHolesMm3);
+    solids.shellA = Shell(true, outer, inner, w, part, mold, slots, &solids);
+    solids.shellB = Shell(false, outer, inner, w, part, mold, slots, &solids);
     if (fittings.enabled) {
         // The insert runs as far as the tube does not narrow below its end ring (else it would cut the wall).
         double insert = fittings.insertMm > 0 ? fittings.insertMm : std::max(part.clampFraction * part.lengthMm, 2 * part.thicknessMm);

@@ -65,6 +65,34 @@ TEST(Casting, TheSprueOpensTheBottomEndWallAndTheVentsTheTop) {
     EXPECT_NEAR(Cylinder(wide).sprueDegreesBuilt, 90, 360.0 / sim::PartDef{}.angularSamples);
 }
 
+// The mold's way up is engraved: an arrow pointing up in shell A's back (y = +w), over the sprue at
+// 90 degrees, its pocket the only difference from an unmarked shell A; shell B is unmarked.
+TEST(Casting, ShellABackCarriesAnUpwardArrowOverTheSprue) {
+    const sim::MoldDef marked;
+    sim::MoldDef plain;
+    plain.markDepthMm = 0;
+    const sim::PartSolids a = Cylinder(marked), b = Cylinder(plain);
+    const double w = sim::MeshBounds(a.shellA)[4], h = std::min(0.6 * w, (150 + 2 * marked.endWallMm) / 7.5);
+    EXPECT_NEAR(a.markMm3, marked.markDepthMm * 3.9 * h * h, 1e-9) << "shaft 0.8h x 3h and head h wide x 1.5h tall";
+    EXPECT_NEAR(sim::MeshVolume(b.shellA) - sim::MeshVolume(a.shellA), a.markMm3, 1e-6 * a.markMm3);
+    EXPECT_NEAR(sim::MeshVolume(a.shellB), sim::MeshVolume(b.shellB), 1e-9 * sim::MeshVolume(b.shellB));
+    EXPECT_EQ(b.markMm3, 0);
+    // The pocket's floor: its highest point (the tip) on the sprue's meridian above its widest (the head's base).
+    std::array<double, 3> tip{0, 0, -1e9}, wing{0, 0, 0};
+    int floor = 0;
+    for (const auto& v : a.shellA.vertices) {
+        if (std::fabs(v[1] - (w - marked.markDepthMm)) > 1e-12) continue;
+        ++floor;
+        if (v[2] > tip[2]) tip = v;
+        if (v[0] > wing[0]) wing = v;
+    }
+    EXPECT_GE(floor, 9);
+    EXPECT_NEAR(tip[0], 0, 1e-12) << "over the sprue, centred at 90 degrees (x = 0)";
+    EXPECT_NEAR(wing[0], h, 1e-12);
+    EXPECT_GT(tip[2], wing[2] + h) << "pointing up";
+    EXPECT_GT(a.sprueMouthMm[1], 0) << "the sprue is in the same half (y > 0)";
+}
+
 TEST(Casting, AStraightTubeFillsInTheClosedFormTimeOfThinGapFlow) {
     const sim::PartDef part;
     const sim::MoldDef mold;
@@ -298,7 +326,7 @@ TEST(Casting, TheFirstStagesGuideGroovesLieOnTheFibrePaths) {
         const auto a = sim::MeshBounds(layer.shellA), b = sim::MeshBounds(layer.shellB);
         const double block = (std::max(a[3], b[3]) - std::min(a[0], b[0])) * (std::max(a[4], b[4]) - std::min(a[1], b[1])) * (a[5] - a[2]);
         const double pieces = sim::MeshVolume(layer.shellA) + sim::MeshVolume(layer.shellB) + sim::MeshVolume(layer.actuator) + sim::MeshVolume(layer.core) -
-                              layer.coreOutsideBlockMm3 + layer.openingsMm3 - layer.pinsLessHolesMm3;
+                              layer.coreOutsideBlockMm3 + layer.openingsMm3 + layer.markMm3 - layer.pinsLessHolesMm3;
         EXPECT_NEAR(pieces / block, 1, 1e-6);
         EXPECT_LT(sim::MeshVolume(layer.actuator), 0.5 * sim::MeshVolume(full.actuator)) << "the inner half, less its grooves";
         EXPECT_EQ(layer.core.vertices, full.core.vertices) << "one core for both stages";

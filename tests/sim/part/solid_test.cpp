@@ -131,14 +131,14 @@ TEST_P(Solids, EveryPartIsAValidClosedOutwardSolidAndThePiecesFillTheBlock) {
     const auto a = sim::MeshBounds(solids.shellA), b = sim::MeshBounds(solids.shellB);
     const double block = (std::max(a[3], b[3]) - std::min(a[0], b[0])) * (std::max(a[4], b[4]) - std::min(a[1], b[1])) * (a[5] - a[2]);
     const double pieces = sim::MeshVolume(solids.shellA) + sim::MeshVolume(solids.shellB) + sim::MeshVolume(solids.actuator) +
-                          sim::MeshVolume(solids.core) - solids.coreOutsideBlockMm3 + solids.openingsMm3 - solids.pinsLessHolesMm3 + solids.drainInBlockMm3;
+                          sim::MeshVolume(solids.core) - solids.coreOutsideBlockMm3 + solids.openingsMm3 + solids.markMm3 - solids.pinsLessHolesMm3 + solids.drainInBlockMm3;
     EXPECT_LT(solids.pinsLessHolesMm3, 0) << "pins a little smaller than their holes";
     EXPECT_GT(solids.openingsMm3, 0) << "a sprue and vents";
     EXPECT_NEAR(pieces / block, 1.0, 1e-6) << c.name;
     EXPECT_NEAR(a[5] - a[2], part.lengthMm + 2 * mold.endWallMm, 1e-9);
     // The halves mirror each other when the design does (single-sector shapes), but for their slots.
     if (!std::holds_alternative<sim::BSplineShape>(c.shape) || std::get<sim::BSplineShape>(c.shape).splines.size() == 1)
-        EXPECT_NEAR(sim::MeshVolume(solids.shellA), sim::MeshVolume(solids.shellB), solids.openingsMm3 + 8 * 0.5 * 5 * 0.5 * 5 * 5 + 1e-6 * block) << c.name;
+        EXPECT_NEAR(sim::MeshVolume(solids.shellA), sim::MeshVolume(solids.shellB), solids.openingsMm3 + solids.markMm3 + 8 * 0.5 * 5 * 0.5 * 5 * 5 + 1e-6 * block) << c.name;
     }
 }
 
@@ -553,7 +553,7 @@ TEST(Solid, HalvesCutAtTheWidestSectionAreValidAndTheirCoresLeaveThroughTheCut) 
         EXPECT_NEAR(a[5] - a[2], 0.5 * part.lengthMm + 10, 1e-9) << "half the length and two end walls";
         const double block = (std::max(a[3], b[3]) - std::min(a[0], b[0])) * (std::max(a[4], b[4]) - std::min(a[1], b[1])) * (a[5] - a[2]);
         const double pieces = sim::MeshVolume(solids.shellA) + sim::MeshVolume(solids.shellB) + sim::MeshVolume(solids.actuator) + sim::MeshVolume(solids.core) -
-                              solids.coreOutsideBlockMm3 + solids.openingsMm3 - solids.pinsLessHolesMm3;
+                              solids.coreOutsideBlockMm3 + solids.openingsMm3 + solids.markMm3 - solids.pinsLessHolesMm3;
         EXPECT_NEAR(pieces / block, 1, 1e-6);
         halvesMm3 += sim::MeshVolume(solids.actuator);
     }
