@@ -246,6 +246,23 @@ struct ShellFields {
 };
 ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bending, const Positions& deformed);
 
+// The wall's state cell by cell, for field files (VTU): one value per triangle of ShellSurface (the
+// wall's triangles, then the caps'). NaN where a field has no value: the caps (the fixture's, not
+// silicone) for the wall's fields, a triangle without that fibre family for the fibre's. Empty
+// (no cells) when the tube cannot be built or `deformed` is not its mesh.
+enum class WallRegion { Wall = 0, Clamped = 1, Cap = 2 };  // a wall triangle within a clamp's rings is Clamped
+struct WallCells {
+    std::vector<int> region;                            // WallRegion per cell
+    std::vector<double> stretchMax, stretchMin;         // principal stretches in the wall's plane
+    std::vector<double> stressMaxKpa, stressMinKpa;     // principal true (Cauchy) stresses, kPa
+    std::vector<double> thicknessMm;                    // the deformed wall: rest thickness / (stretchMax stretchMin)
+    int families = 0;                                   // fibre families the design has (0-2)
+    std::array<std::vector<std::array<double, 3>>, 2> fibreDirection;  // unit, deformed
+    std::array<std::vector<double>, 2> fibreStrain;     // stretch - 1 (negative: slack)
+    std::array<std::vector<double>, 2> fibreTensionNPerMm;  // per mm of rest width across the threads; 0 when slack
+};
+WallCells WallCellValues(const ShellDef& def, const Shape& shape, bool bending, const Positions& deformed);
+
 }  // namespace sim
 
 template <>

@@ -21,4 +21,9 @@ struct Surface {
 // The thesis helix: its drawing triangles turned outward, and its springs as edges.
 Surface HelixSurface(const MeshDef& def);
 
+// Per vertex, the mean strain (length over rest length, less 1) of the edges (springs) that meet
+// there, from the rest positions to the deformed ones: the thesis model's field. 0 for a vertex no
+// edge reaches.
+std::vector<double> EdgeStrainPerVertex(const Surface& surface, const Positions& rest, const Positions& deformed);
+
 }  // namespace sim

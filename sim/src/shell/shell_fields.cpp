@@ -72,4 +72,45 @@ ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bendi
     return fields;
 }
 
+WallCells WallCellValues(const ShellDef& def, const Shape& shape, bool bending, const Positions& deformed) {
+    WallCells cells;
+    std::string error;
+    const ShellProblem problem = BuildTubeProblem(def, shape, bending, &error);
+    if (!error.empty() || deformed.Size() != problem.vertexCount()) return cells;
+    const size_t wall = problem.wall.size(), n = wall + problem.caps.size();
+    const int R = def.geometry.ringVertices, H = RingCount(def.geometry);
+    const int clamp = def.geometry.ends == EndCondition::Clamped ? def.geometry.clampRings : 0;
+    auto clamped = [&](int v) { return v / R < clamp || v / R >= H - clamp; };
+    for (int f = 0; f < 2; ++f) {
+        cells.fibreDirection[f].assign(n, {NAN, NAN, NAN});
+        cells.fibreStrain[f].assign(n, NAN);
+        cells.fibreTensionNPerMm[f].assign(n, NAN);
+    }
+    cells.region.assign(n, static_cast<int>(WallRegion::Cap));
+    for (auto* field : {&cells.stretchMax, &cells.stretchMin, &cells.stressMaxKpa, &cells.stressMinKpa, &cells.thicknessMm}) field->assign(n, NAN);
+    for (size_t t = 0; t < wall; ++t) {
+        const auto& tri = problem.wall[t];
+        cells.region[t] = static_cast<int>(clamped(tri[0]) && clamped(tri[1]) && clamped(tri[2]) ? WallRegion::Clamped : WallRegion::Wall);
+        const Matrix32 F = DeformationGradient(problem, static_cast<int>(t), deformed);
+        const PrincipalValues v = Principal(problem.material, F);
+        cells.stretchMax[t] = v.stretch[0];
+        cells.stretchMin[t] = v.stretch[1];
+        cells.stressMaxKpa[t] = v.stress[0] * 1e3;
+        cells.stressMinKpa[t] = v.stress[1] * 1e3;
+        cells.thicknessMm[t] = problem.material.thicknessMm / (v.stretch[0] * v.stretch[1]);
+        for (int k = 0; !problem.fibreFamilies.empty() && k < problem.fibreFamilies[t]; ++k) {
+            // The same stretch as the model's fibre outputs (FibreStates); the tension is the
+            // energy (k/4)(lambda^2 - 1)^2's derivative in lambda.
+            const Eigen::Vector3d d = F.col(0) * problem.fibreDirections[t][2 * k] + F.col(1) * problem.fibreDirections[t][2 * k + 1];
+            const double stretch = d.norm();
+            const Eigen::Vector3d unit = d / stretch;
+            cells.fibreDirection[k][t] = {unit.x(), unit.y(), unit.z()};
+            cells.fibreStrain[k][t] = stretch - 1;
+            cells.fibreTensionNPerMm[k][t] = stretch > 1 ? problem.fibreStiffness * stretch * (stretch * stretch - 1) : 0.0;
+            cells.families = std::max(cells.families, k + 1);
+        }
+    }
+    return cells;
+}
+
 }  // namespace sim
