@@ -205,9 +205,7 @@ static int RunExport(int argc, char** argv, int first) {
     const sim::PartSolids firstStage = twoStages ? BuildSolids(job, firstPart, mold) : sim::PartSolids{};
 
     // The folder: new or empty, so that a part's files never mix with another's.
-    std::error_code ec;
-    if (fs::exists(out, ec) && !(fs::is_directory(out, ec) && fs::is_empty(out, ec)))
-        throw UsageError("--out " + Quote(out) + " exists and is not an empty folder; export writes into a new or empty one");
+    CheckNewOrEmptyFolder(out, "--out");
     // Every file or none: a full disk leaves no part of the set, and no folder that was not there.
     CreatedFolders folders;
     folders.Create(out, "--out");

@@ -12,6 +12,7 @@
 #include "formats/files.h"
 #include "formats/json_out.h"
 #include "formats/obj_io.h"
+#include "fields/result_fields.h"
 #include "evaluation/recorder.h"
 
 namespace app {
@@ -33,7 +34,7 @@ static int RunInspect(int argc, char** argv, int first) {
     namespace fs = std::filesystem;
     Cli cli("inspect", "Lists the evaluations an experiment archived (DIR/evaluations.capnp): id, role, run, generation, status, fitness, "
                        "contraction and design. A cut-off archive is read up to its last complete evaluation (a note on stderr says so).");
-    std::string archive, statusName, exportDir;
+    std::string archive, statusName, exportDir, exportVtuDir;
     int run = 0, generation = 0, limit = 0, top = 0;
     Role role = Role::Grid;
     double minFitness = 0, maxFitness = 0;
@@ -54,9 +55,13 @@ static int RunInspect(int argc, char** argv, int first) {
     cli.Flag("--json", json, "one JSON object with complete records (design with every parameter, model settings, result)");
     cli.Text("--export-obj", exportDir, "write each shown evaluation's initial and final mesh as DIR/evaluation_NNNNNN_{initial,final}.obj")
         ->type_name("DIR");
+    cli.Text("--export-vtu", exportVtuDir, "write each shown evaluation's deformed wall with its fields as DIR/evaluation_NNNNNN.vtu (as simulate "
+                                           "--save-vtu, from the stored meshes: no load steps); a file already there is refused")
+        ->type_name("DIR");
     cli.Examples("  actuator inspect runs/5.2/evaluations.capnp --run 2 --generation 40\n"
                  "  actuator inspect runs/5.2/evaluations.capnp --top 5 --json\n"
                  "  actuator inspect runs/4.1/evaluations.capnp --sort fitness --limit 3 --export-obj best_meshes/\n"
+                 "  actuator inspect runs/5.2F/evaluations.capnp --top 1 --export-vtu fields/\n"
                  "  actuator render --from runs/5.2/evaluations.capnp --index 117 --out pictures/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     std::optional<sim::Status> status;
@@ -73,7 +78,12 @@ static int RunInspect(int argc, char** argv, int first) {
         if (!fs::is_directory(exportDir, ec)) throw UsageError("--export-obj: cannot create folder " + Quote(exportDir));
     }
 
-    const ArchiveContents contents = ReadArchive(archive, cli.Given("--export-obj"));
+    if (cli.Given("--export-vtu")) {
+        std::error_code ec;
+        fs::create_directories(exportVtuDir, ec);
+        if (!fs::is_directory(exportVtuDir, ec)) throw UsageError("--export-vtu: cannot create folder " + Quote(exportVtuDir));
+    }
+    const ArchiveContents contents = ReadArchive(archive, cli.Given("--export-obj") || cli.Given("--export-vtu"));
     if (contents.records.empty() && (contents.scan.tornTail || contents.scan.corrupt))
         throw UsageError(Quote(archive) + " holds no readable evaluation (" + contents.scan.problem + ")");
     std::vector<const ArchiveRecord*> shown;
@@ -104,6 +114,17 @@ static int RunInspect(int argc, char** argv, int first) {
                 WriteFileAtomically(path.string(), FormatObj(*positions, surface, fmt::format("actuator workbench evaluation {}, {} mesh", r->id, which)));
             }
         }
+    if (cli.Given("--export-vtu")) {
+        for (const ArchiveRecord* r : shown) {
+            const fs::path path = fs::path(exportVtuDir) / fmt::format("evaluation_{:06}.vtu", r->id);
+            std::error_code ec;
+            if (fs::exists(path, ec)) throw UsageError("--export-vtu: " + Quote(path.string()) + " already exists; remove it or give another folder");
+        }
+        for (const ArchiveRecord* r : shown) {
+            const fs::path path = fs::path(exportVtuDir) / fmt::format("evaluation_{:06}.vtu", r->id);
+            WriteFileAtomically(path.string(), FormatVtu(ResultFieldMesh(r->job, r->result)));
+        }
+    }
     batch.Commit();
 
     if (json) {

@@ -18,6 +18,7 @@
 #include "evaluation/evaluator.h"
 #include "pictures/figures.h"
 #include "formats/files.h"
+#include "fields/result_fields.h"
 #include "formats/json_out.h"
 #include "support/progress.h"
 #include "render/backend.h"
@@ -143,6 +144,7 @@ static int RunRender(int argc, char** argv, int first) {
     int index = 0;
     PictureOptions p;
     Colouring colouring = Colouring::Auto;
+    bool saveVtu = false;
     p.size = fmt::format("{}x{}", p.def.width, p.def.height);
     AddShapeOptions(cli, shape);
     AddModelOptions(cli, model);
@@ -171,6 +173,8 @@ static int RunRender(int argc, char** argv, int first) {
         ->expected(0, 1)
         ->type_name("[N]")
         ->default_str("30");
+    cli.Flag("--save-vtu", saveVtu, "also write the inflated wall with its fields as DIR/inflated.vtu (thesis: and DIR/stretched.vtu; --from: "
+                                    "DIR/evaluation_NNNNNN.vtu), as simulate --save-vtu does");
     cli.Flag("--video", p.video, "also encode the frame sequences as MP4 with ffmpeg (skipped with a note if ffmpeg is missing)");
     cli.Enum("--background", p.def.background, "image background");
     cli.Enum("--color-by", colouring,
@@ -244,7 +248,7 @@ static int RunRender(int argc, char** argv, int first) {
     }
     if (cli.Given("--solid")) {
         if (solid != "cutaway" && solid != "mold") throw UsageError("--solid: unknown value " + Quote(solid) + " (choose cutaway or mold)");
-        for (const char* option : {"--turntable", "--timelapse", "--video"})
+        for (const char* option : {"--turntable", "--timelapse", "--video", "--save-vtu"})
             cli.RefuseIfGiven(option, "does not go with --solid (a picture of the exported solids, nothing is simulated)");
         cli.RefuseIfGiven("--wireframe", "draws the simulation mesh's edges; the solids are drawn without them");
         if (solid == "cutaway")
@@ -283,6 +287,11 @@ static int RunRender(int argc, char** argv, int first) {
     else files.insert(files.end(), {"inflation.png", "pressure_curve.png"});
     if (p.turntable) CheckFolder(out / "turntable", "--turntable");
     if (p.timelapse) CheckFolder(out / "timelapse", "--timelapse");
+    if (saveVtu) {
+        if (stored) files.push_back(fmt::format("evaluation_{:06}.vtu", index));
+        else if (thesis) files.insert(files.end(), {"inflated.vtu", "stretched.vtu"});
+        else files.push_back("inflated.vtu");
+    }
     if (p.video && p.turntable) files.push_back("turntable.mp4");
     if (p.video && p.timelapse) files.push_back("timelapse.mp4");
     for (const auto& name : files) {
@@ -360,6 +369,17 @@ static int RunRender(int argc, char** argv, int first) {
         else {
             FixFramingAndScale(scenes);
             sequence("timelapse", static_cast<int>(scenes.size()), [&](int k) { return scenes[k]; });
+        }
+    }
+    if (saveVtu) {
+        const std::string inflatedFile = stored ? fmt::format("evaluation_{:06}.vtu", index) : std::string("inflated.vtu");
+        WriteFileAtomically((out / inflatedFile).string(), FormatVtu(ResultFieldMesh(job, inflated)));
+        written.push_back((out / inflatedFile).string());
+        if (!stored && thesis) {
+            sim::EvalJob stretch = job;
+            stretch.Thesis().params.load = sim::Load::Stretch;
+            WriteFileAtomically((out / "stretched.vtu").string(), FormatVtu(ResultFieldMesh(stretch, stretched)));
+            written.push_back((out / "stretched.vtu").string());
         }
     }
     batch.Commit();

@@ -12,16 +12,16 @@
 #include "formats/json_out.h"
 #include "options/model_options.h"
 #include "formats/obj_io.h"
+#include "fields/result_fields.h"
 #include "options/shape_options.h"
 
 namespace app {
 namespace {
 
-void CheckObjPath(const Cli& cli, const std::string& option, const std::string& path) {
+void CheckMeshPath(const Cli& cli, const std::string& option, const std::string& path, const char* extension) {
     if (!cli.Given(option)) return;
     CheckOutputPath(path, option);
-    if (std::filesystem::path(path).extension() != ".obj")
-        throw UsageError(option + ": " + Quote(path) + " must end in .obj (the only mesh format simulate writes)");
+    if (std::filesystem::path(path).extension() != extension) throw UsageError(option + ": " + Quote(path) + " must end in " + extension);
 }
 
 }  // namespace
@@ -33,7 +33,7 @@ static int RunSimulate(int argc, char** argv, int first) {
                         "target pressure). Exit code 0 when it ran (whatever the status), 2 on bad input.");
     ShapeOptions shape;
     ModelOptions model;
-    std::string from, saveMesh, saveInitial;
+    std::string from, saveMesh, saveInitial, saveVtu, savePvd;
     int index = 0;
     AddShapeOptions(cli, shape);
     AddModelOptions(cli, model);
@@ -44,6 +44,14 @@ static int RunSimulate(int argc, char** argv, int first) {
     cli.Group("Output");
     cli.Text("--save-mesh", saveMesh, "write the final positions as OBJ (full precision; reads back with --mesh)")->type_name("FILE.obj");
     cli.Text("--save-initial", saveInitial, "write the initial (shaped) mesh as OBJ")->type_name("FILE.obj");
+    cli.Text("--save-vtu", saveVtu,
+             "write the deformed wall with its fields as VTK XML (ParaView, meshio, PyVista): displacement and rest position per point; membrane "
+             "and shell: principal stretches, true stresses (kPa), thickness (mm) and each fibre family's direction, strain and tension (N/mm) "
+             "per triangle, the caps marked (cell data 'region'); thesis: spring strain per vertex, in mesh units; the outputs as field data")
+        ->type_name("FILE.vtu");
+    cli.Text("--save-pvd", savePvd, "membrane and shell: write every load step as DIR/step_NNN.vtu (fields as --save-vtu) and DIR/series.pvd, "
+                                    "the series ParaView opens; DIR must be new or empty")
+        ->type_name("DIR");
     cli.Examples(
         "  actuator simulate --model thesis --shape sine --amplitude 4.1 --phase 0.5,pi-0.5\n"
         "  actuator simulate --model thesis --shape abs-sine --amplitude 4 --phase 0,4pi\n"
@@ -53,7 +61,8 @@ static int RunSimulate(int argc, char** argv, int first) {
         "  actuator simulate --from runs/5.2/evaluations.capnp --index 17 --iterations 20000\n"
         "  actuator simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 \\\n"
         "                    --ring-vertices 30 --rings 30 --pressure-kpa 1.8\n"
-        "  actuator simulate --model shell --shape sine --amplitude 1.3 --material dragon-skin-10 --pressure-kpa 10\n");
+        "  actuator simulate --model shell --shape sine --amplitude 1.3 --material dragon-skin-10 --pressure-kpa 10\n"
+        "  actuator simulate --model shell --shape sine --amplitude 1.3 --fibres braid --save-vtu inflated.vtu --save-pvd steps/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
 
     sim::EvalJob job;
@@ -63,21 +72,30 @@ static int RunSimulate(int argc, char** argv, int first) {
         cli.RefuseIfGiven("--index", "goes with --from ARCHIVE");
         job = BuildJob(cli, shape, model, ModelUse::Simulate);
     }
-    CheckObjPath(cli, "--save-mesh", saveMesh);
-    CheckObjPath(cli, "--save-initial", saveInitial);
+    CheckMeshPath(cli, "--save-mesh", saveMesh, ".obj");
+    CheckMeshPath(cli, "--save-initial", saveInitial, ".obj");
+    CheckMeshPath(cli, "--save-vtu", saveVtu, ".vtu");
     const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
     if (cli.Given("--save-mesh")) RefuseOutputThatIsInput(saveMesh, "--save-mesh", inputs);
     if (cli.Given("--save-initial")) RefuseOutputThatIsInput(saveInitial, "--save-initial", inputs);
+    if (cli.Given("--save-vtu")) RefuseOutputThatIsInput(saveVtu, "--save-vtu", inputs);
     if (cli.Given("--save-mesh") && cli.Given("--save-initial") && saveMesh == saveInitial)
         throw UsageError("--save-mesh and --save-initial name the same file");
+    if (cli.Given("--save-pvd")) {
+        if (!sim::ModelOf(job).physical) throw UsageError("--save-pvd: the thesis model has no load steps (membrane or shell); --save-vtu writes its final mesh");
+        CheckNewOrEmptyFolder(savePvd, "--save-pvd");
+    }
 
     const sim::SimResult result = MakeLocalEvaluator(1)->EvaluateAll({job}).front();
 
     const auto surface = sim::SurfaceOf(job);
     const std::string size = sim::ModelOf(job).meshText(job);
-    OutputBatch batch;  // both meshes or neither
+    CreatedFolders folders;  // before the batch: a failed batch removes its files, then the folder it made
+    OutputBatch batch;       // every file or none
     if (cli.Given("--save-initial")) WriteFileAtomically(saveInitial, FormatObj(result.initial, surface, "actuator workbench initial mesh: " + size));
     if (cli.Given("--save-mesh")) WriteFileAtomically(saveMesh, FormatObj(result.final, surface, "actuator workbench final mesh: " + size));
+    if (cli.Given("--save-vtu")) WriteFileAtomically(saveVtu, FormatVtu(ResultFieldMesh(job, result)));
+    if (cli.Given("--save-pvd")) WriteFieldSeries(savePvd, job, result, folders);
     batch.Commit();
     Json out = ResultNumbersJson(result, job);
     out["final_positions_hash"] = fmt::format("{:016x}", sim::PositionsHash(result.final));

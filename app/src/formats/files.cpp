@@ -118,6 +118,13 @@ std::vector<double> ReadNumberFile(const std::string& path) {
     return values;
 }
 
+void CheckNewOrEmptyFolder(const std::string& folder, const std::string& what) {
+    std::error_code ec;
+    if (folder.empty()) throw UsageError(what + ": the folder's name is empty");
+    if (fs::exists(folder, ec) && !(fs::is_directory(folder, ec) && fs::is_empty(folder, ec)))
+        throw UsageError(what + " " + Quote(folder) + " exists and is not an empty folder; give a new or empty one");
+}
+
 void CheckOutputPath(const std::string& path, const std::string& what) {
     if (path.empty()) throw UsageError(what + ": empty file name");
     const fs::path target(path);

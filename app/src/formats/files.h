@@ -25,6 +25,10 @@ std::vector<double> ReadNumberFile(const std::string& path);
 // or too long name, a folder, a symlink or device in the way, a missing or read-only folder.
 void CheckOutputPath(const std::string& path, const std::string& what);
 
+// Refuses, before any long work, an output folder that exists and is not an empty folder (its files
+// would mix with the new ones): "what DIR exists and is not an empty folder; ...".
+void CheckNewOrEmptyFolder(const std::string& folder, const std::string& what);
+
 // Empty when `name` can be one folder's name inside an output folder; otherwise why not (empty, "." or
 // "..", a '/' or '\\', a control character, longer than 100 bytes).
 std::string FolderNameError(const std::string& name);

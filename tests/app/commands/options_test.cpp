@@ -263,6 +263,8 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
         {"--index", {"0"}},
         {"--save-mesh", {out + "/final.obj"}},
         {"--save-initial", {out + "/initial.obj"}},
+        {"--save-vtu", {out + "/wall.vtu"}},
+        {"--save-pvd", {out + "/steps"}},
         {"--load", {"inflate", "stretch", "none", "gas", "volume", "force", "blocked"}},
     };
     // The output folder exists for the OBJ files; the options of the modes are what make them.

@@ -1,6 +1,6 @@
 // The architecture as the tree shows it (docs/architecture.md): sim includes nothing of render or
 // app, render nothing of app, and inside app each folder includes only folders below it in the
-// order commands -> report -> experiments -> {pictures, evaluation, options} -> materials -> formats -> support.
+// order commands -> report -> experiments -> {pictures, evaluation, options} -> {materials, fields} -> formats -> support.
 // No folder holds more than about 20 source files.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -39,17 +39,17 @@ std::vector<std::pair<fs::path, std::string>> Includes(const fs::path& dir) {
 TEST(Layers, LibrariesIncludeOnlyDownward) {
     for (const auto& [file, included] : Includes(kRoot / "sim")) {
         EXPECT_NE(included.rfind("render/", 0), 0u) << file << " includes " << included;
-        for (const char* app : {"commands/", "report/", "experiments/", "pictures/", "evaluation/", "options/", "materials/", "formats/", "support/"})
+        for (const char* app : {"commands/", "report/", "experiments/", "pictures/", "evaluation/", "options/", "materials/", "fields/", "formats/", "support/"})
             EXPECT_NE(included.rfind(app, 0), 0u) << file << " includes " << included;
     }
     for (const auto& [file, included] : Includes(kRoot / "render"))
-        for (const char* app : {"commands/", "report/", "experiments/", "pictures/", "evaluation/", "options/", "materials/", "formats/", "support/"})
+        for (const char* app : {"commands/", "report/", "experiments/", "pictures/", "evaluation/", "options/", "materials/", "fields/", "formats/", "support/"})
             EXPECT_NE(included.rfind(app, 0), 0u) << file << " includes " << included;
 }
 
 TEST(Layers, AppFoldersIncludeOnlyFoldersBelowThem) {
     const std::map<std::string, int> order{{"commands", 0},   {"report", 1},  {"experiments", 2}, {"pictures", 3}, {"evaluation", 3},
-                                           {"options", 3},    {"materials", 4}, {"formats", 5},   {"support", 6}};
+                                           {"options", 3},    {"materials", 4}, {"fields", 4},    {"formats", 5},   {"support", 6}};
     std::set<std::pair<std::string, std::string>> pairs;
     for (const auto& [folder, level] : order) {
         ASSERT_TRUE(fs::is_directory(kRoot / "app" / "src" / folder)) << folder;
