@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <filesystem>
@@ -29,7 +30,9 @@
 #include "materials/material_file.h"
 #include "pictures/figures.h"
 #include "map_evaluator.h"
+#include "fields/result_fields.h"
 #include "formats/results_folder.h"
+#include "formats/table.h"
 #include "formats/schema_convert.h"
 #include "sim/batch.h"
 #include "sim/names.h"
@@ -171,8 +174,30 @@ private:
 py::object Table(const std::filesystem::path& csv, bool asFrame) {
     // round_trip: pandas's default parser may be off in the last bit; the CSVs hold exact round-trip numbers.
     if (asFrame) return py::module_::import("pandas").attr("read_csv")(csv.string(), py::arg("float_precision") = "round_trip");
-    return py::module_::import("numpy").attr("genfromtxt")(csv.string(), py::arg("delimiter") = ",", py::arg("names") = true, py::arg("dtype") = py::none(),
-                                                          py::arg("encoding") = "utf-8", py::arg("ndmin") = 1);
+    // NumPy: read by the tables' own reader (RFC 4180: quoted fields may hold commas, which
+    // numpy.genfromtxt splits); a column of numbers (empty: NaN) is float64, any other str.
+    const app::Table table = app::Table::Read(csv.string());
+    py::list columns, names;
+    for (const std::string& column : table.Columns()) {
+        std::vector<double> numbers(table.Rows());
+        bool numeric = true;
+        for (size_t k = 0; k < table.Rows() && numeric; ++k) {
+            try {
+                numbers[k] = table.Number(k, column);
+            } catch (const app::UsageError&) {
+                numeric = false;
+            }
+        }
+        if (numeric) {
+            columns.append(py::array_t<double>(static_cast<py::ssize_t>(numbers.size()), numbers.data()));
+        } else {
+            py::list text;
+            for (size_t k = 0; k < table.Rows(); ++k) text.append(table.Text(k, column));
+            columns.append(py::module_::import("numpy").attr("array")(text, py::arg("dtype") = "U"));
+        }
+        names.append(column);
+    }
+    return py::module_::import("numpy").attr("rec").attr("fromarrays")(columns, py::arg("names") = names);
 }
 
 bool PandasInstalled() {
@@ -198,6 +223,29 @@ std::string FsPath(const py::object& value, const char* what) {
     return os.attr("fsdecode")(os.attr("fspath")(value)).cast<std::string>();
 }
 
+// A field array as NumPy: (N,) for scalars, (N, 3) for vectors; Int32 codes as int32.
+py::array FieldNumpy(const app::FieldArray& a) {
+    const py::ssize_t tuples = static_cast<py::ssize_t>(a.values.size() / a.components);
+    if (a.integer) {
+        py::array_t<int32_t> out(tuples);
+        for (py::ssize_t k = 0; k < tuples; ++k) out.mutable_at(k) = static_cast<int32_t>(a.values[k]);
+        return out;
+    }
+    std::vector<py::ssize_t> shape{tuples};
+    if (a.components > 1) shape.push_back(a.components);
+    py::array_t<double> out(shape);
+    std::copy(a.values.begin(), a.values.end(), out.mutable_data());
+    return out;
+}
+
+py::array_t<int32_t> Faces(const std::vector<std::array<int, 3>>& triangles) {
+    py::array_t<int32_t> out({static_cast<py::ssize_t>(triangles.size()), static_cast<py::ssize_t>(3)});
+    auto a = out.mutable_unchecked<2>();
+    for (size_t t = 0; t < triangles.size(); ++t)
+        for (int c = 0; c < 3; ++c) a(t, c) = triangles[t][c];
+    return out;
+}
+
 // A number argument that must be finite, as the command line's are.
 double Finite(double value, const char* what) {
     if (!std::isfinite(value)) throw py::value_error(fmt::format("{}: {} is not a finite number", what, value));
@@ -211,9 +259,29 @@ struct RunArgs {
     bool progress = false;  // the command line's progress lines, on the process's stderr
 };
 
+// Every table a results folder holds, by name: its own CSV files under their stem (results,
+// evaluations, ...), then each run's as run_K_<stem> (logbook, halloffame, best_per_generation,
+// pareto_front), in a fixed order.
+std::vector<std::pair<std::string, std::filesystem::path>> FolderTables(const std::string& out, int runs) {
+    namespace fs = std::filesystem;
+    auto csvs = [](const fs::path& dir) {
+        std::vector<fs::path> files;
+        if (fs::is_directory(dir))
+            for (const auto& entry : fs::directory_iterator(dir))
+                if (entry.is_regular_file() && entry.path().extension() == ".csv") files.push_back(entry.path());
+        std::sort(files.begin(), files.end());
+        return files;
+    };
+    std::vector<std::pair<std::string, fs::path>> tables;
+    for (const fs::path& csv : csvs(out)) tables.emplace_back(csv.stem().string(), csv);
+    for (int r = 1; r <= runs; ++r)
+        for (const fs::path& csv : csvs(fs::path(out) / ("run_" + std::to_string(r))))
+            tables.emplace_back(fmt::format("run_{}_{}", r, csv.stem().string()), csv);
+    return tables;
+}
+
 // Runs an experiment (a dict, or the path of a JSON file) into `out` (new or empty; or, with resume,
-// a folder an interrupted run left) and returns its summary and its tables: results.csv for a sweep
-// or a list, each run's logbook.csv (and pareto_front.csv) for the GA and the optimizers.
+// a folder an interrupted run left) and returns its summary and every table the folder holds.
 py::dict RunExperimentFromPython(const py::object& experiment, const py::object& outPath, const RunArgs& args, std::optional<app::ExperimentKind> kind) {
     namespace fs = std::filesystem;
     const std::string out = FsPath(outPath, "out");
@@ -250,12 +318,7 @@ py::dict RunExperimentFromPython(const py::object& experiment, const py::object&
         folder.FirstResultDone();
     }
     py::dict tables;
-    if (fs::exists(fs::path(out) / "results.csv")) tables["results"] = Table(fs::path(out) / "results.csv", frames);
-    for (int r = 1; r <= e.runs; ++r)
-        for (const char* name : {"logbook", "pareto_front"}) {
-            const fs::path csv = fs::path(out) / ("run_" + std::to_string(r)) / (std::string(name) + ".csv");
-            if (fs::exists(csv)) tables[py::str(fmt::format("run_{}_{}", r, name))] = Table(csv, frames);
-        }
+    for (const auto& [name, csv] : FolderTables(out, e.runs)) tables[py::str(name)] = Table(csv, frames);
     py::dict result;
     result["summary"] = py::module_::import("json").attr("loads")(app::ReadInputFile((fs::path(out) / "summary.json").string()));
     result["tables"] = tables;
@@ -279,6 +342,17 @@ render::Image RenderResult(const Evaluated& e, const std::string& view, double a
     const render::Scene scene = view == "before_after" ? app::BeforeAfterScene(title, e.result, e.job, *colouring)
                                                        : app::TurntableScene(title, e.result, e.job, angleDeg, *colouring);
     return app::MakeRenderer(width, height, supersample)->Render(scene);
+}
+
+// Jupyter's rich display: the result's before-and-after figure as PNG bytes, at half the command
+// line's size (a notebook cell is about that wide); None for a result without meshes (Jupyter then
+// shows the repr).
+py::object ReprPng(const Evaluated& e) {
+    if (e.result.final.Size() == 0) return py::none();
+    const render::RenderDef def = render::DefaultRenderDef();
+    const render::Image image = RenderResult(e, "before_after", 0, def.width / 2, def.height / 2, "auto", def.supersample);
+    const std::vector<std::uint8_t> png = render::EncodePng(image, 6);
+    return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
 }
 
 py::array_t<std::uint8_t> ImageArray(render::Image&& image) {
@@ -414,6 +488,61 @@ PYBIND11_MODULE(actuator, m) {
         .def_property_readonly("shape", [](const Evaluated& e) { return Design{e.job.shape}; })
         .def_property_readonly("initial", [](const Evaluated& e) { return Rows(e.result.initial); }, "(N, 3) rest positions")
         .def_property_readonly("final", [](const Evaluated& e) { return Rows(e.result.final); }, "(N, 3) positions after the load")
+        .def_property_readonly(
+            "faces", [](const Evaluated& e) { return Faces(sim::SurfaceOf(e.job).triangles); },
+            "(M, 3) int32 vertex indices of the triangles both meshes are drawn on, counter-clockwise seen from outside (membrane and "
+            "shell: the wall's, then the end caps')")
+        .def(
+            "fields",
+            [](const Evaluated& e) {
+                const app::FieldMesh mesh = app::ResultFieldMesh(e.job, e.result);
+                py::dict point, cell, field;
+                for (const auto& a : mesh.pointData) point[py::str(a.name)] = FieldNumpy(a);
+                for (const auto& a : mesh.cellData) cell[py::str(a.name)] = FieldNumpy(a);
+                for (const auto& a : mesh.fieldData) field[py::str(a.name)] = a.integer ? py::object(py::int_(static_cast<long long>(a.values[0]))) : py::object(py::float_(a.values[0]));
+                py::dict out;
+                out["point"] = point;
+                out["cell"] = cell;
+                out["field"] = field;
+                return out;
+            },
+            "The fields a VTU file holds, as NumPy: {'point': per vertex (displacement, rest position; thesis: spring strain), 'cell': per "
+            "face (membrane and shell: principal stretches, true stresses in kPa, thickness in mm, each fibre family's direction, strain "
+            "and tension in N/mm, 'region' 0 wall / 1 clamped / 2 cap; NaN where a field has no value), 'field': the outputs}. Units in the names.")
+        .def(
+            "to_vtu",
+            [](const Evaluated& e, const py::object& path, bool overwrite) {
+                const std::string target = FsPath(path, "path");
+                if (std::filesystem::path(target).extension() != ".vtu") throw py::value_error("path: " + target + " must end in .vtu");
+                if (std::filesystem::exists(target) && !overwrite)
+                    throw py::value_error("path: " + target + " exists; pass overwrite=True to replace it, or another path");
+                try {
+                    app::WriteFileAtomically(target, app::FormatVtu(app::ResultFieldMesh(e.job, e.result)));
+                } catch (const std::exception& error) {
+                    throw py::value_error(std::string("path: ") + error.what());
+                }
+            },
+            py::arg("path"), py::arg("overwrite") = false,
+            "Writes the deformed wall with its fields as VTK XML (the file `actuator simulate --save-vtu` writes), whole or not at all.")
+        .def(
+            "to_meshio",
+            [](const Evaluated& e) {
+                const py::module_ meshio = py::module_::import("meshio");
+                const app::FieldMesh mesh = app::ResultFieldMesh(e.job, e.result);
+                py::dict point, cell, field;
+                for (const auto& a : mesh.pointData) point[py::str(a.name)] = FieldNumpy(a);
+                for (const auto& a : mesh.cellData) {  // meshio: one array per cell block (one block of triangles)
+                    py::list blocks;
+                    blocks.append(FieldNumpy(a));
+                    cell[py::str(a.name)] = blocks;
+                }
+                for (const auto& a : mesh.fieldData) field[py::str(a.name)] = FieldNumpy(a);
+                py::list cells;
+                cells.append(py::make_tuple("triangle", Faces(mesh.triangles)));
+                return meshio.attr("Mesh")(Rows(mesh.points), cells, py::arg("point_data") = point, py::arg("cell_data") = cell,
+                                           py::arg("field_data") = field);
+            },
+            "The deformed wall and its fields as a meshio.Mesh (needs meshio: apt-get install python3-meshio), the same arrays as to_vtu's file.")
         .def_property_readonly("shell", &ModelOutputs,
                                "membrane and shell models: the pressure-contraction-volume curve (NumPy arrays) and the numbers at the "
                                "target pressure, named as in `actuator simulate`'s JSON, units in the names; {} for the thesis model")
@@ -421,6 +550,7 @@ PYBIND11_MODULE(actuator, m) {
             return fmt::format("<actuator.Result {} {} fitness={:.6g} contraction={:.4g}%>", sim::Name(e.job.model), sim::Name(e.result.status),
                                e.result.fitness, e.result.contractionPercent);
         })
+        .def("_repr_png_", &ReprPng, "the before-and-after figure as PNG bytes (Jupyter shows a result as this picture)")
         // Pickled as the wire carries it: every number and both meshes exactly (not the shell
         // models' per-step positions).
         .def(py::pickle([](const Evaluated& e) { return py::make_tuple(py::bytes(app::JobBytes(e.job)), py::bytes(app::ResultBytes(e.result, e.job.model))); },
@@ -527,10 +657,13 @@ PYBIND11_MODULE(actuator, m) {
             py::arg("resume") = false, py::arg("as_frame") = py::none(), py::arg("progress") = false, doc.c_str());
     };
     bindRun("run", std::nullopt, runDoc);
-    bindRun("sweep", app::ExperimentKind::Sweep, std::string("A sweep experiment; its table is 'results'. ") + runDoc);
-    bindRun("evolve", app::ExperimentKind::Evolve, std::string("A GA experiment; its tables are 'run_K_logbook'. ") + runDoc);
+    bindRun("sweep", app::ExperimentKind::Sweep, std::string("A sweep experiment; its tables are 'results' and 'evaluations'. ") + runDoc);
+    bindRun("evolve", app::ExperimentKind::Evolve,
+            std::string("A GA experiment; its tables are 'evaluations' and per run 'run_K_logbook', 'run_K_halloffame' and "
+                        "'run_K_best_per_generation'. ") + runDoc);
     bindRun("optimize", app::ExperimentKind::Optimize,
-            std::string("An optimizer experiment (pagmo); its tables are 'run_K_logbook' and 'run_K_pareto_front'. ") + runDoc);
+            std::string("An optimizer experiment (pagmo); its tables are 'evaluations' and per run 'run_K_logbook' and "
+                        "'run_K_halloffame' (one objective) or 'run_K_pareto_front' (several). ") + runDoc);
 
     m.def(
         "render",
@@ -562,6 +695,8 @@ PYBIND11_MODULE(actuator, m) {
         .def_property_readonly("role", [](const Record& r) { return std::string(sim::Name(r.record.role)); })
         .def_property_readonly("label", [](const Record& r) { return r.record.label; })
         .def_property_readonly("result", [](const Record& r) { return Evaluated{r.record.job, r.record.result}; })
+        .def("_repr_png_", [](const Record& r) { return ReprPng(Evaluated{r.record.job, r.record.result}); },
+             "its result's before-and-after figure as PNG bytes (None when read with meshes=False)")
         .def("__repr__", [](const Record& r) {
             return fmt::format("<actuator.Record {} {} {} fitness={:.6g}>", r.record.id, sim::Name(r.record.role), r.record.label, r.record.result.fitness);
         });

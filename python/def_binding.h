@@ -33,6 +33,15 @@ struct FieldReader {
     void Enum(const char* k, const E& v, const char*) {
         if (key == k) out = py::str(sim::Name(v));
     }
+    void Bands(const char* k, const std::vector<sim::FibreBand>& v, const char*) {
+        if (key != k) return;
+        py::list bands;
+        for (const auto& b : v) bands.append(py::dict(py::arg("from") = b.from, py::arg("to") = b.to, py::arg("angle_deg") = b.angleDeg));
+        out = bands;
+    }
+    void Angles(const char* k, const std::vector<double>& v, const char*) {
+        if (key == k) out = py::cast(v);
+    }
 };
 
 struct FieldWriter {
@@ -65,6 +74,58 @@ struct FieldWriter {
         if (!parsed) throw py::value_error(fmt::format("{}: unknown value '{}' (choose {})", k, text, sim::Choices<E>()));
         v = *parsed;
     }
+    // Lists as the experiment file's keys take them: bands as [{"from": 0, "to": 0.5, "angle_deg": 30}, ...]
+    // (or (from, to, angle_deg) tuples), sector angles as 1, 2 or 4 numbers; whether the bands cover the
+    // length is the def's check (ShellDefError), as for a file.
+    static double ListNumber(const py::handle& x, const std::string& where, double min, double max) {
+        if (!py::hasattr(x, "__float__") || py::isinstance<py::bool_>(x) || py::isinstance<py::str>(x))
+            throw py::type_error(fmt::format("{}: expected a number, got {}", where, std::string(py::str(x.get_type().attr("__name__")))));
+        const double value = x.cast<double>();
+        if (!(value >= min && value <= max)) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", where, value, min, max));
+        return value;
+    }
+    py::list Sequence(const char* k, size_t most) const {
+        Expect(py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value), k, "a list");
+        py::list items(value);
+        if (items.size() > most) throw py::value_error(fmt::format("{}: {} entries, at most {}", k, items.size(), most));
+        return items;
+    }
+    void Bands(const char* k, std::vector<sim::FibreBand>& v, const char*) {
+        if (key != k) return;
+        std::vector<sim::FibreBand> bands;
+        const py::list items = Sequence(k, 1000);
+        for (size_t n = 0; n < items.size(); ++n) {
+            const std::string where = fmt::format("{}[{}]", k, n);
+            py::handle item = items[n];
+            std::vector<py::object> numbers;
+            if (py::isinstance<py::dict>(item)) {
+                const py::dict band = py::reinterpret_borrow<py::dict>(item);
+                for (const auto& [name, x] : band) {
+                    const std::string field = py::str(name);
+                    if (field != "from" && field != "to" && field != "angle_deg")
+                        throw py::value_error(fmt::format("{}: unknown key '{}' (valid: from, to, angle_deg)", where, field));
+                }
+                for (const char* field : {"from", "to", "angle_deg"}) {
+                    if (!band.contains(field)) throw py::value_error(fmt::format("{}: missing '{}' (a band is {{'from', 'to', 'angle_deg'}})", where, field));
+                    numbers.push_back(band[field]);
+                }
+            } else if ((py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item)) && py::len(item) == 3) {
+                for (const auto& x : item) numbers.push_back(py::reinterpret_borrow<py::object>(x));
+            } else {
+                throw py::type_error(where + ": expected a band, {'from': 0, 'to': 0.5, 'angle_deg': 30} or (from, to, angle_deg)");
+            }
+            bands.push_back({ListNumber(numbers[0], where + ".from", 0, 1), ListNumber(numbers[1], where + ".to", 0, 1),
+                             ListNumber(numbers[2], where + ".angle_deg", -90, 90)});
+        }
+        v = std::move(bands);
+    }
+    void Angles(const char* k, std::vector<double>& v, const char*) {
+        if (key != k) return;
+        std::vector<double> angles;
+        const py::list items = Sequence(k, 4);
+        for (size_t n = 0; n < items.size(); ++n) angles.push_back(ListNumber(items[n], fmt::format("{}[{}]", k, n), -90, 90));
+        v = std::move(angles);
+    }
 };
 
 // The fields a def's Python class has: its fields, and for the load its kind, which the command line
@@ -74,6 +135,12 @@ void VisitBoundFields(Def& def, Visitor&& v) {
     if constexpr (std::is_same_v<std::remove_const_t<Def>, sim::LoadDef>)
         v.Enum("kind", def.kind, "inflate, gas, volume, force or blocked: what is held and what is stepped (docs/models/shell.md sections 6 and 12)");
     sim::VisitFields(def, v);
+    if constexpr (std::is_same_v<std::remove_const_t<Def>, sim::FibreDef>) {
+        v.Bands("fibre_bands", def.bands, "angles by band along the length: [{'from': 0, 'to': 0.5, 'angle_deg': 30}, ...] covering 0 to 1 "
+                                          "in order ([]: fibre_angle_deg everywhere); as an experiment file's \"fibre_bands\"");
+        v.Angles("fibre_sectors_deg", def.sectorAnglesDeg, "or angles by angular sector, 1, 2 or 4 of them, as the thesis's B-spline sectors; "
+                                                           "as an experiment file's \"fibre_sectors_deg\"");
+    }
 }
 
 template <class Def>
@@ -104,6 +171,8 @@ struct FieldLister {
     void Enum(const char* k, E&, const char* help) {
         Add(k, help);
     }
+    void Bands(const char* k, std::vector<sim::FibreBand>&, const char* help) { Add(k, help); }
+    void Angles(const char* k, std::vector<double>&, const char* help) { Add(k, help); }
 };
 
 // A def struct as a Python class: a keyword constructor and one attribute per field, with its help;

@@ -22,6 +22,8 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
   python3-pandas python3-distributed  # the module's tables as DataFrames; Dask as an evaluator (tests)
   python3-deap python3-matplotlib     # examples/ (run by the tests)
+  python3-meshio python3-vtk9  # field files (VTU) read by two real clients (tests)
+  python3-pil                # Jupyter pictures (_repr_png_) decoded by another library (tests)
   libcgal-dev                # exported solids checked by an independent library (tests only; header-only, brings GMP and MPFR)
 )
 

@@ -124,6 +124,15 @@ def test_a_small_ga_logs_every_generation(tmp_path):
     logbook = out["tables"]["run_1_logbook"]
     assert list(logbook["generation"]) == [0, 1, 2]
     assert all(logbook["best"] >= logbook["median"])
+    # Every table the folder has, the same rows as its CSV files.
+    tables = out["tables"]
+    assert set(tables) == {"evaluations", "run_1_logbook", "run_1_halloffame", "run_1_best_per_generation"}
+    for name, relative in [("evaluations", "evaluations.csv"), ("run_1_halloffame", "run_1/halloffame.csv"),
+                           ("run_1_best_per_generation", "run_1/best_per_generation.csv")]:
+        rows = (tmp_path / "g" / relative).read_text().strip().splitlines()
+        assert len(tables[name]) == len(rows) - 1 > 0, name
+    assert len(tables["evaluations"]) == out["summary"]["simulations"]
+    assert tables["run_1_halloffame"]["fitness"][0] == max(logbook["best"])
 
 
 def test_bad_experiments_raise_value_error(tmp_path):
@@ -218,6 +227,13 @@ def test_tables_are_dataframes_with_pandas_and_structured_arrays_without(tmp_pat
     assert [f.hex() for f in frames["fitness"]] == [float(f).hex() for f in arrays["fitness"]]
 
 
+def _decode_png(data):
+    """RGBA pixels of a PNG, read by another library (Pillow)."""
+    import io
+    from PIL import Image
+    return np.asarray(Image.open(io.BytesIO(data)).convert("RGBA"))
+
+
 def test_render_returns_rgba_pixels_and_writes_a_png_once(tmp_path):
     r = actuator.evaluate(actuator.sine(4.1, (0.5, math.pi - 0.5)), params=SHORT, model="thesis")
     image = actuator.render(r, width=320, height=240)
@@ -238,6 +254,13 @@ def test_render_returns_rgba_pixels_and_writes_a_png_once(tmp_path):
         actuator.render(r, view="side")
     with pytest.raises(ValueError, match="colouring"):
         actuator.render(r, colouring="stress")  # the thesis model has no stress
+    # Jupyter shows a result as its before-and-after figure: the same picture render() draws, at half size.
+    shown = r._repr_png_()
+    assert shown[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = int.from_bytes(shown[16:20], "big"), int.from_bytes(shown[20:24], "big")
+    full = actuator.render(r)
+    assert (width, height) == (full.shape[1] // 2, full.shape[0] // 2)
+    assert np.array_equal(actuator.render(r, width=width, height=height), _decode_png(shown))
 
 
 def test_an_archive_reads_as_records_in_order(tmp_path):
@@ -258,6 +281,8 @@ def test_an_archive_reads_as_records_in_order(tmp_path):
     assert len(quick) == 300 and quick[0].result.final.shape == (0, 3)
     with pytest.raises(ValueError, match="no meshes"):
         actuator.render(quick[0].result)
+    assert quick[0]._repr_png_() is None and quick[0].result._repr_png_() is None, "Jupyter falls back to the repr"
+    assert records[7]._repr_png_() == records[7].result._repr_png_()
     with pytest.raises(ValueError, match="cannot open"):
         actuator.open_archive(str(tmp_path / "none.capnp"))
 
@@ -442,6 +467,41 @@ def test_every_load_kind_runs_from_python_as_from_the_command_line():
         actuator.Load(kind="push")
     with pytest.raises(ValueError, match="stroke_percent: has no effect: it applies when kind is blocked, not force"):
         actuator.evaluate(actuator.cylinder(), load=actuator.Load(kind="force", stroke_percent=5), **small)
+
+
+def test_fibre_bands_and_sectors_are_the_experiment_files(tmp_path):
+    small = {"ring_vertices": 12, "rings": 16}
+    bands = [{"from": 0, "to": 0.5, "angle_deg": 25}, {"from": 0.5, "to": 1, "angle_deg": 40}]
+    fibres = actuator.Fibres(fibres="braid", fibre_bands=bands)
+    assert fibres.fibre_bands == bands and fibres.fibre_sectors_deg == []
+    assert actuator.Fibres(fibres="braid", fibre_bands=[(0, 1, 30)]).fibre_bands == [{"from": 0.0, "to": 1.0, "angle_deg": 30.0}]
+    load = actuator.Load(pressure_kpa=2, steps=1)
+    r = actuator.evaluate(actuator.cylinder(), model="membrane", geometry=actuator.Geometry(**small), load=load, fibres=fibres)
+    sectors = actuator.evaluate(actuator.cylinder(), model="membrane", geometry=actuator.Geometry(**small), load=load,
+                                fibres=actuator.Fibres(fibres="single", fibre_sectors_deg=[0, 90]))
+    experiment = {"id": "b", "render": {"figures": False, "thumbnails": False}, "evaluate": {"shapes": [{"family": "cylinder"}]}}
+    for name, model, result in [("bands", {"fibres": "braid", "fibre_bands": bands}, r),
+                                ("sectors", {"fibres": "single", "fibre_sectors_deg": [0, 90]}, sectors)]:
+        e = dict(experiment, model={"name": "membrane", "geometry": small, "load": {"pressure_kpa": 2, "steps": 1}, **model})
+        table = actuator.run(e, str(tmp_path / name), as_frame=False)["tables"]["evaluations"]
+        assert result.status == "ok" and float(table["fitness"][0]).hex() == result.fitness.hex(), name
+    # A pickled def keeps its lists (process pools send it so).
+    import pickle
+    assert pickle.loads(pickle.dumps(fibres)).fibre_bands == bands
+    # Wrong lists name the entry; a band that leaves a gap is the def's own refusal, as for a file.
+    for value, error, message in [
+            ([{"from": 0, "to": 2, "angle_deg": 30}], ValueError, r"fibre_bands\[0\].to: 2 is out of range \(0 to 1\)"),
+            ([{"from": 0, "to": 1}], ValueError, r"fibre_bands\[0\]: missing 'angle_deg'"),
+            ([{"from": 0, "to": 1, "angle": 3}], ValueError, r"fibre_bands\[0\]: unknown key 'angle' \(valid: from, to, angle_deg\)"),
+            ([(0, 1, "30")], TypeError, r"fibre_bands\[0\].angle_deg: expected a number, got str"),
+            ([(0, 1, float("nan"))], ValueError, r"out of range"),
+            (5, TypeError, r"fibre_bands: expected a list, got int")]:
+        with pytest.raises(error, match=message):
+            actuator.Fibres(fibres="braid", fibre_bands=value)
+    with pytest.raises(ValueError, match="fibre_sectors_deg: 5 entries, at most 4"):
+        actuator.Fibres(fibres="single", fibre_sectors_deg=[0, 1, 2, 3, 4])
+    with pytest.raises(ValueError, match="must cover the length"):
+        actuator.evaluate(actuator.cylinder(), model="membrane", fibres=actuator.Fibres(fibres="braid", fibre_bands=[(0, 0.4, 20), (0.6, 1, 30)]))
 
 
 def test_characterize_gives_the_command_lines_curves(tmp_path):
