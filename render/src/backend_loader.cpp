@@ -32,8 +32,10 @@ std::vector<fs::path> SearchDirs() {
         const fs::path self = fs::weakly_canonical(fs::path(info.dli_fname));
         dirs.push_back(self.parent_path().parent_path() / "lib" / "actuator");  // PREFIX/bin/actuator
         dirs.push_back(self.parent_path());
-        // The Python module: PREFIX/lib/python3.X/dist-packages/actuator*.so
+        // The Python module: PREFIX/lib/python3.X/dist-packages/actuator*.so (cmake --install), or
+        // SITE-PACKAGES/actuator*.so with the renderer beside it in actuator.libs/ (pip install python/)
         dirs.push_back(self.parent_path().parent_path().parent_path() / "actuator");
+        dirs.push_back(self.parent_path() / "actuator.libs");
     }
     dirs.emplace_back(ACTUATOR_RENDER_BUILD_DIR);
     dirs.emplace_back(ACTUATOR_RENDER_INSTALL_DIR);
