@@ -33,6 +33,8 @@
 #include "fields/result_fields.h"
 #include "formats/results_folder.h"
 #include "formats/table.h"
+#include "options/part_options.h"
+#include "report/part_export.h"
 #include "formats/schema_convert.h"
 #include "sim/batch.h"
 #include "sim/names.h"
@@ -244,6 +246,14 @@ py::array_t<int32_t> Faces(const std::vector<std::array<int, 3>>& triangles) {
     for (size_t t = 0; t < triangles.size(); ++t)
         for (int c = 0; c < 3; ++c) a(t, c) = triangles[t][c];
     return out;
+}
+
+// An enum argument by its name, as the command line takes it.
+template <class E>
+E EnumArgument(const std::string& text, const char* what) {
+    const auto parsed = sim::FromName<E>(text);
+    if (!parsed) throw py::value_error(fmt::format("{}: unknown value '{}' (choose {})", what, text, sim::Choices<E>()));
+    return *parsed;
 }
 
 // A number argument that must be finite, as the command line's are.
@@ -640,6 +650,80 @@ PYBIND11_MODULE(actuator, m) {
         "table by column (curve isobaric|isometric|free_stroke, pressure_kpa, contraction_percent, force_n, twist_deg, status)}. "
         "The load is the muscle alone (inflate, no force_n; its steps are the isometric and free-stroke curves' points).");
 
+    BindDef<sim::MoldDef>(m, "Mold", "The mold `export` builds around a part (docs/guide/export.md): its block, sprue, vents, pins and core.",
+                          app::PartOptions{}.mold);
+    m.def(
+        "export",
+        [](const py::object& design, const py::object& outPath, const std::string& model, std::optional<sim::SimParams> params,
+           std::optional<sim::MeshDef> mesh, std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material,
+           std::optional<sim::FibreDef> fibres, std::optional<sim::MoldDef> mold, const std::string& wall, std::optional<double> unitMm,
+           std::optional<double> wallMm, int sampling, bool fittings, std::optional<double> portMm, const std::string& format, bool ascii,
+           const std::string& printerMm, const std::string& cast, std::optional<double> flangeMm, std::optional<double> threadSpacingMm,
+           std::optional<double> viscosityCps, std::optional<double> potLifeMin) {
+            const std::string out = FsPath(outPath, "out");
+            sim::EvalJob job;
+            if (py::isinstance<Evaluated>(design)) {  // a result's own design and model, as --from an archive
+                if (params || mesh || geometry || material || fibres || model != std::string(sim::Name(sim::kDefaultModel)))
+                    throw py::value_error("a Result carries its model and settings: pass its shape (result.shape) to give others");
+                job = design.cast<const Evaluated&>().job;
+            } else if (py::isinstance<Design>(design)) {
+                job = JobOf(design.cast<const Design&>().shape, model, {params, mesh, geometry, material, std::nullopt, std::nullopt, std::nullopt, fibres});
+            } else {
+                throw py::type_error(fmt::format("shape: expected an actuator.Shape or an actuator.Result, got {}",
+                                                 std::string(py::str(design.get_type().attr("__name__")))));
+            }
+            app::PartOptions options;
+            const bool thesis = job.model == sim::ModelKind::Thesis;
+            if (!thesis && (unitMm || wallMm))
+                throw py::value_error(std::string(unitMm ? "unit_mm" : "wall_mm") + ": is for thesis-model designs; the membrane and shell models' size and wall are the geometry's");
+            auto within = [](std::optional<double> v, const char* what, double lo, double hi) {
+                if (v && !(*v >= lo && *v <= hi)) throw py::value_error(fmt::format("{}: {} is out of range ({} to {})", what, *v, lo, hi));
+                return v;
+            };
+            options.unitMm = within(unitMm, "unit_mm", 1e-3, 1e4).value_or(options.unitMm);
+            options.wallMm = within(wallMm, "wall_mm", 1e-3, 1e3).value_or(options.wallMm);
+            if (sampling < 1 || sampling > 64) throw py::value_error(fmt::format("sampling: {} is out of range (1 to 64)", sampling));
+            options.sampling = sampling;
+            options.part.wall = EnumArgument<sim::WallSide>(wall, "wall");
+            options.fittings.enabled = fittings;
+            if (portMm && !fittings) throw py::value_error("port_mm: goes with fittings=True (the plug it bores)");
+            options.fittings.portMm = within(portMm, "port_mm", 0.1, 1e3).value_or(options.fittings.portMm);
+            if (mold) options.mold = *mold;
+            app::ExportDef d;
+            d.part = app::SizedPart(options, job);
+            d.mold = options.mold;
+            d.fittings = options.fittings;
+            d.format = EnumArgument<app::SolidFormat>(format, "format");
+            d.ascii = ascii;
+            d.printerMm = printerMm;
+            d.cast = EnumArgument<sim::CastKind>(cast, "cast");
+            d.flangeMm = within(flangeMm, "flange_mm", 0.5, 50);
+            d.threadSpacingMm = within(threadSpacingMm, "thread_spacing_mm", 0.5, 100);
+            d.viscosityCps = within(viscosityCps, "viscosity_cps", 1, 1e7);
+            d.potLifeMin = within(potLifeMin, "pot_life_min", 0.1, 1e4);
+            nlohmann::json summary;
+            {
+                py::gil_scoped_release release;
+                summary = app::ExportPart(job, d, out);
+            }
+            const py::object loads = py::module_::import("json").attr("loads");
+            py::dict result = loads(summary.dump());
+            result["manifest"] = loads(app::ReadInputFile((std::filesystem::path(out) / "manifest.json").string()));
+            return result;
+        },
+        py::arg("shape"), py::arg("out"), py::arg("model") = std::string(sim::Name(sim::kDefaultModel)), py::arg("params") = py::none(),
+        py::arg("mesh") = py::none(), py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("fibres") = py::none(),
+        py::arg("mold") = py::none(), py::arg("wall") = std::string(sim::Name(sim::PartDef{}.wall)), py::arg("unit_mm") = py::none(),
+        py::arg("wall_mm") = py::none(), py::arg("sampling") = app::PartOptions{}.sampling, py::arg("fittings") = false, py::arg("port_mm") = py::none(),
+        py::arg("format") = "stl", py::arg("ascii") = false, py::arg("printer_mm") = app::ExportDef{}.printerMm, py::arg("cast") = "whole",
+        py::arg("flange_mm") = py::none(), py::arg("thread_spacing_mm") = py::none(), py::arg("viscosity_cps") = py::none(),
+        py::arg("pot_life_min") = py::none(),
+        "Writes a design as the solids to print and cast, as `actuator export` does, into `out` (a new or empty folder): the wall, the "
+        "mold's core and shells (or each half's with cast='halves', or a fibre design's two stages), mold_assembly.png, casting.md and "
+        "manifest.json. `shape` is a Shape (under `model` and its settings) or a Result (its own design and model). Returns the "
+        "command's summary with 'manifest' (the manifest as a dict). A design that cannot be made raises ValueError naming why, and "
+        "nothing is written.");
+
     const char* runDoc = "Runs an experiment (a dict in the experiment-file format, or a JSON file's path) into `out` (a new or empty folder; "
                          "with resume=True, the folder an interrupted run left, which then ends exactly as an uninterrupted run) and returns "
                          "{'summary': ..., 'tables': {name: table}, 'folder': out}. Tables are pandas DataFrames when pandas is installed "
@@ -731,8 +815,8 @@ def _picklable(bound):
     function.__module__, function.__qualname__ = "actuator", bound.__name__
     return function
 
-for _name in ("cylinder", "sine", "abs_sine", "bspline", "free_xy", "evaluate", "evaluate_many", "characterize", "run", "sweep", "evolve",
-              "optimize", "render", "open_archive"):
+for _name in ("cylinder", "sine", "abs_sine", "bspline", "free_xy", "evaluate", "evaluate_many", "characterize", "export", "run", "sweep",
+              "evolve", "optimize", "render", "open_archive"):
     globals()[_name] = _picklable(globals()[_name])
 del _name
 )",

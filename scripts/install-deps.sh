@@ -24,6 +24,7 @@ packages=(
   python3-deap python3-matplotlib     # examples/ (run by the tests)
   python3-meshio python3-vtk9  # field files (VTU) read by two real clients (tests)
   python3-pil                # Jupyter pictures (_repr_png_) decoded by another library (tests)
+  python3-venv python3-setuptools python3-wheel  # pip install python/ into a venv (tests)
   libcgal-dev                # exported solids checked by an independent library (tests only; header-only, brings GMP and MPFR)
 )
 

@@ -551,3 +551,40 @@ def test_a_material_file_is_a_material_as_a_preset_is(tmp_path):
         actuator.Material.from_file(str(tmp_path / "typo.json"))
     with pytest.raises(ValueError, match="absent.json"):
         actuator.Material.from_file(str(tmp_path / "absent.json"))
+
+
+def test_export_writes_the_command_lines_part(tmp_path):
+    geometry = actuator.Geometry(ring_vertices=16, rings=24)
+    shape = actuator.sine(1.3)
+    out = actuator.export(shape, tmp_path / "py", geometry=geometry, sampling=1, mold=actuator.Mold(margin_mm=4))
+    cli = subprocess.run([os.environ["ACTUATOR_BIN"], "export", "--model", "shell", "--shape", "sine", "--amplitude", "1.3", "--ring-vertices", "16",
+                          "--rings", "24", "--sampling", "1", "--margin-mm", "4", "--out", str(tmp_path / "cli")], capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    summary = json.loads(cli.stdout)
+    assert out["silicone_volume_mm3"] == summary["silicone_volume_mm3"] and out["files"] == summary["files"]
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert sorted(p.name for p in (tmp_path / "py").iterdir()) == names
+    for name in names:
+        if name.endswith(".stl"):
+            assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    manifest = json.loads((tmp_path / "cli" / "manifest.json").read_text())
+    assert out["manifest"]["pour"] == manifest["pour"] and out["manifest"]["mold"]["margin_mm"] == 4
+    # A result exports its own design and model.
+    r = actuator.evaluate(shape, geometry=geometry, load=actuator.Load(pressure_kpa=1, steps=1))
+    again = actuator.export(r, tmp_path / "from_result", sampling=1, mold=actuator.Mold(margin_mm=4))
+    assert (tmp_path / "from_result" / "actuator.stl").read_bytes() == (tmp_path / "cli" / "actuator.stl").read_bytes()
+    assert again["silicone_volume_mm3"] == out["silicone_volume_mm3"]
+    # Refusals name the argument, and write nothing.
+    for kwargs, message in [(dict(unit_mm=5), "unit_mm: is for thesis-model designs"), (dict(cast="thirds"), "cast: unknown value 'thirds'"),
+                            (dict(port_mm=3), "port_mm: goes with fittings=True"), (dict(flange_mm=3), "--flange-mm goes with --cast halves"),
+                            (dict(printer_mm="big"), "--printer-mm")]:
+        with pytest.raises(ValueError, match=message):
+            actuator.export(shape, tmp_path / "bad", geometry=geometry, sampling=1, **kwargs)
+        assert not (tmp_path / "bad").exists()
+    with pytest.raises(ValueError, match="cannot demould"):
+        actuator.export(actuator.bspline([[1, 3, 3, 3, 1]]), tmp_path / "bulb", geometry=geometry, sampling=1)
+    assert not (tmp_path / "bulb").exists()
+    with pytest.raises(TypeError, match="shape: expected an actuator.Shape or an actuator.Result"):
+        actuator.export("sine", tmp_path / "x")
+    with pytest.raises(ValueError, match="already|not empty|new or empty"):
+        actuator.export(shape, tmp_path / "py", geometry=geometry, sampling=1)

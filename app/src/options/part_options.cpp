@@ -45,7 +45,7 @@ namespace {
 
 // [SECTION] Each model's part: its size from the def (a new def adds its overload). A thesis design
 // is in mesh units: --unit-mm is one of them, --wall-mm its wall.
-void SizePart(const Cli&, const PartOptions& o, const sim::ThesisDef& def, sim::PartDef& part) {
+void SizePart(const PartOptions& o, const sim::ThesisDef& def, sim::PartDef& part) {
     part.radiusMm = o.unitMm;
     part.lengthMm = o.unitMm * def.mesh.turns;
     part.thicknessMm = o.wallMm;
@@ -54,9 +54,7 @@ void SizePart(const Cli&, const PartOptions& o, const sim::ThesisDef& def, sim::
     part.axialSamples = def.mesh.turns * o.sampling + 1;
     part.helixAngles = true;
 }
-void SizePart(const Cli& cli, const PartOptions& o, const sim::ShellDef& def, sim::PartDef& part) {
-    cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
-    cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
+void SizePart(const PartOptions& o, const sim::ShellDef& def, sim::PartDef& part) {
     const sim::GeometryDef& g = def.geometry;
     const int rings = sim::RingCount(g);
     part.radiusMm = g.radiusMm;
@@ -76,8 +74,16 @@ sim::MaterialDef CastMaterial(const sim::ShellDef& def) { return def.material; }
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& o, const sim::EvalJob& job) {
     if (cli.Given("--port-mm") && !o.fittings.enabled) throw UsageError("--port-mm goes with --fittings (the plug it bores)");
     if (cli.Given("--drain-mm") && o.mold.core != sim::CoreKind::Lost) throw UsageError("--drain-mm applies to --core lost (a rigid core has no drain)");
+    if (job.model != sim::ModelKind::Thesis) {
+        cli.RefuseIfGiven("--unit-mm", "is for thesis-model designs; the membrane and shell models' size is --radius-mm and --length-mm");
+        cli.RefuseIfGiven("--wall-mm", "is for thesis-model designs; the membrane and shell models' wall is --thickness-mm");
+    }
+    return SizedPart(o, job);
+}
+
+sim::PartDef SizedPart(const PartOptions& o, const sim::EvalJob& job) {
     sim::PartDef part = o.part;
-    std::visit([&](const auto& def) { SizePart(cli, o, def, part); }, job.def);
+    std::visit([&](const auto& def) { SizePart(o, def, part); }, job.def);
     return part;
 }
 

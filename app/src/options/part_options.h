@@ -32,6 +32,8 @@ std::vector<std::string> MoldOptionNames();
 // The part for a job's design: its size from the model, sampled --sampling times finer than the
 // model's mesh. Refuses the thesis-only options under the other models. Throws UsageError.
 sim::PartDef PartDefOf(const Cli& cli, const PartOptions& options, const sim::EvalJob& job);
+// The same without a command line (Python): unit_mm and wall_mm are the thesis model's alone.
+sim::PartDef SizedPart(const PartOptions& options, const sim::EvalJob& job);
 
 // The silicone the job's part is cast in (its mass in the manifest): the model's material, or the
 // default one for a model that has none (thesis).
