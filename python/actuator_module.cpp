@@ -798,6 +798,15 @@ PYBIND11_MODULE(actuator, m) {
         "The records of an archive (a run folder's evaluations.capnp), in order, read a few at a time; meshes=False skips the positions "
         "(fast listing). A torn tail (a run cut off while writing) ends the records; a damaged record raises ValueError.");
     m.def("_evaluate_job_bytes", &pybinding::EvaluateJobBytes, py::arg("job"));
+    {  // actuator.optuna: Optuna objectives (python/optuna_adapter.py; imports optuna only when a trial runs)
+        static const char* const source =
+#include "optuna_adapter.inc"
+            ;
+        py::module_ adapter = m.def_submodule("optuna");
+        py::exec(source, adapter.attr("__dict__"));
+        const py::module_ ast = py::module_::import("ast");
+        adapter.attr("__doc__") = ast.attr("get_docstring")(ast.attr("parse")(source));
+    }
     // What a map evaluates: a plain Python function, so that pickle (process pools) sends it by name
     // (pybind11's own functions do not pickle).
     // The public functions become plain Python functions around the bindings too, so that

@@ -25,6 +25,8 @@ packages=(
   python3-meshio python3-vtk9  # field files (VTU) read by two real clients (tests)
   python3-pil                # Jupyter pictures (_repr_png_) decoded by another library (tests)
   python3-venv python3-setuptools python3-wheel  # pip install python/ into a venv (tests)
+  python3-optuna             # actuator.optuna and examples/optuna_study.py (tests)
+  python3-nbclient python3-nbformat python3-ipykernel  # examples/*.ipynb executed by the tests
   libcgal-dev                # exported solids checked by an independent library (tests only; header-only, brings GMP and MPFR)
 )
 
