@@ -354,13 +354,13 @@ render::Image RenderResult(const Evaluated& e, const std::string& view, double a
     return app::MakeRenderer(width, height, supersample)->Render(scene);
 }
 
-// Jupyter's rich display: the result's before-and-after figure as PNG bytes, at half the command
-// line's size (a notebook cell is about that wide); None for a result without meshes (Jupyter then
-// shows the repr).
+// Jupyter's rich display: the result's before-and-after figure as PNG bytes, at the command line's
+// size (its overlay's lines are laid out for it; a notebook scales the picture to the cell); None
+// for a result without meshes (Jupyter then shows the repr).
 py::object ReprPng(const Evaluated& e) {
     if (e.result.final.Size() == 0) return py::none();
     const render::RenderDef def = render::DefaultRenderDef();
-    const render::Image image = RenderResult(e, "before_after", 0, def.width / 2, def.height / 2, "auto", def.supersample);
+    const render::Image image = RenderResult(e, "before_after", 0, def.width, def.height, "auto", def.supersample);
     const std::vector<std::uint8_t> png = render::EncodePng(image, 6);
     return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
 }

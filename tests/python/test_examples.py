@@ -50,3 +50,33 @@ def test_the_contraction_pressure_curve_shows_which_braids_contract(tmp_path):
     before = png.read_bytes()
     assert run_example("contraction_pressure.py", "--out", str(png)).returncode == 2
     assert png.read_bytes() == before
+
+
+def test_the_notebook_runs_and_shows_its_pictures(tmp_path):
+    nbformat = __import__("pytest").importorskip("nbformat")
+    nbclient = __import__("pytest").importorskip("nbclient")
+    import base64
+    import io
+    import os
+
+    import numpy as np
+    from PIL import Image
+
+    source = ROOT / "examples" / "workbench.ipynb"
+    notebook = nbformat.read(source, as_version=4)
+    assert all(not c.get("outputs") for c in notebook.cells if c.cell_type == "code"), "the notebook is kept without outputs"
+    os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")  # ipykernel's debugger note on stderr
+    nbclient.NotebookClient(notebook, timeout=300, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}).execute()
+    outputs = [o for c in notebook.cells if c.cell_type == "code" for o in c.outputs]
+    assert not [o for o in outputs if o.output_type == "error"]
+    pictures = [np.asarray(Image.open(io.BytesIO(base64.b64decode(o["data"]["image/png"])))) for o in outputs if "image/png" in o.get("data", {})]
+    # The result shown as itself (its before-and-after figure), the two plots, the turntable.
+    assert len(pictures) == 4
+    assert pictures[0].shape[:2] == (768, 1024), "the result's _repr_png_"
+    for picture in pictures:
+        assert len(np.unique(picture.reshape(-1, picture.shape[-1]), axis=0)) > 50, "not blank"
+    text = "".join(o.get("text", "") for o in outputs if o.output_type == "stream")
+    assert "ok " in text and "largest stretch" in text
+    stretch = re.search(r"largest stretch ([\d.]+) \(the result's max_stretch: ([\d.]+)\)", text)
+    assert stretch and stretch.group(1) == stretch.group(2)
+    assert not list(tmp_path.iterdir()), "the notebook writes no files"

@@ -254,13 +254,10 @@ def test_render_returns_rgba_pixels_and_writes_a_png_once(tmp_path):
         actuator.render(r, view="side")
     with pytest.raises(ValueError, match="colouring"):
         actuator.render(r, colouring="stress")  # the thesis model has no stress
-    # Jupyter shows a result as its before-and-after figure: the same picture render() draws, at half size.
+    # Jupyter shows a result as its before-and-after figure: the picture render() draws by default.
     shown = r._repr_png_()
     assert shown[:8] == b"\x89PNG\r\n\x1a\n"
-    width, height = int.from_bytes(shown[16:20], "big"), int.from_bytes(shown[20:24], "big")
-    full = actuator.render(r)
-    assert (width, height) == (full.shape[1] // 2, full.shape[0] // 2)
-    assert np.array_equal(actuator.render(r, width=width, height=height), _decode_png(shown))
+    assert np.array_equal(actuator.render(r), _decode_png(shown))
 
 
 def test_an_archive_reads_as_records_in_order(tmp_path):
