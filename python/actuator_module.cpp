@@ -16,8 +16,11 @@
 #include <filesystem>
 #include <numbers>
 #include <optional>
+#include <sstream>
+#include <iostream>
 #include <utility>
 
+#include "commands/registry.h"
 #include "formats/archive.h"
 #include "options/cli.h"
 #include "def_binding.h"
@@ -797,6 +800,43 @@ PYBIND11_MODULE(actuator, m) {
         py::arg("path"), py::arg("meshes") = true,
         "The records of an archive (a run folder's evaluations.capnp), in order, read a few at a time; meshes=False skips the positions "
         "(fast listing). A torn tail (a run cut off while writing) ends the records; a damaged record raises ValueError.");
+    m.def(
+        "cli",
+        [](const py::args& args) {
+            std::vector<std::string> argv{"actuator"};
+            for (const auto& a : args) argv.push_back(FsPath(py::reinterpret_borrow<py::object>(a), "argument"));
+            std::string names;
+            for (const app::Command& c : app::Commands()) names += (names.empty() ? "" : ", ") + std::string(c.name);
+            if (argv.size() < 2) throw py::value_error("cli: give a command (" + names + ") and its arguments, as after `actuator`");
+            const app::Command* command = app::FindCommand(argv[1]);
+            if (!command) throw py::value_error("cli: unknown command '" + argv[1] + "' (choose " + names + ")");
+            std::vector<char*> pointers;
+            for (auto& a : argv) pointers.push_back(a.data());
+            pointers.push_back(nullptr);
+            // The command's standard output is its result (JSON for most): captured, as a pipe would.
+            struct Capture {
+                std::ostringstream text;
+                std::streambuf* saved = std::cout.rdbuf(text.rdbuf());
+                ~Capture() { std::cout.rdbuf(saved); }
+            };
+            int code = 0;
+            std::string out;
+            {
+                py::gil_scoped_release release;
+                Capture capture;
+                code = command->run(static_cast<int>(argv.size()), pointers.data(), 2);
+                out = capture.text.str();
+            }
+            py::dict result;
+            result["exit_code"] = code;
+            result["stdout"] = out;
+            return result;
+        },
+        "Runs any `actuator` command in this process with the command line's arguments, e.g. cli('reproduce', '--quick', '--out', "
+        "'thesis/') or cli('material', 'fit', 'curve.csv', '--out', 'mix.json'): {'exit_code': ..., 'stdout': its standard output (JSON "
+        "for most)}. Bad input raises ValueError with the command's message (where the command line exits with code 2); progress goes "
+        "to stderr. For the commands the module has functions for (evaluate, characterize, export, run, render, ...) those are the "
+        "better way: they take and give Python objects.");
     m.def("_evaluate_job_bytes", &pybinding::EvaluateJobBytes, py::arg("job"));
     {  // actuator.optuna: Optuna objectives (python/optuna_adapter.py; imports optuna only when a trial runs)
         static const char* const source =
@@ -825,7 +865,7 @@ def _picklable(bound):
     return function
 
 for _name in ("cylinder", "sine", "abs_sine", "bspline", "free_xy", "evaluate", "evaluate_many", "characterize", "export", "run", "sweep",
-              "evolve", "optimize", "render", "open_archive"):
+              "evolve", "optimize", "render", "open_archive", "cli"):
     globals()[_name] = _picklable(globals()[_name])
 del _name
 )",

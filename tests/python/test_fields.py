@@ -166,6 +166,18 @@ def test_inspect_exports_an_archives_designs_and_never_overwrites(tmp_path):
         assert field["fitness"][0] == record.result.fitness
     again = run("inspect", archive, "--export-vtu", str(tmp_path / "vtu"), check=False)
     assert again.returncode == 2 and "already exists" in again.stderr
+    # One evaluation by its id, as render, simulate and export --from take it; an id it does not hold is refused.
+    run("inspect", archive, "--index", "1", "--export-vtu", str(tmp_path / "one"))
+    assert [p.name for p in (tmp_path / "one").iterdir()] == ["evaluation_000001.vtu"]
+    missing = run("inspect", archive, "--index", "7", "--export-vtu", str(tmp_path / "none"), check=False)
+    assert missing.returncode == 2 and "--index: no evaluation 7" in missing.stderr and "(ids 0 to 1)" in missing.stderr
+    assert not (tmp_path / "none").exists(), "a refusal leaves no folder"
+    # OBJ meshes are never written over either.
+    run("inspect", archive, "--index", "0", "--export-obj", str(tmp_path / "obj"))
+    before = (tmp_path / "obj" / "evaluation_000000_final.obj").read_bytes()
+    again = run("inspect", archive, "--export-obj", str(tmp_path / "obj"), check=False)
+    assert again.returncode == 2 and "already exists" in again.stderr
+    assert (tmp_path / "obj" / "evaluation_000000_final.obj").read_bytes() == before and len(list((tmp_path / "obj").iterdir())) == 2
 
 
 def test_bad_field_outputs_are_refused_and_write_nothing(tmp_path):

@@ -585,3 +585,27 @@ def test_export_writes_the_command_lines_part(tmp_path):
         actuator.export("sine", tmp_path / "x")
     with pytest.raises(ValueError, match="already|not empty|new or empty"):
         actuator.export(shape, tmp_path / "py", geometry=geometry, sampling=1)
+
+
+def test_any_command_runs_in_process_as_on_the_command_line(tmp_path):
+    args = ["simulate", "--model", "thesis", "--shape", "sine", "--amplitude", "2", "--iterations", "300"]
+    inside = actuator.cli(*args)
+    assert inside["exit_code"] == 0
+    assert json.loads(inside["stdout"]) == json.loads(subprocess.run([BIN, *args], check=True, capture_output=True, text=True).stdout) | {
+        "elapsed_ms": json.loads(inside["stdout"])["elapsed_ms"]}
+    r = actuator.evaluate(actuator.sine(2), model="thesis", params=actuator.ThesisParams(iterations=300))
+    assert json.loads(inside["stdout"])["fitness"] == r.fitness
+    # Paths as Python takes them; a folder the command writes.
+    out = actuator.cli("render", "--model", "thesis", "--iterations", "200", "--size", "80x64", "--supersample", "1", "--out", tmp_path / "pictures")
+    assert out["exit_code"] == 0 and (tmp_path / "pictures" / "inflation.png").exists()
+    with pytest.raises(ValueError, match="cli: unknown command 'simulat' \\(choose .*simulate"):
+        actuator.cli("simulat")
+    with pytest.raises(ValueError, match="--bogus"):
+        actuator.cli("simulate", "--bogus")
+    with pytest.raises(ValueError, match="cli: give a command"):
+        actuator.cli()
+    with pytest.raises(TypeError, match="argument: expected a path"):
+        actuator.cli("simulate", "--iterations", 300)
+    # The command's output went to the result, not to this process's stdout: std::cout is restored.
+    again = actuator.cli(*args)
+    assert json.loads(again["stdout"])["fitness"] == r.fitness

@@ -36,12 +36,14 @@ static int RunInspect(int argc, char** argv, int first) {
                        "contraction and design. A cut-off archive is read up to its last complete evaluation (a note on stderr says so).");
     std::string archive, statusName, exportDir, exportVtuDir;
     int run = 0, generation = 0, limit = 0, top = 0;
+    int index = 0;
     Role role = Role::Grid;
     double minFitness = 0, maxFitness = 0;
     SortKey sort = SortKey::Id;
     bool json = false;
     cli.App().add_option("archive", archive, "the archive")->required()->type_name("DIR/evaluations.capnp");
     cli.Group("Filters");
+    cli.Integer("--index", index, "only the evaluation with this id (as render, simulate and export --from take it)", 0, 1 << 30)->default_str("");
     cli.Integer("--run", run, "only GA run R", 0, 1 << 30);
     cli.Integer("--generation", generation, "only GA generation G", -1, 1 << 30);
     cli.Enum("--role", role, "only evaluations made for this purpose");
@@ -61,7 +63,7 @@ static int RunInspect(int argc, char** argv, int first) {
     cli.Examples("  actuator inspect runs/5.2/evaluations.capnp --run 2 --generation 40\n"
                  "  actuator inspect runs/5.2/evaluations.capnp --top 5 --json\n"
                  "  actuator inspect runs/4.1/evaluations.capnp --sort fitness --limit 3 --export-obj best_meshes/\n"
-                 "  actuator inspect runs/5.2F/evaluations.capnp --top 1 --export-vtu fields/\n"
+                 "  actuator inspect runs/5.2F/evaluations.capnp --index 117 --export-vtu fields/\n"
                  "  actuator render --from runs/5.2/evaluations.capnp --index 117 --out pictures/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
     std::optional<sim::Status> status;
@@ -72,22 +74,15 @@ static int RunInspect(int argc, char** argv, int first) {
         limit = cli.Given("--limit") ? std::min(limit, top) : top;
     }
     const bool fitnessFilter = cli.Given("--min-fitness") || cli.Given("--max-fitness");
-    if (cli.Given("--export-obj")) {
-        std::error_code ec;
-        fs::create_directories(exportDir, ec);
-        if (!fs::is_directory(exportDir, ec)) throw UsageError("--export-obj: cannot create folder " + Quote(exportDir));
-    }
-
-    if (cli.Given("--export-vtu")) {
-        std::error_code ec;
-        fs::create_directories(exportVtuDir, ec);
-        if (!fs::is_directory(exportVtuDir, ec)) throw UsageError("--export-vtu: cannot create folder " + Quote(exportVtuDir));
-    }
     const ArchiveContents contents = ReadArchive(archive, cli.Given("--export-obj") || cli.Given("--export-vtu"));
     if (contents.records.empty() && (contents.scan.tornTail || contents.scan.corrupt))
         throw UsageError(Quote(archive) + " holds no readable evaluation (" + contents.scan.problem + ")");
     std::vector<const ArchiveRecord*> shown;
+    if (cli.Given("--index") && (contents.records.empty() || index > static_cast<long long>(contents.records.back().id)))
+        throw UsageError(fmt::format("--index: no evaluation {} in {} (ids 0 to {})", index, Quote(archive),
+                                     contents.records.empty() ? -1 : static_cast<long long>(contents.records.back().id)));
     for (const auto& r : contents.records) {
+        if (cli.Given("--index") && static_cast<long long>(r.id) != index) continue;
         if (cli.Given("--run") && r.run != run) continue;
         if (cli.Given("--generation") && r.generation != generation) continue;
         if (cli.Given("--role") && r.role != role) continue;
@@ -105,26 +100,31 @@ static int RunInspect(int argc, char** argv, int first) {
         });
     if (cli.Given("--limit") || cli.Given("--top")) shown.resize(std::min<size_t>(shown.size(), static_cast<size_t>(limit)));
 
-    OutputBatch batch;  // every mesh or none
+    // Every mesh or none, never over a file that is there, and no folder left behind by a refusal.
+    auto refuseExisting = [&](const std::string& option, const fs::path& path) {
+        std::error_code ec;
+        if (fs::exists(path, ec)) throw UsageError(option + ": " + Quote(path.string()) + " already exists; remove it or give another folder");
+    };
+    auto objPath = [&](const ArchiveRecord* r, const char* which) { return fs::path(exportDir) / fmt::format("evaluation_{:06}_{}.obj", r->id, which); };
+    auto vtuPath = [&](const ArchiveRecord* r) { return fs::path(exportVtuDir) / fmt::format("evaluation_{:06}.vtu", r->id); };
+    for (const ArchiveRecord* r : shown) {
+        if (cli.Given("--export-obj"))
+            for (const char* which : {"initial", "final"}) refuseExisting("--export-obj", objPath(r, which));
+        if (cli.Given("--export-vtu")) refuseExisting("--export-vtu", vtuPath(r));
+    }
+    CreatedFolders folders;
+    if (cli.Given("--export-obj")) folders.Create(exportDir, "--export-obj");
+    if (cli.Given("--export-vtu")) folders.Create(exportVtuDir, "--export-vtu");
+    OutputBatch batch;
     if (cli.Given("--export-obj"))
         for (const ArchiveRecord* r : shown) {
             const auto surface = sim::SurfaceOf(r->job);
             for (const auto& [which, positions] : {std::pair{"initial", &r->result.initial}, std::pair{"final", &r->result.final}}) {
-                const fs::path path = fs::path(exportDir) / fmt::format("evaluation_{:06}_{}.obj", r->id, which);
-                WriteFileAtomically(path.string(), FormatObj(*positions, surface, fmt::format("actuator workbench evaluation {}, {} mesh", r->id, which)));
+                WriteFileAtomically(objPath(r, which).string(), FormatObj(*positions, surface, fmt::format("actuator workbench evaluation {}, {} mesh", r->id, which)));
             }
         }
-    if (cli.Given("--export-vtu")) {
-        for (const ArchiveRecord* r : shown) {
-            const fs::path path = fs::path(exportVtuDir) / fmt::format("evaluation_{:06}.vtu", r->id);
-            std::error_code ec;
-            if (fs::exists(path, ec)) throw UsageError("--export-vtu: " + Quote(path.string()) + " already exists; remove it or give another folder");
-        }
-        for (const ArchiveRecord* r : shown) {
-            const fs::path path = fs::path(exportVtuDir) / fmt::format("evaluation_{:06}.vtu", r->id);
-            WriteFileAtomically(path.string(), FormatVtu(ResultFieldMesh(r->job, r->result)));
-        }
-    }
+    if (cli.Given("--export-vtu"))
+        for (const ArchiveRecord* r : shown) WriteFileAtomically(vtuPath(r).string(), FormatVtu(ResultFieldMesh(r->job, r->result)));
     batch.Commit();
 
     if (json) {
