@@ -59,9 +59,10 @@ protected:
                 all += std::string(file) + ":\n" + Slurp(out / ("run_" + std::to_string(r)) / file);
         return all;
     }
-    // Every archived record with its meshes, timing aside.
-    nlohmann::json Records(const fs::path& dir) const {
-        const Result r = Run("inspect " + (dir / "evaluations.capnp").string() + " --json --export-obj " + (dir_ / ("obj_" + dir.filename().string())).string());
+    // Every archived record, timing aside, with its meshes exported into `meshes` (a new folder:
+    // export refuses to write over one).
+    nlohmann::json Records(const fs::path& dir, const fs::path& meshes) const {
+        const Result r = Run("inspect " + (dir / "evaluations.capnp").string() + " --json --export-obj " + meshes.string());
         EXPECT_EQ(r.exitCode, 0) << r.err;
         auto json = nlohmann::json::parse(r.out)["evaluations"];
         for (auto& e : json) e.erase("elapsed_ms");
@@ -88,10 +89,19 @@ protected:
             const bool report = fs::path(f).filename() == "report.md";
             EXPECT_TRUE(report ? WithoutTimes(Slurp(a / f)) == WithoutTimes(Slurp(b / f)) : Slurp(a / f) == Slurp(b / f)) << f << " differs";
         }
-        EXPECT_EQ(Records(a), Records(b));
-        for (const auto& e : fs::recursive_directory_iterator(dir_ / ("obj_" + a.filename().string())))
-            EXPECT_TRUE(Slurp(e.path()) == Slurp(dir_ / ("obj_" + b.filename().string()) / e.path().filename())) << e.path() << " differs";
+        // Each comparison exports into folders of its own: two folders of one name (whole/o/seed_1 and
+        // cut/o/seed_1) must not share, nor a folder compared twice meet its earlier export.
+        const int comparison = ++comparisons_;
+        const fs::path meshesA = dir_ / ("meshes_" + std::to_string(comparison) + "_a"), meshesB = dir_ / ("meshes_" + std::to_string(comparison) + "_b");
+        EXPECT_EQ(Records(a, meshesA), Records(b, meshesB));
+        size_t meshes = 0;
+        for (const auto& e : fs::recursive_directory_iterator(meshesA)) {
+            ++meshes;
+            EXPECT_TRUE(Slurp(e.path()) == Slurp(meshesB / e.path().filename())) << e.path() << " differs";
+        }
+        EXPECT_GT(meshes, 0u) << "no meshes exported: the comparison proves nothing";
     }
+    mutable int comparisons_ = 0;
     // Starts `args`, kills it with SIGKILL once `ready` holds, checks it was really cut off.
     void KillWhen(const std::vector<std::string>& args, const std::function<bool()>& ready, std::source_location where = std::source_location::current()) {
         Child child(args);
@@ -461,7 +471,7 @@ TEST_F(SearchCli, OverwriteKeepsTheOldResultsUntilTheNewRunHasOne) {
 TEST_F(SearchCli, OneEvaluationIdInTheArchiveTheLogTheThumbnailsAndRender) {
     ASSERT_EQ(Run("evolve " + SmallGa(3, 2) + " --out " + Path("a")).exitCode, 0);
     const std::string archive = Path("a/evaluations.capnp");
-    const auto records = Records(dir_ / "a");
+    const auto records = Records(dir_ / "a", dir_ / "meshes");
     const auto log = app::ParseCsv(Slurp(dir_ / "a" / "evaluations.csv"));
     ASSERT_EQ(log.size(), records.size() + 1);
     const size_t thumbnail = static_cast<size_t>(std::find(log[0].begin(), log[0].end(), "thumbnail") - log[0].begin());
