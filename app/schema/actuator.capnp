@@ -10,9 +10,9 @@ $Cxx.namespace("actuator::schema");
 enum Load { inflate @0; stretch @1; none @2; }
 enum Precision { float @0; double @1; }
 # The CLI's ok, nan, diverged, limit-point, not-converged, non-finite, self-intersection,
-# invalid-geometry, over-stretched, material-unstable.
+# invalid-geometry, over-stretched, material-unstable, outside-envelope, budget-exceeded.
 enum Status { ok @0; notANumber @1; diverged @2; limitPoint @3; notConverged @4; nonFinite @5; selfIntersection @6; invalidGeometry @7;
-              overStretched @8; materialUnstable @9; outsideEnvelope @10; }
+              overStretched @8; materialUnstable @9; outsideEnvelope @10; budgetExceeded @11; }
 enum SplineRegion { entire @0; middle @1; }
 enum ModelKind { thesis @0; membrane @1; shell @2; }
 
@@ -117,6 +117,7 @@ struct ShellDef {
   maxRadiusRatio @40 :Float64;      # the envelope (sim::EnvelopeDef); 0: no bound, as records before it
   maxRadiusMm @41 :Float64;
   maxSiliconeG @42 :Float64;
+  newtonBudget @43 :UInt32;         # Newton iterations for the whole evaluation; 0: none (records before it had none)
 }
 
 struct FibreBand {

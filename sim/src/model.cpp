@@ -107,12 +107,13 @@ int ShellVertices(const EvalJob& job) {
 
 // A Newton iteration (assembly and a sparse factorisation) costs about as much per vertex as ten
 // thousand relaxation steps of the thesis model (measured at 30 x 30); the estimate counts the
-// whole budget, every load step's Newton iterations.
+// whole budget: every load step's Newton iterations, or the evaluation's budget when it is smaller.
 constexpr std::uint64_t kNewtonIterationWork = 10000;
 std::uint64_t ShellWork(const EvalJob& job) {
     const ShellDef& d = job.Shell();
-    return static_cast<std::uint64_t>(ShellVertices(job)) * static_cast<std::uint64_t>(std::max(1, d.load.steps)) *
-           static_cast<std::uint64_t>(std::max(1, d.solver.maxIterations)) * kNewtonIterationWork;
+    std::uint64_t iterations = static_cast<std::uint64_t>(std::max(1, d.load.steps)) * static_cast<std::uint64_t>(std::max(1, d.solver.maxIterations));
+    if (d.solver.newtonBudget > 0) iterations = std::min<std::uint64_t>(iterations, static_cast<std::uint64_t>(d.solver.newtonBudget));
+    return static_cast<std::uint64_t>(ShellVertices(job)) * iterations * kNewtonIterationWork;
 }
 
 const char* kThesisFitness = "the thesis's contraction measure, mesh units";

@@ -29,6 +29,7 @@ Schema EnumToSchema(Sim value) {
     return static_cast<Schema>(static_cast<std::uint16_t>(value));
 }
 static_assert(static_cast<int>(schema::Status::OUTSIDE_ENVELOPE) == static_cast<int>(sim::Status::OutsideEnvelope));
+static_assert(static_cast<int>(schema::Status::BUDGET_EXCEEDED) == static_cast<int>(sim::Status::BudgetExceeded));
 static_assert(static_cast<int>(schema::Load::NONE) == static_cast<int>(sim::Load::None));
 static_assert(static_cast<int>(schema::Precision::DOUBLE) == static_cast<int>(sim::Precision::Double));
 static_assert(static_cast<int>(schema::SplineRegion::MIDDLE) == static_cast<int>(sim::SplineRegion::Middle));
@@ -219,6 +220,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setTolerance(v.tolerance);
     s.setMaxIterations(Count(v.maxIterations));
     s.setMaxBisections(Count(v.maxBisections));
+    s.setNewtonBudget(Count(v.newtonBudget));
     s.setSelfContact(v.selfContact);
     const sim::FibreDef& f = def.fibres;
     s.setFibres(sim::Name(f.layout));
@@ -276,6 +278,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     v.tolerance = s.getTolerance();
     v.maxIterations = Count(s.getMaxIterations());
     v.maxBisections = Count(s.getMaxBisections());
+    v.newtonBudget = Count(s.getNewtonBudget());
     v.selfContact = s.getSelfContact();
     sim::FibreDef& f = def.fibres;
     const std::string layout = s.getFibres();

@@ -112,6 +112,7 @@ void VisitFields(Def& s, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Number("tolerance", s.tolerance, "converged when the largest free-node force is below this x mu h l", 1e-16, 1e-2);
     v.Integer("max_iterations", s.maxIterations, "Newton iterations per load step", 1, 10000);
     v.Integer("max_bisections", s.maxBisections, "times a failed load step may be halved", 0, 30);
+    v.Integer("newton_budget", s.newtonBudget, "Newton iterations for the whole evaluation, past which it is budget-exceeded (0: none)", 0, 10000000);
 }
 
 namespace detail {

@@ -148,6 +148,11 @@ struct SolverDef {
     double tolerance = 1e-8;   // converged when the largest free-node force is below this x mu h l
     int maxIterations = 200;   // Newton iterations per load step (wrinkled walls need 100+)
     int maxBisections = 6;     // a failed step is halved at most this often (down to 1/64)
+    int newtonBudget = 2000;   // Newton iterations for the whole evaluation (every load step, stability
+                               // check, blocking force and held stroke); past it the status is
+                               // budget-exceeded. Counted, not timed, so the same on every machine.
+                               // 0: no budget. Chosen from the shipped searches' distribution
+                               // (docs/performance.md, per-evaluation budget).
     bool selfContact = true;   // check every converged state for self-intersection
 };
 

@@ -19,11 +19,12 @@ enum class Status {
     OverStretched,    // shell models: the wall stretches past the material's allowed stretch
     MaterialUnstable, // shell models: the wall stretches past where the material's law is Drucker-stable
     OutsideEnvelope,  // shell models: the rest design lies outside the def's envelope (too wide or too heavy); nothing simulated
+    BudgetExceeded,   // shell models: the evaluation's Newton iterations ran past SolverDef::newtonBudget (a design too costly to trust)
 };
 
 template <>
 struct EnumNames<Status> {
-    static constexpr std::array<std::pair<Status, const char*>, 11> table{{
+    static constexpr std::array<std::pair<Status, const char*>, 12> table{{
         {Status::Ok, "ok"},
         {Status::NaN, "nan"},
         {Status::Diverged, "diverged"},
@@ -35,6 +36,7 @@ struct EnumNames<Status> {
         {Status::OverStretched, "over-stretched"},
         {Status::MaterialUnstable, "material-unstable"},
         {Status::OutsideEnvelope, "outside-envelope"},
+        {Status::BudgetExceeded, "budget-exceeded"},
     }};
 };
 

@@ -212,6 +212,7 @@ std::string ShellDefError(const ShellDef& d) {
         if (!angleOk(a)) return "a fibre sector's angle must be a number of degrees from -90 to 90";
     if (!positive(d.solver.tolerance)) return "the tolerance must be positive";
     if (d.solver.maxIterations < 1) return "Newton needs at least one iteration";
+    if (d.solver.newtonBudget < 0) return "the Newton budget is 0 (none) or a positive count of iterations";
     // Last: the estimate reads the whole definition.
     if (const double bytes = EvaluationBytesEstimate(d); !(bytes <= kMaxEvaluationBytes)) {
         char text[256];

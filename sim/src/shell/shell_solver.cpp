@@ -67,7 +67,8 @@ enum class NewtonEnd {
     Converged,
     NotConverged,
     NonFinite,
-    Runaway,  // the volume passed its limit: no equilibrium nearby (past the pressure maximum)
+    Runaway,     // the volume passed its limit: no equilibrium nearby (past the pressure maximum)
+    OverBudget,  // the evaluation's Newton budget (SolverDef::newtonBudget) is spent
 };
 
 // What a solve needs that depends on the mesh's topology alone: the Hessian's pattern and the
@@ -138,6 +139,14 @@ struct Solver {
         forceTolerance = d.tolerance * MembraneMaterialShearModulus(p.material) * p.material.thicknessMm * p.meanEdgeMm;
     }
     ~Solver() { tLastWorkspace = std::move(workspace); }
+    // Counts one Newton iteration; true (and overBudget) when the evaluation's budget is already spent.
+    // Every stage's Newton loops spend from the one budget, so no design costs more than it allows.
+    bool overBudget = false;
+    bool SpendIteration() {
+        if (def.newtonBudget > 0 && counters.iterations >= def.newtonBudget) overBudget = true;
+        else ++counters.iterations;
+        return overBudget;
+    }
     Solver(const Solver&) = delete;
     Solver& operator=(const Solver&) = delete;
 
@@ -319,7 +328,7 @@ struct Solver {
         // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
         for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
-            ++counters.iterations;
+            if (SpendIteration()) return NewtonEnd::OverBudget;
             if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
             if (r.volume > volumeLimit) return NewtonEnd::Runaway;
             HoldGradient(r.gradient);
@@ -437,8 +446,8 @@ struct Solver {
         for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
             LoadTerms l = ends;  // the force and torque on the top clamp
             l.pressure = p;
+            if (SpendIteration()) return NewtonEnd::OverBudget;
             EnergyResult r = AssembleEnergy(problem, q, l, terms, true, &exactPattern, HessianKind::Exact);
-            ++counters.iterations;
             if (!r.gradient.allFinite() || !std::isfinite(r.volume)) return NewtonEnd::NonFinite;
             HoldGradient(r.gradient);
             HoldMatrix(exactPattern.matrix);
@@ -596,19 +605,33 @@ constexpr double kRunawayVolume = 3;
 
 }  // namespace
 
+namespace {
+// The status a Newton solve that did not converge ends an evaluation with.
+Status StatusOf(NewtonEnd end) {
+    switch (end) {
+        case NewtonEnd::Converged: return Status::Ok;
+        case NewtonEnd::NonFinite: return Status::NonFinite;
+        case NewtonEnd::OverBudget: return Status::BudgetExceeded;
+        case NewtonEnd::NotConverged:
+        case NewtonEnd::Runaway: break;
+    }
+    return Status::NotConverged;
+}
+}  // namespace
+
 Status SolveStatic(const ShellProblem& problem, const LoadTerms& load, const SolverDef& def, Eigen::VectorXd& q, bool holdAxial, int* iterations) {
     Solver solver(problem, def);
     solver.holdAxial = holdAxial;
     const NewtonEnd end = solver.Minimise(q, load);
     if (iterations) *iterations = solver.counters.iterations;
-    return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+    return StatusOf(end);
 }
 
 Status SolveVolume(const ShellProblem& problem, const SolverDef& def, double volume, Eigen::VectorXd& q, double& pressure, int* iterations) {
     Solver solver(problem, def);
     const NewtonEnd end = solver.AtVolume(q, pressure, volume);
     if (iterations) *iterations = solver.counters.iterations;
-    return end == NewtonEnd::Converged ? Status::Ok : end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+    return StatusOf(end);
 }
 
 namespace {
@@ -705,7 +728,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
             const double target = t.problem.restVolume * (1 + (load.volumeRatio - 1) * k / load.steps);
             const NewtonEnd end = t.solver.AtVolume(t.q, p, target, t.LoadAt(double(k) / load.steps));
             if (end == NewtonEnd::Converged) t.Record(p * 1e3, double(k) / load.steps);
-            else status = end == NewtonEnd::NonFinite ? Status::NonFinite : Status::NotConverged;
+            else status = StatusOf(end);
         }
         out.targetPressureKpa = p * 1e3;
         return status;
@@ -726,6 +749,10 @@ Status FollowLoadPath(TubeEvaluation& t) {
             if (predict && tangent.size() == t.q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
             if (load.kind == ShellLoad::Blocked) trial[t.problem.axial] = t.HeldAxialAt(next);
             const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume));
+            if (end == NewtonEnd::OverBudget) {  // halving the step would only spend more
+                status = Status::BudgetExceeded;
+                break;
+            }
             if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
             if (end == NewtonEnd::Runaway && increment <= smallest) {
                 out.limitPressureKpa = t.GaugeKpa(reached);
@@ -922,8 +949,8 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
         Eigen::VectorXd held = t.q;
         held[problem.axial] = fraction * freeU;
         const Counters before = t.solver.counters;
-        if (t.solver.Minimise(held, finalLoad) != NewtonEnd::Converged) {
-            point.status = Status::NotConverged;
+        if (const NewtonEnd end = t.solver.Minimise(held, finalLoad); end != NewtonEnd::Converged) {
+            point.status = StatusOf(end);
         } else {
             Positions x;
             PositionsOf(problem, held, x);
@@ -1044,6 +1071,9 @@ SimResult EvaluateTube(const Shape& shape, const ShellDef& def, bool bending, st
         result.iterationsRun = out.newtonIterations;
         if (points) *points = std::move(held);
     }
+    // A stage that ran out of the budget (a stability check, the blocking force, a held stroke)
+    // leaves its verdict unfinished: the whole evaluation is a failed design, not a partial one.
+    if (t.solver.overBudget) status = Status::BudgetExceeded;
     return finish(status);
 }
 
