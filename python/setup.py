@@ -2,7 +2,8 @@
 
 The build folder is ACTUATOR_BUILD_DIR when set, else the checkout's build/ (configured and built
 here, Release, when it holds no module yet). The wheel holds the module and, in actuator.libs/, the
-renderer's GL backends it loads on first use. Nothing is downloaded: CMake finds Debian's packages.
+renderer's GL backends and the optimizers it loads on first use. Nothing is downloaded: CMake finds
+Debian's packages.
 """
 import os
 import re
@@ -42,7 +43,7 @@ class CMakeBuild(build_ext):
                             f"-DPython_EXECUTABLE={sys.executable}"], check=True)
             jobs = str(os.cpu_count() or 2)
             subprocess.run(["cmake", "--build", str(build), "--parallel", jobs, "--target",
-                            "actuator_python", "actuator_render_osmesa", "actuator_render_egl"], check=True)
+                            "actuator_python", "actuator_render_osmesa", "actuator_render_egl", "actuator_optimizer"], check=True)
             module = self.built_module(build)
             if module is None:
                 raise RuntimeError(f"CMake built no module for this Python in {build / 'python'}")
@@ -51,8 +52,8 @@ class CMakeBuild(build_ext):
         shutil.copy2(module, target)
         libs = target.parent / "actuator.libs"
         libs.mkdir(exist_ok=True)
-        for backend in sorted((build / "lib" / "actuator").glob("libactuator_render_*.so")):
-            shutil.copy2(backend, libs / backend.name)
+        for loaded in sorted((build / "lib" / "actuator").glob("libactuator_*.so")):  # the GL backends, the optimizers
+            shutil.copy2(loaded, libs / loaded.name)
 
     def built_module(self, build):
         suffix = self.get_ext_filename("actuator")  # actuator.cpython-311-x86_64-linux-gnu.so for this interpreter

@@ -1,18 +1,14 @@
-// Finds and loads a GL backend module by name. Searched, in order: $ACTUATOR_RENDER_MODULE_DIR, the
-// install layout beside the running binary (bin/../lib/actuator), the build tree, the install prefix.
-#include <dlfcn.h>
-
+// Finds and loads a GL backend module by name, where sim::OpenModuleEntry looks for the workbench's
+// run-time modules.
 #include <algorithm>
 #include <cstdlib>
-#include <filesystem>
 #include <mutex>
 
 #include "render/backend.h"
+#include "sim/module_loader.h"
 
 namespace render {
 namespace {
-
-namespace fs = std::filesystem;
 
 std::mutex gMutex;
 std::string gChosen;  // empty: not chosen yet (environment, else the default)
@@ -22,24 +18,6 @@ std::string ChosenName() {
     if (!gChosen.empty()) return gChosen;
     const char* env = std::getenv("ACTUATOR_GL_BACKEND");
     return env && *env ? env : BackendNames().front();
-}
-
-std::vector<fs::path> SearchDirs() {
-    std::vector<fs::path> dirs;
-    if (const char* env = std::getenv("ACTUATOR_RENDER_MODULE_DIR"); env && *env) dirs.emplace_back(env);
-    Dl_info info{};
-    if (dladdr(reinterpret_cast<void*>(&LoadBackend), &info) && info.dli_fname) {
-        const fs::path self = fs::weakly_canonical(fs::path(info.dli_fname));
-        dirs.push_back(self.parent_path().parent_path() / "lib" / "actuator");  // PREFIX/bin/actuator
-        dirs.push_back(self.parent_path());
-        // The Python module: PREFIX/lib/python3.X/dist-packages/actuator*.so (cmake --install), or
-        // SITE-PACKAGES/actuator*.so with the renderer beside it in actuator.libs/ (pip install python/)
-        dirs.push_back(self.parent_path().parent_path().parent_path() / "actuator");
-        dirs.push_back(self.parent_path() / "actuator.libs");
-    }
-    dirs.emplace_back(ACTUATOR_RENDER_BUILD_DIR);
-    dirs.emplace_back(ACTUATOR_RENDER_INSTALL_DIR);
-    return dirs;
 }
 
 }  // namespace
@@ -70,32 +48,16 @@ const BackendApi* LoadBackend(std::string* error) {
         if (error) *error = "unknown GL backend '" + name + "' in ACTUATOR_GL_BACKEND (choose osmesa or egl)";
         return nullptr;
     }
-    const std::string file = "libactuator_render_" + name + ".so";
-    std::string tried;
-    for (const fs::path& dir : SearchDirs()) {
-        const fs::path path = dir / file;
-        std::error_code ec;
-        if (!fs::exists(path, ec)) {
-            tried += (tried.empty() ? "" : ", ") + dir.string();
-            continue;
-        }
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            if (error) *error = "cannot load the " + name + " renderer (" + path.string() + "): " + dlerror();
-            return nullptr;
-        }
-        using Entry = const BackendApi* (*)();
-        auto entry = reinterpret_cast<Entry>(dlsym(handle, "actuator_render_backend"));
-        const BackendApi* api = entry ? entry() : nullptr;
-        if (!api || api->abiVersion != kBackendAbiVersion) {
-            if (error) *error = path.string() + " is not a renderer module of this build (rebuild and reinstall)";
-            return nullptr;
-        }
-        gLoaded = api;
-        return api;
+    using Entry = const BackendApi* (*)();
+    auto entry = reinterpret_cast<Entry>(sim::OpenModuleEntry("libactuator_render_" + name + ".so", "actuator_render_backend", name + " renderer", error));
+    if (!entry) return nullptr;
+    const BackendApi* api = entry();
+    if (!api || api->abiVersion != kBackendAbiVersion) {
+        if (error) *error = "the " + name + " renderer module is not of this build (rebuild and reinstall)";
+        return nullptr;
     }
-    if (error) *error = "the " + name + " renderer module " + file + " is not installed (looked in " + tried + ")";
-    return nullptr;
+    gLoaded = api;
+    return api;
 }
 
 std::unique_ptr<MeshRenderer> MeshRenderer::Create(const RenderDef& def, std::string* error) {

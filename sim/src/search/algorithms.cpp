@@ -1,13 +1,5 @@
 #include "algorithms.h"
 
-#include <pagmo/algorithms/cmaes.hpp>
-#include <pagmo/algorithms/de.hpp>
-#include <pagmo/algorithms/moead.hpp>
-#include <pagmo/algorithms/nsga2.hpp>
-#include <pagmo/algorithms/pso_gen.hpp>
-#include <pagmo/algorithms/sade.hpp>
-#include <pagmo/algorithms/sga.hpp>
-#include <pagmo/algorithms/xnes.hpp>
 #include <fmt/format.h>
 #include <stdexcept>
 
@@ -15,7 +7,6 @@ namespace sim {
 namespace {
 
 double P(const OptimizerDef& def, const char* name) { return ParameterValue(def, name); }
-unsigned U(const OptimizerDef& def, const char* name) { return static_cast<unsigned>(ParameterValue(def, name)); }
 
 }  // namespace
 
@@ -27,27 +18,19 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
           {"cc", -1, -1, 1, false, "backward time horizon for the evolution path (-1: automatic)"},
           {"cs", -1, -1, 1, false, "makes partly up for the small variance loss in case the indicator is zero (-1: automatic)"},
           {"c1", -1, -1, 1, false, "learning rate for the rank-one update of the covariance matrix (-1: automatic)"},
-          {"cmu", -1, -1, 1, false, "learning rate for the rank-mu update of the covariance matrix (-1: automatic)"}},
-         [](const OptimizerDef& d, unsigned seed) {
-             return pagmo::algorithm{pagmo::cmaes(1, P(d, "cc"), P(d, "cs"), P(d, "c1"), P(d, "cmu"), P(d, "sigma0"), 0, 0, true, true, seed)};
-         }},
+          {"cmu", -1, -1, 1, false, "learning rate for the rank-mu update of the covariance matrix (-1: automatic)"}}},
         {Algorithm::Xnes, false, 5,
          {{"sigma0", 0.3, 1e-6, 1, false, "initial step size sigma0 (pagmo: automatic)"},
           {"eta_mu", -1, -1, 1, false, "learning rate for the mean (-1: automatic)"},
           {"eta_sigma", -1, -1, 1, false, "learning rate for the step size (-1: automatic)"},
-          {"eta_b", -1, -1, 1, false, "learning rate for the covariance (-1: automatic)"}},
-         [](const OptimizerDef& d, unsigned seed) {
-             return pagmo::algorithm{pagmo::xnes(1, P(d, "eta_mu"), P(d, "eta_sigma"), P(d, "eta_b"), P(d, "sigma0"), 0, 0, true, true, seed)};
-         }},
+          {"eta_b", -1, -1, 1, false, "learning rate for the covariance (-1: automatic)"}}},
         {Algorithm::De, false, 5,
          {{"F", 0.8, 0, 1, false, "weight coefficient of the difference vectors"},
           {"CR", 0.9, 0, 1, false, "crossover probability"},
-          {"variant", 2, 1, 10, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"}},
-         [](const OptimizerDef& d, unsigned seed) { return pagmo::algorithm{pagmo::de(1, P(d, "F"), P(d, "CR"), U(d, "variant"), 0, 0, seed)}; }},
+          {"variant", 2, 1, 10, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"}}},
         {Algorithm::Sade, false, 7,
          {{"variant", 2, 1, 18, true, "mutation variant (pagmo's numbering; 2: rand/1/exp)"},
-          {"variant_adptv", 1, 1, 2, true, "self-adaptation: 1 jDE, 2 iDE"}},
-         [](const OptimizerDef& d, unsigned seed) { return pagmo::algorithm{pagmo::sade(1, U(d, "variant"), U(d, "variant_adptv"), 0, 0, true, seed)}; }},
+          {"variant_adptv", 1, 1, 2, true, "self-adaptation: 1 jDE, 2 iDE"}}},
         {Algorithm::Pso, false, 2,
          {{"omega", 0.7298, 0, 1, false, "inertia weight (or constriction factor)"},
           {"eta1", 2.05, 0, 4, false, "social component"},
@@ -56,10 +39,6 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
           {"variant", 5, 1, 6, true, "algorithm variant (pagmo's numbering; 5: canonical with constriction)"},
           {"neighb_type", 2, 1, 4, true, "swarm topology: 1 gbest, 2 lbest, 3 Von Neumann, 4 adaptive random"},
           {"neighb_param", 4, 1, 1000, true, "topology parameter (lbest: neighbours)"}},
-         [](const OptimizerDef& d, unsigned seed) {
-             return pagmo::algorithm{pagmo::pso_gen(1, P(d, "omega"), P(d, "eta1"), P(d, "eta2"), P(d, "max_vel"), U(d, "variant"), U(d, "neighb_type"),
-                                                    U(d, "neighb_param"), true, seed)};
-         },
          [](const OptimizerDef& d) -> std::string {
              // The ring (lbest) takes neighb_param / 2 neighbours on each side: none below 2, and it
              // reads past the swarm when they are more than the swarm.
@@ -72,7 +51,6 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
           {"eta_c", 10, 1, 100, false, "distribution index of the crossover"},
           {"m", 0.01, 0, 1, false, "mutation probability"},
           {"eta_m", 50, 1, 100, false, "distribution index of the mutation"}},
-         [](const OptimizerDef& d, unsigned seed) { return pagmo::algorithm{pagmo::nsga2(1, P(d, "cr"), P(d, "eta_c"), P(d, "m"), P(d, "eta_m"), seed)}; },
          [](const OptimizerDef& d) -> std::string {
              if (d.population % 4 == 0) return "";
              return fmt::format("nsga2 needs a population that is a multiple of 4 (got {}; try {})", d.population, (d.population + 3) / 4 * 4);
@@ -84,11 +62,6 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
           {"eta_m", 20, 0, 100, false, "distribution index of the polynomial mutation"},
           {"realb", 0.9, 0, 1, false, "chance that the mating pool is the neighbourhood"},
           {"limit", 2, 1, 10000, true, "most parents replaced by one child"}},
-         [](const OptimizerDef& d, unsigned seed) {
-             // "low discrepancy" weights work for any population size ("grid" does not).
-             return pagmo::algorithm{pagmo::moead(1, "low discrepancy", "tchebycheff", static_cast<pagmo::population::size_type>(P(d, "neighbours")),
-                                                  P(d, "CR"), P(d, "F"), P(d, "eta_m"), P(d, "realb"), U(d, "limit"), true, seed)};
-         },
          [](const OptimizerDef& d) -> std::string {
              if (P(d, "neighbours") < d.population) return "";
              return fmt::format("moead's neighbours ({:g}) must be smaller than the population ({})", P(d, "neighbours"), d.population);
@@ -100,10 +73,6 @@ const std::vector<AlgorithmRow>& AlgorithmRows() {
           {"m", 0.02, 0, 1, false, "mutation probability per gene"},
           {"param_m", 1, 1, 100, false, "distribution index of the polynomial mutation (small: wide steps)"},
           {"param_s", 2, 1, 1000, true, "tournament size; at most the population"}},
-         [](const OptimizerDef& d, unsigned seed) {
-             return pagmo::algorithm{
-                 pagmo::sga(1, P(d, "cr"), 1.0, P(d, "m"), P(d, "param_m"), U(d, "param_s"), "exponential", "polynomial", "tournament", seed)};
-         },
          [](const OptimizerDef& d) -> std::string {
              if (P(d, "param_s") <= d.population) return "";
              return fmt::format("sga's tournament (param_s {}) is larger than the population ({})", P(d, "param_s"), d.population);

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <stdexcept>
 
+#include "sim/module_loader.h"
 #include "sim/optimize.h"
+#include "sim/optimizer_module.h"
 
 #include "algorithms.h"
 
@@ -330,6 +333,24 @@ std::string OptimizerDefError(const OptimizerDef& def, ModelKind model, const Me
     if (def.generations < 0 || s.evaluations < 0 || !(s.seconds >= 0) || s.stagnation < 0) return "stop criteria must not be negative";
     if (std::isfinite(s.target) && multi) return "a target stops one objective's run; with several objectives use stagnation";
     return "";
+}
+
+OptimizerRun RunOptimizer(const OptimizerDef& def, const MeshDef& mesh, std::uint64_t seed, const VectorEvaluator& evaluate,
+                          const GenerationHook& onGeneration) {
+    // Loaded once, on the first run (thread-safe static initialisation); it stays mapped.
+    static const std::pair<const OptimizerModuleApi*, std::string> module = [] {
+        std::string error;
+        using Entry = const OptimizerModuleApi* (*)();
+        const auto entry = reinterpret_cast<Entry>(OpenModuleEntry("libactuator_optimizer.so", "actuator_optimizer_module", "optimizer", &error));
+        const OptimizerModuleApi* api = entry ? entry() : nullptr;
+        if (entry && (!api || api->abiVersion != kOptimizerModuleAbiVersion)) {
+            api = nullptr;
+            error = "the optimizer module is not of this build (rebuild and reinstall)";
+        }
+        return std::make_pair(api, error);
+    }();
+    if (!module.first) throw std::runtime_error(module.second);
+    return module.first->runOptimizer(def, mesh, seed, evaluate, onGeneration);
 }
 
 }  // namespace sim

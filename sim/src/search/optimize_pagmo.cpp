@@ -1,5 +1,6 @@
-// RunOptimizer: pagmo's algorithms stepped one generation at a time, each generation foreseen on
-// copies so that its designs are evaluated as one batch (see optimize.h). Built without
+// RunOptimizer's work (optimize.h), in the optimizer module: pagmo's algorithms stepped one
+// generation at a time, each generation foreseen on copies so that its designs are evaluated as one
+// batch. Built without
 // -march=native: pagmo's headers carry Eigen, and Debian's libpagmo was built for the baseline
 // x86-64, so both sides must agree on Eigen's alignment (a mismatch crashes in ~cmaes()).
 #include <algorithm>
@@ -7,12 +8,22 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <pagmo/algorithm.hpp>
+#include <pagmo/algorithms/cmaes.hpp>
+#include <pagmo/algorithms/de.hpp>
+#include <pagmo/algorithms/moead.hpp>
+#include <pagmo/algorithms/nsga2.hpp>
+#include <pagmo/algorithms/pso_gen.hpp>
+#include <pagmo/algorithms/sade.hpp>
+#include <pagmo/algorithms/sga.hpp>
+#include <pagmo/algorithms/xnes.hpp>
 #include <pagmo/population.hpp>
 #include <pagmo/problem.hpp>
 #include <pagmo/utils/hypervolume.hpp>
 
 #include "sim/optimize.h"
+#include "sim/optimizer_module.h"
 
 #include "algorithms.h"
 
@@ -74,7 +85,32 @@ struct DesignProblem {
 
 unsigned Seed32(std::uint64_t seed, std::uint64_t stream) { return static_cast<unsigned>(DeriveSeed(seed, stream) >> 32); }
 
-pagmo::algorithm MakeAlgorithm(const OptimizerDef& def, unsigned seed) { return AlgorithmRowOf(def.algorithm).make(def, seed); }
+// Each algorithm with its parameters (AlgorithmRows: their defaults and ranges), stepping one
+// generation per evolve() call with memory, so that stepping equals one long call; pagmo's own
+// tolerances off: the run's stop criteria decide. pagmo 2.18's own defaults, except where noted there.
+pagmo::algorithm MakeAlgorithm(const OptimizerDef& d, unsigned seed) {
+    auto P = [&](const char* name) { return ParameterValue(d, name); };
+    auto U = [&](const char* name) { return static_cast<unsigned>(ParameterValue(d, name)); };
+    switch (d.algorithm) {
+        case Algorithm::Cmaes: return pagmo::algorithm{pagmo::cmaes(1, P("cc"), P("cs"), P("c1"), P("cmu"), P("sigma0"), 0, 0, true, true, seed)};
+        case Algorithm::Xnes: return pagmo::algorithm{pagmo::xnes(1, P("eta_mu"), P("eta_sigma"), P("eta_b"), P("sigma0"), 0, 0, true, true, seed)};
+        case Algorithm::De: return pagmo::algorithm{pagmo::de(1, P("F"), P("CR"), U("variant"), 0, 0, seed)};
+        case Algorithm::Sade: return pagmo::algorithm{pagmo::sade(1, U("variant"), U("variant_adptv"), 0, 0, true, seed)};
+        case Algorithm::Pso:
+            return pagmo::algorithm{
+                pagmo::pso_gen(1, P("omega"), P("eta1"), P("eta2"), P("max_vel"), U("variant"), U("neighb_type"), U("neighb_param"), true, seed)};
+        case Algorithm::Nsga2: return pagmo::algorithm{pagmo::nsga2(1, P("cr"), P("eta_c"), P("m"), P("eta_m"), seed)};
+        case Algorithm::Moead:
+            // "low discrepancy" weights work for any population size ("grid" does not).
+            return pagmo::algorithm{pagmo::moead(1, "low discrepancy", "tchebycheff", static_cast<pagmo::population::size_type>(P("neighbours")), P("CR"),
+                                                 P("F"), P("eta_m"), P("realb"), U("limit"), true, seed)};
+        case Algorithm::Sga:
+            // Tournament selection, exponential crossover, polynomial mutation, pure elitism (pagmo's
+            // defaults for the three operators).
+            return pagmo::algorithm{pagmo::sga(1, P("cr"), 1.0, P("m"), P("param_m"), U("param_s"), "exponential", "polynomial", "tournament", seed)};
+    }
+    throw std::logic_error("an algorithm without a maker");
+}
 
 
 // The statistics of a generation and of the run so far.
@@ -195,8 +231,8 @@ std::string StopReason(const OptimizerDef& def, const OptimizerRun& run) {
 
 }  // namespace
 
-OptimizerRun RunOptimizer(const OptimizerDef& def, const MeshDef& mesh, std::uint64_t seed, const VectorEvaluator& evaluate,
-                          const GenerationHook& onGeneration) {
+OptimizerRun RunPagmoOptimizer(const OptimizerDef& def, const MeshDef& mesh, std::uint64_t seed, const VectorEvaluator& evaluate,
+                               const GenerationHook& onGeneration) {
     OptimizerRun run;
     auto oracle = std::make_shared<Oracle>();
     oracle->def = &def;
