@@ -347,11 +347,13 @@ struct Solver {
             Eigen::VectorXd step;
             EnergyResult trusted;    // a trust-region step's state, energy and gradient assembled
             bool trustStep = false;  // step is a trust-region step: taken whole, no line search
-            bool projected = false;  // pattern.matrix holds the projected Hessian at q
+            bool projected = false;       // pattern.matrix holds the projected Hessian at q
+            bool exactAssembled = false;  // ... or the exact one
             auto assemble = [&](HessianKind kind) {
                 AssembleEnergy(problem, q, load, terms, false, &pattern, kind);
                 HoldMatrix(pattern.matrix);
                 projected = kind == HessianKind::Projected;
+                exactAssembled = kind == HessianKind::Exact;
             };
             if (!preconditioner) {
                 // The solve's first factorisation: of the Hessian without the pressure's part. From
@@ -384,6 +386,20 @@ struct Solver {
                 // with threads going taut and slack, it changes faster than a factor pays back.
                 // Factorise at every step until Newton settles.
                 if (step.size() == 0 && factorAge <= 1) direct = true;
+            }
+            if (step.size() == 0 && exactSteps) {
+                // Exact steps want a fresh factor: of the exact Hessian itself when it is positive
+                // definite (near a stable state it mostly is). Its step is Newton's own, and its
+                // factor preconditions the next steps better than the projected one's would; one
+                // assembly and no conjugate gradients instead of two and up to ten.
+                refresh = false;
+                if (!exactAssembled) assemble(HessianKind::Exact);
+                preconditioner = factor->Compute(pattern.matrix, workspace->places, 0, true, counters);
+                factorAge = 0;
+                if (preconditioner) {
+                    Eigen::VectorXd exact = -SolveWithRankOne(r.gradient, gasTerm, w);
+                    if (exact.allFinite() && exact.dot(r.gradient) < 0) step = std::move(exact);
+                }
             }
             if (step.size() == 0) {
                 refresh = false;
