@@ -29,12 +29,16 @@ static int RunReproduce(int argc, char** argv, int first) {
     RunCommandOptions o;
     std::string experiments;
     bool quick = false;
+    bool thumbnails = false;
     enum class Part { Both, Thesis, Physical } part = Part::Both;
     const std::map<std::string, Part> parts{{"both", Part::Both}, {"thesis", Part::Thesis}, {"physical", Part::Physical}};
     AddRunOptions(cli, o);
     cli.Group("Experiments");
     cli.Text("--experiments", experiments, "folder of experiment files to run, in name order")->type_name("DIR")->default_str("assets/experiments");
     cli.Flag("--quick", quick, "shrink every experiment (3 values per axis, one GA run of 2 generations of 6): a smoke test in seconds");
+    cli.Flag("--thumbnails", thumbnails,
+             "a small before/after picture of every evaluation, as evolve and sweep make (off: the report shows none, and in a full "
+             "run they were 6,000 of its 7,200 pictures and most of its 890 MB)");
     cli.App()
         .add_option("--part", part, "both, thesis (part 1 only) or physical (part 2 only; its comparison needs part 1's results)")
         ->transform(CLI::CheckedTransformer(parts, CLI::ignore_case).description(""))
@@ -56,11 +60,13 @@ static int RunReproduce(int argc, char** argv, int first) {
                                   {{"experiments", "--experiments", cli.Given("--experiments"), fs::absolute(folder).lexically_normal().string()},
                                    {"part", "--part", cli.Given("--part"), part == Part::Both ? "both" : part == Part::Thesis ? "thesis" : "physical"},
                                    {"quick", "--quick", cli.Given("--quick"), quick},
+                                   {"thumbnails", "--thumbnails", cli.Given("--thumbnails"), thumbnails},
                                    {"sets", "--set", !o.sets.empty(), o.sets}});
     try {
         folder = record["experiments"].get<std::string>();
         part = parts.at(record["part"].get<std::string>());
         quick = record["quick"].get<bool>();
+        thumbnails = record.value("thumbnails", true);  // a reproduction recorded before the option made them
         o.sets = record["sets"].get<std::vector<std::string>>();
     } catch (const std::exception&) {
         throw UsageError(Quote(recordPath.string()) + " is damaged; start afresh with --overwrite");
@@ -86,6 +92,7 @@ static int RunReproduce(int argc, char** argv, int first) {
     for (const auto& [file, name] : files) {
         Experiment e = LoadExperiment(file.string(), overrides);
         if (quick) e = QuickVersion(e);
+        e.render.thumbnails = e.render.thumbnails && thumbnails;
         if (e.id.empty()) e.id = file.stem().string();
         entries.push_back({e, {}, name});
     }

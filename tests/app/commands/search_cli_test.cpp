@@ -599,6 +599,21 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
     EXPECT_EQ(files, 10 + 10 + 5 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparisons'";
 }
 
+// --thumbnails pictures every evaluation of the experiments that ask for it, as evolve and sweep do,
+// and a resume keeps what the reproduction was started with.
+TEST_F(SearchCli, ReproduceMakesThumbnailsOnlyWhenAskedTo) {
+    fs::create_directories(dir_ / "one");
+    fs::copy_file(fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "4.1_amplitude_sweep.json", dir_ / "one" / "4.1_amplitude_sweep.json");
+    const std::string experiments = " --quick --part thesis --experiments " + (dir_ / "one").string();
+    ASSERT_EQ(Run("reproduce" + experiments + " --thumbnails --out " + Path("with")).exitCode, 0);
+    EXPECT_TRUE(fs::exists(dir_ / "with" / "4.1_amplitude_sweep" / "thumbnails" / "evaluation_000000.png"));
+    ASSERT_EQ(Run("reproduce" + experiments + " --out " + Path("without")).exitCode, 0);
+    EXPECT_FALSE(fs::exists(dir_ / "without" / "4.1_amplitude_sweep" / "thumbnails"));
+    const Result refused = Run("reproduce --resume " + Path("without") + " --thumbnails");
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_THAT(refused.err, HasSubstr("--thumbnails"));
+}
+
 // Part 2 alone has no thesis-model bests to re-evaluate: its finding says so instead of counting
 // "0 best designs".
 TEST_F(SearchCli, PartTwoAloneSaysPartOneIsMissing) {
@@ -650,6 +665,7 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     EXPECT_THAT(testing_support::ThesisReportProblems(report), ::testing::IsEmpty());
     for (const char* figure : {"4.3_abs_sine_sweep/thesis_points.png", "5.2_bspline_middle/run_bests.png", "5.1_bspline_entire/best_time_lapse.png"})
         ExpectPicture(dir_ / "thesis" / figure);
-    EXPECT_TRUE(fs::exists(dir_ / "thesis" / "5.2_bspline_middle" / "thumbnails" / "evaluation_000001.png"));
-    EXPECT_TRUE(fs::exists(dir_ / "thesis" / "4.1_amplitude_sweep" / "thumbnails" / "evaluation_000000.png"));
+    // Thumbnails are asked for (--thumbnails, below): by default no experiment makes them.
+    for (const auto& entry : fs::recursive_directory_iterator(dir_ / "thesis"))
+        EXPECT_NE(entry.path().filename(), "thumbnails") << entry.path();
 }
