@@ -161,6 +161,8 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
             return;
         }
         row.thesisBestHere = std::move(result);
+        // A design that cannot be built as a tube has no wall to draw: the text gives its status.
+        if (row.thesisBestHere.status == sim::Status::InvalidGeometry || row.thesisBestHere.initial.Size() == 0) return;
         row.thesisBestFigure = chapter.folder + "/" + id + "_thesis_best_under_" + model + ".png";
         const std::string title = fmt::format("{}: the thesis model's best design under the {} model", row.thesis->experiment.id, model);
         WritePng((dir / row.thesisBestFigure).string(), renderer->Render(BeforeAfterScene(title, row.thesisBestHere, jobs[k])), 6);

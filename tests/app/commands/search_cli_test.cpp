@@ -660,6 +660,16 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
         ExpectPicture(dir_ / "thesis" / report.substr(at + 2, end - at - 2));
     }
     EXPECT_GE(images, 30u);
+    // A design that cannot be built as a tube is said in words, never drawn as an empty frame.
+    size_t unbuildable = 0;
+    for (size_t at = report.find(" beside "); at != std::string::npos; at = report.find(" beside ", at + 1)) {
+        const size_t end = std::min(report.find("\n### ", at), report.find("\n# ", at));
+        const std::string section = report.substr(at, end == std::string::npos ? std::string::npos : end - at);
+        if (section.find("model: invalid-geometry.") == std::string::npos) continue;
+        ++unbuildable;
+        EXPECT_THAT(section, Not(HasSubstr("_thesis_best_under_"))) << section;
+    }
+    EXPECT_GT(unbuildable, 0u) << "the quick run's 4.2 and 4.3 bests pass through zero radius";
     // Every table and figure of chapters 4-6 has a row and a verdict, and no reason contradicts the
     // run's own numbers.
     EXPECT_THAT(testing_support::ThesisReportProblems(report), ::testing::IsEmpty());
