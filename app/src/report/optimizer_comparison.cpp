@@ -196,6 +196,8 @@ ComparisonResult CompareOptimizers(const std::vector<Experiment>& contenders, co
     render::LinePlot plot;
     plot.xLabel = "evaluations";
     plot.yLabel = fmt::format("best so far: {}", sim::ObjectiveUnit(fitness));
+    // Contraction's sign is the finding (+ shorter, - longer): 0 is always on the axis, drawn.
+    plot.zeroLine = fitness == sim::ObjectiveKind::Contraction;
     std::string table = "| contender | runs | median best at the budget | worst run | best run |\n|---|---:|---:|---:|---:|\n";
     for (size_t k = 0; k < result.contenders.size(); ++k) {
         const auto& c = result.contenders[k];
