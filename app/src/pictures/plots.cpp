@@ -114,9 +114,10 @@ render::Image LandscapeImage(const PlotContext& e, const std::vector<double>& fi
     heatmap.values = fitness;
     if (best >= 0) {
         heatmap.highlight = static_cast<size_t>(best);
-        const bool anyFailed = std::any_of(fitness.begin(), fitness.end(), [](double f) { return !std::isfinite(f); });
-        heatmap.highlightLabel = bestText + (anyFailed ? "  (grey cells: failed evaluations)" : "");
+        heatmap.highlightLabel = bestText;
     }
+    const size_t failed = static_cast<size_t>(std::count_if(fitness.begin(), fitness.end(), [](double f) { return !std::isfinite(f); }));
+    heatmap.failedLabel = fmt::format("failed\n({} of {})", failed, fitness.size());
     // The designs the thesis names (Table 4.4), at their parameters.
     for (size_t k = 0; k < e.thesisPoints.size(); ++k) {
         const auto& point = e.thesisPoints[k];

@@ -53,6 +53,7 @@ struct Heatmap {
     };
     std::vector<Mark> marks;
     std::string marksLegend;               // one line under the plot saying what the marks are
+    std::string failedLabel = "failed";    // beside a grey swatch under the colour bar, drawn when a value is NaN
 };
 
 // Drawn by the GL backend module, loaded on first use like MeshRenderer.

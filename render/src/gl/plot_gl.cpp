@@ -336,6 +336,13 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
     bar.max = vMax;
     bar.label = h.valueLabel;
     DrawColourBar(draw, o, bar);
+    // Grey cells say what they are: a swatch and its label under the colour bar.
+    if (std::any_of(h.values.begin(), h.values.end(), [](double v) { return !std::isfinite(v); })) {
+        const float y = bar.y1 + fs * 1.2f;
+        draw->AddRectFilled(ImVec2(bar.x0, y), ImVec2(bar.x1, y + fs * 0.9f), IM_COL32(170, 170, 170, 255));
+        draw->AddRect(ImVec2(bar.x0, y), ImVec2(bar.x1, y + fs * 0.9f), IM_COL32(30, 30, 30, 255), 0, 0, fs * 0.06f);
+        draw->AddText(o.TextFont(), fs * 0.8f, ImVec2(bar.x1 + fs * 0.4f, y), kInk, h.failedLabel.c_str());
+    }
     return End();
 }
 

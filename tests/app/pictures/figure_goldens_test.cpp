@@ -72,6 +72,15 @@ TEST(FigureGoldens, LandscapeHeatmapDivergesAboutZeroAndMarksTheThesisPoints) {
     ExpectMatchesGolden("plot_landscape_heatmap", app::LandscapeImage(app::PlotContextOf(e), fitness, static_cast<int>(fitness.size()) - 1, "best: amplitude 10, cycles 8"));
 }
 
+// Failed designs are grey cells, and the picture says so under its colour bar, best or none.
+TEST(FigureGoldens, LandscapeHeatmapSaysWhatItsGreyCellsAre) {
+    const app::Experiment e = Sweep(R"([{"parameter": "amplitude", "from": 1, "to": 6, "points": 6}, {"parameter": "cycles", "values": [2, 3, 4, 5, 6, 7]}])", "[]");
+    std::vector<double> fitness;
+    for (double a : e.sweep.axes[0].values)
+        for (double n : e.sweep.axes[1].values) fitness.push_back(a > 3.5 && n > 4.5 ? NAN : 0.1 * a * n);
+    ExpectMatchesGolden("plot_landscape_heatmap_failed", app::LandscapeImage(app::PlotContextOf(e), fitness, 32, "best: amplitude 6, cycles 4"));
+}
+
 TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
     const app::Experiment e = app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "G", "title": "golden GA", "sim": {"iterations": 2000},
         "evolve": {"runs": 2, "genome": {"kind": "bspline"}}})", "golden.json");
