@@ -24,6 +24,18 @@ std::string AxisLabel(sim::SweepParameter parameter) {
 
 namespace {
 
+// One value of a sweep's axis as a legend names it: in words, with its unit ("cycles 2", "1 kPa").
+std::string ValueLabel(sim::SweepParameter parameter, double value) {
+    switch (parameter) {
+        case sim::SweepParameter::Amplitude: return fmt::format("A = {:.4g}", value);
+        case sim::SweepParameter::Cycles: return fmt::format("{:.4g} cycles", value);
+        case sim::SweepParameter::PhaseEnd: return fmt::format("phase end {:.4g} rad", value);
+        case sim::SweepParameter::PressureKpa: return fmt::format("{:.4g} kPa", value);
+        case sim::SweepParameter::FibreAngleDeg: return fmt::format("fibres at {:.4g} deg", value);
+    }
+    return fmt::format("{:.4g}", value);
+}
+
 std::unique_ptr<render::PlotRenderer> MakePlots(int width, int height) {
     std::string error;
     auto plots = render::PlotRenderer::Create(width, height, &error);
@@ -43,6 +55,7 @@ render::Image LandscapeImage(const PlotContext& e, const std::vector<double>& fi
         plot.yLabel = e.fitnessLabel;
         plot.zeroLine = true;
         render::LineSeries series{e.seriesLabel, axes[0].values, fitness, {0.13f, 0.35f, 0.75f}, true};
+        series.markFailed = true;
         plot.series.push_back(series);
         if (best >= 0) {
             plot.highlight = std::pair{axes[0].values[static_cast<size_t>(best)], fitness[static_cast<size_t>(best)]};
@@ -72,8 +85,8 @@ render::Image LandscapeImage(const PlotContext& e, const std::vector<double>& fi
                                        {0.60f, 0.20f, 0.65f}, {0.55f, 0.35f, 0.20f}, {0.30f, 0.30f, 0.30f}};
         const size_t n1 = axes[1].values.size();
         for (size_t s = 0; s < axes[shortAxis].values.size(); ++s) {
-            render::LineSeries series{fmt::format("{} = {:.4g}", sim::Name(axes[shortAxis].parameter), axes[shortAxis].values[s]), axes[longAxis].values, {},
-                                      colours[s % 6], true};
+            render::LineSeries series{ValueLabel(axes[shortAxis].parameter, axes[shortAxis].values[s]), axes[longAxis].values, {}, colours[s % 6], true};
+            series.markFailed = true;
             for (size_t k = 0; k < axes[longAxis].values.size(); ++k)
                 series.y.push_back(fitness[shortAxis == 0 ? s * n1 + k : k * n1 + s]);
             plot.series.push_back(series);

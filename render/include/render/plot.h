@@ -21,6 +21,7 @@ struct LineSeries {
     bool dashed = false;                  // lines drawn dashed, e.g. a theory beside the model
     float alpha = 1;                      // < 1: faint, e.g. every design behind a Pareto front
     std::vector<std::string> pointLabels{}; // drawn beside the markers (e.g. front numbers); may be shorter than x
+    bool markFailed = false;              // a non-finite y at a finite x: a cross on the plot's floor, listed in the legend
 };
 
 struct Band {                    // a filled range, e.g. mean +/- std

@@ -24,6 +24,12 @@ namespace {
 
 ImU32 Color(const Rgb& c, float alpha = 1) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, alpha)); }
 
+// An x of half-width r centred on `at`: a point that has no value.
+void AddCross(ImDrawList* draw, ImVec2 at, float r, ImU32 color) {
+    draw->AddLine(ImVec2(at.x - r, at.y - r), ImVec2(at.x + r, at.y + r), color, r * 0.5f);
+    draw->AddLine(ImVec2(at.x - r, at.y + r), ImVec2(at.x + r, at.y - r), color, r * 0.5f);
+}
+
 // A dashed segment from a to b: dashes `dash` long with `gap` between them (pixels), starting `phase`
 // pixels into the pattern. Returns the phase at b, for the next segment of the same polyline.
 float AddDashedLine(ImDrawList* draw, ImVec2 a, ImVec2 b, ImU32 color, float width, float dash, float gap, float phase) {
@@ -195,6 +201,9 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
                 if (series.dashed) dashPhase = AddDashedLine(draw, a, b, Color(series.color), fs * 0.16f, fs * 0.7f, fs * 0.45f, dashPhase);
                 else draw->AddLine(a, b, Color(series.color), fs * 0.16f);
             }
+            // Failed points are not left out in silence: a cross on the floor at their x.
+            for (size_t i = 0; series.markFailed && i < series.x.size(); ++i)
+                if (!std::isfinite(series.y[i]) && std::isfinite(series.x[i])) AddCross(draw, ImVec2(axes.X(series.x[i]), axes.box.y1 - fs * 0.5f), fs * 0.3f, Color(series.color));
             if (series.markers)
                 for (size_t i = 0; i < series.x.size(); ++i)
                     if (std::isfinite(series.y[i])) draw->AddCircleFilled(ImVec2(axes.X(series.x[i]), axes.Y(series.y[i])), fs * 0.22f, Color(series.color, series.alpha));
@@ -231,7 +240,7 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
         struct Entry {
             std::string label;
             ImU32 color;
-            int kind;  // 0 line, 1 filled, 2 dot, 3 dashed line
+            int kind;  // 0 line, 1 filled, 2 dot, 3 dashed line, 4 cross
             float width;
         };
         std::vector<Entry> entries;
@@ -240,6 +249,11 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
         };
         for (const auto& series : plots[0].series) add(series.label, Color(series.color, std::max(series.alpha, 0.5f)), !series.lines ? 2 : series.dashed ? 3 : 0);
         for (const auto& band : plots[0].bands) add(band.label, Color(band.color, 0.35f), 1);
+        bool failed = false;
+        for (const auto& plot : plots)
+            for (const auto& series : plot.series)
+                for (size_t i = 0; series.markFailed && i < series.x.size() && i < series.y.size(); ++i) failed = failed || !std::isfinite(series.y[i]);
+        if (failed) add("failed (no value)", kInk, 4);
         float total = 0;
         for (const Entry& e : entries) total += e.width;
         const bool twoRows = left + total > W - right;
@@ -251,6 +265,7 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
             }
             if (e.kind == 1) draw->AddRectFilled(ImVec2(x, y + fs * 0.15f), ImVec2(x + fs * 1.6f, y + fs * 0.85f), e.color);
             else if (e.kind == 2) draw->AddCircleFilled(ImVec2(x + fs * 0.8f, y + fs * 0.5f), fs * 0.3f, e.color);
+            else if (e.kind == 4) AddCross(draw, ImVec2(x + fs * 0.8f, y + fs * 0.5f), fs * 0.3f, e.color);
             else if (e.kind == 3) AddDashedLine(draw, ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), e.color, fs * 0.18f, fs * 0.5f, fs * 0.3f, 0);
             else draw->AddLine(ImVec2(x, y + fs * 0.5f), ImVec2(x + fs * 1.6f, y + fs * 0.5f), e.color, fs * 0.18f);
             draw->AddText(o.TextFont(), fs * 0.9f, ImVec2(x + fs * 2.0f, y), kInk, e.label.c_str());
