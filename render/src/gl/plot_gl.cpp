@@ -44,6 +44,15 @@ float AddDashedLine(ImDrawList* draw, ImVec2 a, ImVec2 b, ImU32 color, float wid
     return std::fmod(phase + length, period);
 }
 const ImU32 kInk = IM_COL32(30, 30, 30, 255);
+
+// Draws a figure's title across the top; returns how much taller it wrapped than one line, so that
+// what sits under it (panel titles, axis labels) moves down instead of under the title.
+float TitleBeyondOneLine(const OverlayContext& o, ImDrawList* draw, float W, const std::string& title) {
+    const float fs = o.FontSize(), size = fs * 1.37f;
+    const float height = o.DrawTitle(draw, size, ImVec2(fs * 0.7f, fs * 0.5f), W - fs * 1.4f, kInk, title);
+    return std::max(0.0f, height - o.TextFont()->CalcTextSizeA(size, FLT_MAX, 0, "Ag").y);
+}
+
 const ImU32 kGrid = IM_COL32(225, 225, 225, 255);
 
 std::string TickText(double value, double step) {
@@ -142,7 +151,7 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
     ImDrawList* draw = Begin();
     const OverlayContext& o = overlay;
     const float W = float(width * kSupersample), H = float(height * kSupersample), fs = o.FontSize();
-    o.DrawTitle(draw, fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), W - fs * 1.4f, kInk, title);
+    const float titleExtra = TitleBeyondOneLine(o, draw, W, title);
 
     // One y range for all plots, so runs side by side compare at a glance.
     double xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
@@ -169,7 +178,7 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
     const int count = std::max<int>(1, plots.size());
     bool titled = false;
     for (const auto& plot : plots) titled = titled || !plot.title.empty();
-    const float left = fs * 4.2f, right = fs * 1.2f, top = fs * (titled ? 6.0f : 4.6f), bottom = fs * 7.0f, gap = fs * 4.0f;
+    const float left = fs * 4.2f, right = fs * 1.2f, top = fs * (titled ? 6.0f : 4.6f) + titleExtra, bottom = fs * 7.0f, gap = fs * 4.0f;
     const float plotWidth = (W - left - right - gap * (count - 1)) / count;
     for (int p = 0; p < int(plots.size()); ++p) {
         const LinePlot& plot = plots[p];
@@ -283,7 +292,7 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
     ImDrawList* draw = Begin();
     const OverlayContext& o = overlay;
     const float W = float(width * kSupersample), H = float(height * kSupersample), fs = o.FontSize();
-    o.DrawTitle(draw, fs * 1.37f, ImVec2(fs * 0.7f, fs * 0.5f), W - fs * 1.4f, kInk, title);
+    const float titleExtra = TitleBeyondOneLine(o, draw, W, title);
 
     const size_t nx = h.xValues.size(), ny = h.yValues.size();
     double vMin = INFINITY, vMax = -INFINITY;
@@ -309,7 +318,7 @@ Image PlotRendererGl::RenderHeatmap(const std::string& title, const Heatmap& h) 
         return e;
     };
     const auto xe = edges(h.xValues), ye = edges(h.yValues);
-    const float left = fs * 4.6f, right = fs * 9.0f, top = fs * 4.6f, bottom = fs * (h.marksLegend.empty() ? 4.2f : 5.8f);
+    const float left = fs * 4.6f, right = fs * 9.0f, top = fs * 4.6f + titleExtra, bottom = fs * (h.marksLegend.empty() ? 4.2f : 5.8f);
     Axes axes{{left, top, W - right, H - bottom}, xe.front(), xe.back(), ye.front(), ye.back()};
     for (size_t j = 0; j < ny; ++j)
         for (size_t i = 0; i < nx; ++i) {

@@ -81,11 +81,10 @@ TEST(FigureGoldens, LandscapeHeatmapSaysWhatItsGreyCellsAre) {
     ExpectMatchesGolden("plot_landscape_heatmap_failed", app::LandscapeImage(app::PlotContextOf(e), fitness, 32, "best: amplitude 6, cycles 4"));
 }
 
-TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
-    const app::Experiment e = app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "G", "title": "golden GA", "sim": {"iterations": 2000},
-        "evolve": {"runs": 2, "genome": {"kind": "bspline"}}})", "golden.json");
+// Logbooks of `count` GA runs that rise towards 3, each with the thesis's best beside it.
+std::vector<app::RunCurve> RisingRuns(int count) {
     std::vector<app::RunCurve> runs;
-    for (int r = 0; r < 2; ++r) {
+    for (int r = 0; r < count; ++r) {
         app::RunCurve curve{"run " + std::to_string(r + 1), {}};
         for (int g = 0; g <= 20; ++g) {
             sim::LogbookRow row;
@@ -103,7 +102,22 @@ TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
         curve.referenceLabel = "thesis's best";
         runs.push_back(curve);
     }
+    return runs;
+}
+
+TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
+    const app::Experiment e = app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "G", "title": "golden GA", "sim": {"iterations": 2000},
+        "evolve": {"runs": 2, "genome": {"kind": "bspline"}}})", "golden.json");
+    const std::vector<app::RunCurve> runs = RisingRuns(2);
     ExpectMatchesGolden("plot_evolution", app::EvolutionImage(app::PlotContextOf(e), runs));
+}
+
+// A title that wraps on one run's narrow figure pushes the panel's label down, never under itself.
+TEST(FigureGoldens, EvolutionUnderATitleThatWraps) {
+    const app::Experiment e = app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "S5.4F", "sim": {"iterations": 2000},
+        "title": "Four B-splines over the middle with fibre genes under the shell model", "evolve": {"runs": 1, "genome": {"kind": "bspline"}}})",
+                                                   "golden.json");
+    ExpectMatchesGolden("plot_evolution_wrapped_title", app::EvolutionImage(app::PlotContextOf(e), RisingRuns(1)));
 }
 
 TEST(FigureGoldens, ContactSheetOnTheSweepAxes) {
