@@ -195,6 +195,12 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             const double limit = stretch ? sim::StretchLimit(job.Shell().material) : job.Shell().material.tensileStrengthKpa;
             if (limit > 0) scene.scaleMarks = {{limit, stretch ? "stretch limit" : "tensile strength"}};
             if (stretch) scene.colorMin = 1.0;
+            // The colours are vertex means of the triangles' values; the scale reaches the largest
+            // triangle's, the value the subtitle states (S5.4F's best: 1.12, where the bar stopped at 1.099).
+            if (r.status != sim::Status::InvalidGeometry) {
+                const double largest = stretch ? r.shell.maxStretch : r.shell.maxStressKpa;
+                if (std::isfinite(largest) && largest > 0) scene.colorMax = std::max(scene.colorMax.value_or(largest), largest);
+            }
             break;
         }
     }

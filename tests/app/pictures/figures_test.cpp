@@ -97,3 +97,20 @@ TEST(BeforeAfterScene, ATurnedTopIsDrawnAsAStripeWoundByTheTwist) {
     ASSERT_EQ(b.status, sim::Status::Ok);
     for (const render::Panel& panel : app::BeforeAfterScene("braid", b, braid).panels) EXPECT_TRUE(Marks(panel).empty());
 }
+
+// The colour scale of the wall's stretch (and stress) reaches the largest value the subtitle states:
+// the colours are vertex means of the triangles' values, whose largest lies below the largest triangle's.
+TEST(BeforeAfterScene, TheScaleReachesTheLargestValueTheResultStates) {
+    sim::EvalJob job = SmallShellJob(sim::SineShape{1.5, 0.5, std::numbers::pi - 0.5});
+    const sim::SimResult r = sim::Evaluate(job);
+    ASSERT_EQ(r.status, sim::Status::Ok);
+    const render::Scene stretch = app::BeforeAfterScene("stretch", r, job, app::Colouring::Stretch);
+    ASSERT_TRUE(stretch.colorMax.has_value());
+    EXPECT_DOUBLE_EQ(*stretch.colorMax, r.shell.maxStretch);
+    double vertexLargest = 0;
+    for (double v : stretch.panels.back().values) vertexLargest = std::max(vertexLargest, v);
+    EXPECT_LT(vertexLargest, r.shell.maxStretch) << "the vertex means stay below it: the scale would otherwise stop short";
+    const render::Scene stress = app::BeforeAfterScene("stress", r, job, app::Colouring::Stress);
+    ASSERT_TRUE(stress.colorMax.has_value());
+    EXPECT_DOUBLE_EQ(*stress.colorMax, r.shell.maxStressKpa);
+}
