@@ -47,7 +47,10 @@ void* OpenModuleEntry(const std::string& file, const char* symbol, const std::st
             return nullptr;
         }
         void* entry = dlsym(handle, symbol);
-        if (!entry && error) *error = path.string() + " is not the " + what + " module of this build (rebuild and reinstall)";
+        if (!entry) {
+            dlclose(handle);
+            if (error) *error = path.string() + " is not the " + what + " module of this build (rebuild and reinstall)";
+        }
         return entry;
     }
     if (error) *error = "the " + what + " module " + file + " is not installed (looked in " + tried + ")";

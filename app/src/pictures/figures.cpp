@@ -197,10 +197,9 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             if (stretch) scene.colorMin = 1.0;
             // The colours are vertex means of the triangles' values; the scale reaches the largest
             // triangle's, the value the subtitle states (S5.4F's best: 1.12, where the bar stopped at 1.099).
-            if (r.status != sim::Status::InvalidGeometry) {
-                const double largest = stretch ? r.shell.maxStretch : r.shell.maxStressKpa;
-                if (std::isfinite(largest) && largest > 0) scene.colorMax = std::max(scene.colorMax.value_or(largest), largest);
-            }
+            // A tube that cannot be built measures nothing (NaN): the scale is then the values'.
+            const double largest = stretch ? r.shell.maxStretch : r.shell.maxStressKpa;
+            if (std::isfinite(largest) && largest > 0) scene.colorMax = std::max(scene.colorMax.value_or(largest), largest);
             break;
         }
     }
