@@ -685,6 +685,45 @@ void ParseThesisResult(ObjectReader result, ThesisResult& t, const sim::MeshDef&
         for (const auto& v : result.Array("run_best", 0, 100, "a list of numbers")) t.runBest.push_back(result.NumberValue(v, "run_best", -1e6, 1e6));
     result.Number("mean_best", t.meanBest, -1e6, 1e6);
     t.meanBestSource = result.String("mean_best_source", "");
+    if (result.Has("claims")) {
+        const Json& claims = result.Array("claims", 1, 20, "a list of {\"kind\": ..., \"source\": ...}");
+        using Kind = ThesisResult::LandscapeClaim::Kind;
+        for (size_t k = 0; k < claims.size(); ++k) {
+            ObjectReader claim(claims[k], result.Child("claims") + "[" + std::to_string(k) + "]", result.Origin());
+            ThesisResult::LandscapeClaim c;
+            const std::string kind = claim.String("kind", "");
+            const std::vector<std::pair<std::string, Kind>> kinds{
+                {"peaks", Kind::Peaks}, {"rises_with_amplitude", Kind::RisesWith}, {"cycles_order", Kind::CyclesOrder}, {"negative_cycles", Kind::NegativeCycles}};
+            const auto found = std::find_if(kinds.begin(), kinds.end(), [&](const auto& kv) { return kv.first == kind; });
+            if (found == kinds.end()) claim.Fail("expected one of peaks, rises_with_amplitude, cycles_order, negative_cycles, got " + Quote(kind), "kind");
+            c.kind = found->second;
+            c.source = claim.String("source", "");
+            if (c.source.empty()) claim.Fail("missing (required): the thesis's words the claim reads", "source");
+            auto numbers = [&](const Json& list, const std::string& key) {
+                std::vector<double> values;
+                if (!list.is_array()) claim.Fail("expected a list of numbers", key);
+                for (const auto& v : list) values.push_back(claim.NumberValue(v, key, -1e6, 1e6));
+                return values;
+            };
+            switch (c.kind) {
+                case Kind::Peaks: claim.Integer("count", c.count, 1, 1000); break;
+                case Kind::RisesWith: break;
+                case Kind::CyclesOrder: {
+                    for (const auto& rank : claim.Array("ranks", 2, 100, "a list of lists of cycle counts, best first")) c.ranks.push_back(numbers(rank, "ranks"));
+                    if (claim.Has("nearly"))
+                        for (const auto& pair : claim.Array("nearly", 1, 100, "a list of [better, worse] pairs of cycle counts")) {
+                            const auto two = numbers(pair, "nearly");
+                            if (two.size() != 2) claim.Fail("expected pairs of two cycle counts", "nearly");
+                            c.nearly.push_back({two[0], two[1]});
+                        }
+                    break;
+                }
+                case Kind::NegativeCycles: c.cycles = numbers(claim.Array("cycles", 0, 100, "a list of cycle counts"), "cycles"); break;
+            }
+            claim.Finish();
+            t.claims.push_back(std::move(c));
+        }
+    }
     result.Number("minutes", t.minutes, 0, 1e6);
     result.Number("seconds_per_simulation", t.secondsPerSimulation, 0, 1e6);
     if (result.Has("specimens")) {
@@ -720,6 +759,17 @@ std::vector<ThesisItem> ParseThesisItems(ObjectReader& top) {
         entry.Number("tolerance", item.tolerance, 0, 1e6);
         entry.Bool("at_least", item.atLeast);
         item.figure = entry.String("figure", "");
+        item.reading = entry.String("reading", "");
+        if (entry.Has("also")) {
+            const Json& also = entry.Array("also", 1, 20, "a list of {\"item\": \"Figure 4.2\", \"figure\": \"best_inflation.png\"}");
+            for (size_t j = 0; j < also.size(); ++j) {
+                ObjectReader other(also[j], entry.Child("also") + "[" + std::to_string(j) + "]", entry.Origin());
+                ThesisItem::Also a{other.String("item", ""), other.String("figure", "")};
+                if (a.item.empty()) other.Fail("missing (required): the thesis figure that shows the same numbers, e.g. \"Figure 4.2\"", "item");
+                other.Finish();
+                item.also.push_back(std::move(a));
+            }
+        }
         entry.Finish();
         items.push_back(std::move(item));
     }

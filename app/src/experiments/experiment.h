@@ -64,6 +64,22 @@ struct ThesisResult {
     std::vector<Specimen> specimens;
     double meanBest = NAN;        // GA: the mean best fitness the thesis's text states
     std::string meanBestSource;   // and where
+    // Sweeps: what the thesis's analysis says of the landscape's shape in words (sections 4.1-4.3),
+    // each checked on ours as a row of its own. Over a 2-D sweep of amplitude and cycles.
+    struct LandscapeClaim {
+        enum class Kind {
+            Peaks,          // "peaks of the landscape": the 1-D landscape has `count` local maxima
+            RisesWith,      // "cycle counts whose fitness rises with amplitude": at every amplitude step
+            CyclesOrder,    // "cycle counts in the thesis's order": the best fitness of each cycle count, ranked
+            NegativeCycles  // "cycle counts negative as the thesis says": exactly `cycles` go below zero somewhere
+        } kind = Kind::Peaks;
+        int count = 0;                                   // Peaks
+        std::vector<std::vector<double>> ranks;          // CyclesOrder: best first; one rank's members are not ordered among themselves
+        std::vector<std::pair<double, double>> nearly;   // CyclesOrder: pairs the thesis calls nearly equal ("nearly similar")
+        std::vector<double> cycles;                      // NegativeCycles
+        std::string source;                              // the thesis's words
+    };
+    std::vector<LandscapeClaim> claims;
     double minutes = NAN;               // sweeps: the thesis's time for the whole sweep
     double secondsPerSimulation = NAN;  // and for one simulation (section 4.1: 6 s on a 2016 MacBook, one thread)
 };
@@ -81,6 +97,13 @@ struct ThesisItem {
     double tolerance = NAN;  // reproduced when within it; default max(0.02, 5 % of the thesis's value)
     bool atLeast = false;  // the thesis gives a lower bound ("surpassed 3.7"): reproduced when ours is at least it
     std::string figure;    // our picture of it, relative to the experiment's folder
+    // Other thesis figures that show the same numbers (Figure 4.2 restates Figure 4.1's peak): one
+    // claim, counted once, with their pictures linked beside it.
+    struct Also {
+        std::string item, figure;
+    };
+    std::vector<Also> also;
+    std::string reading;   // an assumption the thesis's number rests on as read here (Table 5.8's equal split)
     std::string settings;  // a table of settings: what it prescribes (followed; choices where silent are in the note)
 };
 

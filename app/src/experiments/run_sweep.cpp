@@ -1,6 +1,7 @@
 // A sweep: every point of a 1-D or 2-D grid of sine parameters (thesis chapter 4), then the designs
 // the thesis names in its tables, then the figures. Resumable: grid points are archived in order, so
 // a resume continues after the last archived one and redoes only what follows the grid.
+#include <algorithm>
 #include <map>
 #include <fmt/format.h>
 
@@ -66,6 +67,108 @@ void ExplainBest(RunContext& c, const std::vector<EvaluationTag>& pointTags, con
                                          CompareSentence(there, ours, flatTolerance))
                            : fmt::format("at the thesis's best point ({}) ours, {}, our best: the top is not flat enough to move", where,
                                          CompareSentence(there, ours, flatTolerance));
+        }
+    }
+}
+
+// The thesis's words on the landscape's shape (ThesisResult::claims), each a row: how many of the
+// relations it states hold on this grid.
+void AddLandscapeClaimRows(RunContext& c, const std::vector<sim::EvalJob>& grid, const std::vector<double>& fitness, const std::vector<sim::Status>& status) {
+    using Kind = ThesisResult::LandscapeClaim::Kind;
+    const auto& axes = c.e.sweep.axes;
+    auto has = [&](sim::SweepParameter p) { return std::any_of(axes.begin(), axes.end(), [&](const auto& a) { return a.parameter == p; }); };
+    // Each cycle count's landscape along amplitude: (amplitude, fitness; NaN when the point failed).
+    std::map<double, std::vector<std::pair<double, double>>> byCycles;
+    if (has(sim::SweepParameter::Cycles) && has(sim::SweepParameter::Amplitude))
+        for (size_t j = 0; j < grid.size(); ++j)
+            byCycles[sim::SweepValue(grid[j], sim::SweepParameter::Cycles)].push_back(
+                {sim::SweepValue(grid[j], sim::SweepParameter::Amplitude), status[j] == sim::Status::Ok ? fitness[j] : NAN});
+    for (auto& [cycles, line] : byCycles) std::sort(line.begin(), line.end());
+    auto cyclesName = [](double cycles) { return fmt::format("{:g} cycles", cycles); };
+
+    for (const auto& claim : c.e.thesisResult.claims) {
+        switch (claim.kind) {
+            case Kind::Peaks: {
+                if (axes.size() != 1) break;
+                std::vector<double> line;  // the successful points in grid order
+                for (size_t j = 0; j < grid.size(); ++j)
+                    if (status[j] == sim::Status::Ok) line.push_back(fitness[j]);
+                int peaks = 0;
+                for (size_t k = 0; k < line.size(); ++k)
+                    peaks += (k == 0 || line[k] > line[k - 1]) && (k + 1 == line.size() || line[k] > line[k + 1]) && line.size() > 1;
+                ComparisonRow row{"peaks of the landscape", static_cast<double>(peaks), static_cast<double>(claim.count)};
+                if (peaks != claim.count) row.why = fmt::format("the landscape has {} local maxima over {} successful points", peaks, line.size());
+                c.outcome.rows.push_back(row);
+                break;
+            }
+            case Kind::RisesWith: {
+                if (byCycles.empty()) break;
+                int rising = 0;
+                std::string why;
+                for (const auto& [cycles, line] : byCycles) {
+                    size_t k = 1;
+                    while (k < line.size() && line[k].second > line[k - 1].second) ++k;
+                    if (k == line.size()) {
+                        ++rising;
+                    } else {
+                        why += (why.empty() ? "" : "; ") + (std::isfinite(line[k].second) && std::isfinite(line[k - 1].second)
+                                                               ? fmt::format("{} falls from {:.4g} at amplitude {:.3g} to {:.4g} at {:.3g}", cyclesName(cycles),
+                                                                             line[k - 1].second, line[k - 1].first, line[k].second, line[k].first)
+                                                               : fmt::format("{} has a failed point near amplitude {:.3g}", cyclesName(cycles), line[k].first));
+                    }
+                }
+                ComparisonRow row{"cycle counts whose fitness rises with amplitude", static_cast<double>(rising), static_cast<double>(byCycles.size())};
+                row.why = why;
+                c.outcome.rows.push_back(row);
+                break;
+            }
+            case Kind::CyclesOrder: {
+                if (byCycles.empty()) break;
+                auto bestOf = [&](double cycles) {
+                    double best = NAN;
+                    if (byCycles.count(cycles))
+                        for (const auto& [amplitude, f] : byCycles.at(cycles))
+                            if (std::isfinite(f) && !(f <= best)) best = f;
+                    return best;
+                };
+                std::vector<OrderPair> pairs;
+                for (size_t i = 0; i < claim.ranks.size(); ++i)
+                    for (size_t j = i + 1; j < claim.ranks.size(); ++j)
+                        for (double a : claim.ranks[i])
+                            for (double b : claim.ranks[j]) {
+                                OrderPair p{cyclesName(a), cyclesName(b), bestOf(a), bestOf(b)};
+                                const bool nearly = std::find(claim.nearly.begin(), claim.nearly.end(), std::make_pair(a, b)) != claim.nearly.end();
+                                p.relation = nearly ? Relation::NearlyAbove : Relation::Above;
+                                p.tolerance = DefaultTolerance(p.oursFirst) + DefaultTolerance(p.oursSecond);
+                                pairs.push_back(std::move(p));
+                            }
+                c.outcome.rows.push_back(OrderRow("cycle counts in the thesis's order", pairs));
+                break;
+            }
+            case Kind::NegativeCycles: {
+                if (byCycles.empty()) break;
+                int agree = 0;
+                std::string why;
+                for (const auto& [cycles, line] : byCycles) {
+                    const auto lowest = std::min_element(line.begin(), line.end(), [](const auto& a, const auto& b) {
+                        return std::isfinite(a.second) && (!std::isfinite(b.second) || a.second < b.second);
+                    });
+                    const bool negative = lowest != line.end() && std::isfinite(lowest->second) && lowest->second < 0;
+                    const bool claimed = std::find(claim.cycles.begin(), claim.cycles.end(), cycles) != claim.cycles.end();
+                    if (negative == claimed) {
+                        ++agree;
+                        continue;
+                    }
+                    why += (why.empty() ? "" : "; ") +
+                           (negative ? fmt::format("{} goes negative here ({:.4g} at amplitude {:.3g}), not in the thesis", cyclesName(cycles), lowest->second, lowest->first)
+                                     : fmt::format("{} stays positive here (lowest {:.4g}), negative in the thesis", cyclesName(cycles),
+                                                   lowest != line.end() ? lowest->second : NAN));
+                }
+                ComparisonRow row{"cycle counts negative as the thesis says", static_cast<double>(agree), static_cast<double>(byCycles.size())};
+                row.why = why;
+                c.outcome.rows.push_back(row);
+                break;
+            }
         }
     }
 }
@@ -190,6 +293,7 @@ void RunSweep(RunContext& c) {
             if (status[j] == sim::Status::Ok && fitness[j] < 0) firstNegative = sim::SweepValue(grid[j], axes[0].parameter);
         c.outcome.rows.push_back({"first negative amplitude", firstNegative, NAN});
     }
+    AddLandscapeClaimRows(c, grid, fitness, status);
 
     if (!e.render.figures) return;
     WritePng((c.dir / "landscape.png").string(), LandscapeImage(PlotContextOf(e), fitness, best, bestText), 6);

@@ -29,9 +29,60 @@ const char* VerdictName(Verdict verdict) {
     switch (verdict) {
         case Verdict::Reproduced: return "reproduced";
         case Verdict::Explained: return "explained difference";
+        case Verdict::Followed: return "followed";
         case Verdict::Unexplained: break;
     }
     return "unexplained";
+}
+
+bool PairAgrees(const OrderPair& p) {
+    if (!std::isfinite(p.oursFirst) || !std::isfinite(p.oursSecond)) return false;
+    const bool close = std::fabs(p.oursFirst - p.oursSecond) <= p.tolerance;
+    switch (p.relation) {
+        case Relation::Above: return p.oursFirst > p.oursSecond;
+        case Relation::NearlyAbove: return p.oursFirst > p.oursSecond || close;
+        case Relation::Equal: return close;
+    }
+    return false;
+}
+
+std::vector<OrderPair> PairsFromThesisValues(const std::vector<std::string>& names, const std::vector<double>& ours, const std::vector<double>& thesis) {
+    std::vector<OrderPair> pairs;
+    for (size_t a = 0; a < names.size(); ++a)
+        for (size_t b = a + 1; b < names.size(); ++b) {
+            if (!std::isfinite(thesis[a]) || !std::isfinite(thesis[b])) continue;
+            const bool aFirst = thesis[a] >= thesis[b];
+            const size_t hi = aFirst ? a : b, lo = aFirst ? b : a;
+            OrderPair p{names[hi], names[lo], ours[hi], ours[lo]};
+            p.tolerance = DefaultTolerance(thesis[hi]) + DefaultTolerance(thesis[lo]);
+            p.relation = thesis[hi] == thesis[lo] ? Relation::Equal : thesis[hi] - thesis[lo] <= p.tolerance ? Relation::NearlyAbove : Relation::Above;
+            pairs.push_back(std::move(p));
+        }
+    return pairs;
+}
+
+ComparisonRow OrderRow(const std::string& quantity, const std::vector<OrderPair>& pairs) {
+    int kept = 0;
+    std::string why;
+    for (const OrderPair& p : pairs) {
+        if (PairAgrees(p)) {
+            ++kept;
+            continue;
+        }
+        std::string sentence;
+        if (!std::isfinite(p.oursFirst) || !std::isfinite(p.oursSecond))
+            sentence = fmt::format("{} against {}: ours has no value for one of them", p.first, p.second);
+        else if (p.relation == Relation::Equal)
+            sentence = fmt::format("{} and {}: the thesis has them equal, ours {}", p.first, p.second, CompareSentence(p.oursFirst, p.oursSecond, p.tolerance));
+        else
+            sentence = fmt::format("{} against {}: the thesis has the first {}above, ours {}{}", p.first, p.second,
+                                   p.relation == Relation::NearlyAbove ? "nearly equal or " : "", OrderSentence(p.oursFirst, p.oursSecond),
+                                   p.relation == Relation::NearlyAbove ? fmt::format(" and {}", CompareSentence(p.oursFirst, p.oursSecond, p.tolerance)) : "");
+        why += (why.empty() ? "" : "; ") + sentence;
+    }
+    ComparisonRow row{quantity, static_cast<double>(kept), static_cast<double>(pairs.size())};
+    row.why = why;
+    return row;
 }
 
 std::vector<ItemLine> ItemLines(const Experiment& e, const std::vector<ComparisonRow>& rows, const std::string& anchor) {
@@ -39,7 +90,7 @@ std::vector<ItemLine> ItemLines(const Experiment& e, const std::vector<Compariso
     for (const ThesisItem& item : e.thesisItems) {
         ItemLine line{e.id, anchor, item};
         if (!item.settings.empty()) {
-            line.verdict = Verdict::Reproduced;  // the experiment file follows the table; choices where it is silent are in the note
+            line.verdict = Verdict::Followed;  // the experiment file follows the table; choices where it is silent are in the note
             lines.push_back(std::move(line));
             continue;
         }

@@ -22,8 +22,28 @@ std::string CompareSentence(double ours, double thesis, double tolerance);
 // "3.85 is above 1.13", "0.356 is below 1.19" or "1.1 equals 1.1".
 std::string OrderSentence(double a, double b);
 
-enum class Verdict { Reproduced, Explained, Unexplained };
-const char* VerdictName(Verdict verdict);  // "reproduced", "explained difference", "unexplained"
+// Order claims ("six cycles perform best, nearly as five and seven"; Table 6.2's two -2.62s): each
+// pair the thesis relates, and whether ours keeps the relation. Two numbers that each sit within
+// their tolerance of the truth can swap when they are closer than the sum of their tolerances, so
+// the thesis's near-equalities (stated or that close) hold when ours keep the order or are that
+// close; its ties (equal numbers) hold only when ours are that close.
+enum class Relation { Above, NearlyAbove, Equal };  // the first of a pair against the second, in the thesis
+struct OrderPair {
+    std::string first, second;  // names as the report shows them
+    double oursFirst = NAN, oursSecond = NAN;
+    Relation relation = Relation::Above;
+    double tolerance = NAN;  // for NearlyAbove and Equal: how close counts as equal
+};
+bool PairAgrees(const OrderPair& pair);
+// The pairs of numbers the thesis prints, related as above: names[k] has ours[k] and thesis[k].
+std::vector<OrderPair> PairsFromThesisValues(const std::vector<std::string>& names, const std::vector<double>& ours, const std::vector<double>& thesis);
+// "pairs in the thesis's order": ours = pairs that agree, thesis = pairs related; the reason lists
+// each pair that does not, in sentences the report's checker re-checks.
+ComparisonRow OrderRow(const std::string& quantity, const std::vector<OrderPair>& pairs);
+
+// Settings tables are followed, not reproduced: they are counted apart.
+enum class Verdict { Reproduced, Explained, Unexplained, Followed };
+const char* VerdictName(Verdict verdict);  // "reproduced", "explained difference", "unexplained", "followed"
 
 // One line of the report's comparison table: a thesis item with our number and its verdict.
 struct ItemLine {

@@ -10,10 +10,15 @@
 
 namespace app {
 
-bool MarkedlyDifferent(double ours, double thesis) {
-    if (!std::isfinite(thesis)) return false;
-    if (!std::isfinite(ours)) return true;
-    return std::fabs(ours - thesis) > 0.05 && std::fabs(ours - thesis) > 0.1 * std::fabs(thesis);
+bool RowDiffers(const Experiment& e, const ComparisonRow& row) {
+    if (!std::isfinite(row.thesis)) return false;
+    if (!std::isfinite(row.ours)) return true;
+    for (const ThesisItem& item : e.thesisItems)
+        if (item.settings.empty() && item.quantity == row.quantity && !std::isfinite(item.thesis)) {
+            if (item.atLeast) return row.ours < row.thesis;
+            return !WithinTolerance(row.ours, row.thesis, std::isfinite(item.tolerance) ? item.tolerance : DefaultTolerance(row.thesis));
+        }
+    return !WithinTolerance(row.ours, row.thesis, DefaultTolerance(row.thesis));
 }
 
 namespace {
@@ -48,6 +53,64 @@ namespace {
 
 std::string Signed(double v) { return std::isfinite(v) ? fmt::format("{:+.3g}", v) : std::string("-"); }
 
+// A GA experiment's mean best fitness over its runs: the thesis's (from its table) and ours (NaN
+// when no run produced one).
+struct MeanBest {
+    const ReportEntry* entry;
+    double thesis = NAN, ours = NAN;
+};
+std::vector<MeanBest> MeanBests(const std::vector<ReportEntry>& entries) {
+    std::vector<MeanBest> means;
+    for (const auto& entry : entries) {
+        const ThesisResult& t = entry.experiment.thesisResult;
+        if (entry.experiment.model != sim::ModelKind::Thesis || t.runBest.empty()) continue;
+        MeanBest m{&entry};
+        m.thesis = 0;
+        for (double v : t.runBest) m.thesis += v / t.runBest.size();
+        int ours = 0;
+        double sum = 0;
+        for (const auto& row : entry.outcome.rows)
+            if (row.quantity.size() > 16 && row.quantity.compare(row.quantity.size() - 12, 12, "best fitness") == 0 && row.quantity.rfind("run ", 0) == 0 &&
+                std::isfinite(row.ours)) {
+                sum += row.ours;
+                ++ours;
+            }
+        if (ours) m.ours = sum / ours;
+        means.push_back(m);
+    }
+    return means;
+}
+
+// Claims across experiments (chapter 5's analyses): the order of the mean bests of the three-run
+// B-spline experiments (5.2-5.4, whose text compares them) and the ranking of every GA experiment.
+std::vector<ItemLine> SummaryItemLines(const std::vector<ReportEntry>& entries) {
+    std::vector<ItemLine> lines;
+    const std::vector<MeanBest> means = MeanBests(entries);
+    auto orderLine = [&](const std::string& item, const std::string& claim, bool multiRunOnly) {
+        std::vector<std::string> names;
+        std::vector<double> ours, thesis;
+        for (const MeanBest& m : means)
+            if (!multiRunOnly || m.entry->experiment.thesisResult.runBest.size() > 1) {
+                names.push_back(m.entry->experiment.id);
+                ours.push_back(m.ours);
+                thesis.push_back(m.thesis);
+            }
+        if (names.size() < 2) return;
+        const ComparisonRow row = OrderRow("pairs in the thesis's order", PairsFromThesisValues(names, ours, thesis));
+        ThesisItem thesisItem;
+        thesisItem.item = item;
+        thesisItem.quantity = row.quantity;
+        thesisItem.claim = claim;
+        ItemLine line{"", "thesis-summary", thesisItem, row.thesis, row.ours, 0};
+        line.verdict = row.ours == row.thesis ? Verdict::Reproduced : Verdict::Unexplained;
+        line.why = row.why;
+        lines.push_back(std::move(line));
+    };
+    orderLine("Sections 5.2-5.4", "the order of the mean best fitness of the three-run B-spline experiments (5.3.1: reduced from 1.1 to 1.07)", true);
+    orderLine("Chapter 5", "the ranking of the GA experiments by mean best fitness", false);
+    return lines;
+}
+
 // The comparison table at the top: every thesis table and figure the experiments reproduce, with our
 // number, the difference, and a verdict decided by rule (thesis_check.h).
 std::vector<ItemLine> AllItemLines(const std::vector<ReportEntry>& entries) {
@@ -56,30 +119,45 @@ std::vector<ItemLine> AllItemLines(const std::vector<ReportEntry>& entries) {
         auto more = ItemLines(entry.experiment, entry.outcome.rows, entry.folder);
         lines.insert(lines.end(), more.begin(), more.end());
     }
+    auto summary = SummaryItemLines(entries);
+    lines.insert(lines.end(), summary.begin(), summary.end());
     return lines;
 }
 
 std::string ItemsMarkdown(const std::vector<ItemLine>& lines, bool quick) {
     if (lines.empty()) return "";
-    int counts[3] = {0, 0, 0};
+    int counts[4] = {0, 0, 0, 0};
     for (const auto& line : lines) ++counts[static_cast<int>(line.verdict)];
+    const int claims = counts[0] + counts[1] + counts[2];
     std::string md = "<a id=\"thesis-items\"></a>\n\n## The thesis item by item\n\n";
     if (quick) md += "(Quick run: the verdicts below judge reduced experiments, not the thesis's.)\n\n";
-    md += fmt::format("{} claims of the thesis's tables and figures: **{} reproduced, {} explained differences, {} unexplained**. "
-                      "Reproduced means within the tolerance shown (by default 5 % of the thesis's value, at least 0.02); a difference is "
-                      "explained only when this run's own numbers account for it (the reason column says how), otherwise it is unexplained. "
-                      "Settings tables are followed as printed; where the thesis is silent the section's Settings line says what was chosen.\n\n",
-                      lines.size(), counts[0], counts[1], counts[2]);
+    md += fmt::format("{} claims of the thesis's tables, figures and analyses: **{} reproduced, {} explained differences, {} unexplained**; "
+                      "and {} settings tables followed. Reproduced means within the tolerance shown (by default 5 % of the thesis's value, at "
+                      "least 0.02; counts of relations must all hold); a difference is explained only when this run's own numbers account for it "
+                      "(the reason column says how), otherwise it is unexplained. A figure that shows a table's numbers again is listed with that "
+                      "claim and counted once; a figure of several designs is judged on each of them. Relations between two numbers: a tie in "
+                      "the thesis holds when ours are within the sum of the two tolerances, a near-equality when ours keep the order or are "
+                      "that close. Settings tables are followed as printed; where the thesis is silent the section's Settings line says what "
+                      "was chosen.\n\n",
+                      claims, counts[0], counts[1], counts[2], counts[3]);
     md += "| thesis | claim | thesis value | ours | difference | tolerance | verdict | reason (computed from this run) |\n|---|---|---:|---:|---:|---:|---|---|\n";
     for (const auto& line : lines) {
         const ThesisItem& item = line.item;
-        std::string ours = item.settings.empty() ? Cell(line.ours) : "as printed";
-        if (!item.figure.empty()) ours += fmt::format(" ([figure]({}/{}))", line.anchor, item.figure);
-        const std::string claim = item.settings.empty() ? item.claim : item.settings;
-        md += fmt::format("| [{}](#{}) | {} | {} | {} | {} | {} | {} | {} |\n", item.item, line.anchor, claim,
-                          item.settings.empty() ? (item.atLeast ? "> " : "") + Cell(line.thesis) : "-", ours,
-                          item.settings.empty() ? Signed(line.ours - line.thesis) : "-", item.settings.empty() && !item.atLeast ? Cell(line.tolerance) : "-",
-                          VerdictName(line.verdict), line.why.empty() ? "" : line.why);
+        const bool settings = !item.settings.empty();
+        std::string ours = settings ? "as printed" : Cell(line.ours);
+        std::string figures;
+        if (!item.figure.empty()) figures += fmt::format("[figure]({}/{})", line.anchor, item.figure);
+        std::string named = fmt::format("[{}](#{})", item.item, line.anchor);
+        for (const auto& also : item.also) {
+            named += ", " + also.item;
+            if (!also.figure.empty()) figures += fmt::format("{}[{}]({}/{})", figures.empty() ? "" : ", ", also.item, line.anchor, also.figure);
+        }
+        if (!figures.empty()) ours += " (" + figures + ")";
+        std::string claim = settings ? item.settings : item.claim;
+        if (!item.reading.empty()) claim += " (as read here: " + item.reading + ")";
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} |\n", named, claim,
+                          settings ? "-" : (item.atLeast ? "> " : "") + Cell(line.thesis), ours, settings ? "-" : Signed(line.ours - line.thesis),
+                          !settings && !item.atLeast ? Cell(line.tolerance) : "-", VerdictName(line.verdict), line.why);
     }
     return md + "\n";
 }
@@ -88,44 +166,36 @@ std::string ItemsMarkdown(const std::vector<ItemLine>& lines, bool quick) {
 // timings.
 std::string BesideMarkdown(const std::vector<ReportEntry>& entries) {
     std::string md;
-    std::vector<std::pair<double, std::string>> thesisRank, ourRank;
+    const std::vector<MeanBest> means = MeanBests(entries);
     for (const auto& entry : entries) {
         const Experiment& e = entry.experiment;
         if (e.model != sim::ModelKind::Thesis) continue;
         const ThesisResult& t = e.thesisResult;
         const ExperimentOutcome& o = entry.outcome;
-        if (!t.runBest.empty()) {
-            double thesisMean = 0, ourMean = 0;
-            int ours = 0;
-            for (double v : t.runBest) thesisMean += v / t.runBest.size();
-            for (const auto& row : o.rows)
-                if (row.quantity.size() > 16 && row.quantity.compare(row.quantity.size() - 12, 12, "best fitness") == 0 && row.quantity.rfind("run ", 0) == 0 &&
-                    std::isfinite(row.ours)) {
-                    ourMean += row.ours;
-                    ++ours;
-                }
-            if (ours) ourMean /= ours;
-            thesisRank.push_back({thesisMean, e.id});
-            if (ours) ourRank.push_back({ourMean, e.id});
-            md += fmt::format("| [{}](#{}) | mean best fitness over {} run{} | {}{} | {} |\n", e.id, entry.folder, t.runBest.size(), t.runBest.size() > 1 ? "s" : "",
-                              Cell(thesisMean), std::isfinite(t.meanBest) ? fmt::format(" (its text: {:g}, {})", t.meanBest, t.meanBestSource) : std::string(),
-                              ours ? Cell(ourMean) : std::string("-"));
-        }
+        for (const MeanBest& m : means)
+            if (m.entry == &entry)
+                md += fmt::format("| [{}](#{}) | mean best fitness over {} run{} | {}{} | {} |\n", e.id, entry.folder, t.runBest.size(), t.runBest.size() > 1 ? "s" : "",
+                                  Cell(m.thesis), std::isfinite(t.meanBest) ? fmt::format(" (its text: {:g}, {})", t.meanBest, t.meanBestSource) : std::string(),
+                                  Cell(m.ours));
         if (std::isfinite(t.minutes))
             md += fmt::format("| [{}](#{}) | time for the whole sweep | {:g} min{} | {:.1f} s ({:.1f} ms per simulation, this session) |\n", e.id, entry.folder,
                               t.minutes, std::isfinite(t.secondsPerSimulation) ? fmt::format(", {:g} s per simulation on one thread of a 2016 MacBook", t.secondsPerSimulation) : std::string(),
                               o.seconds, o.simulations > 0 ? 1000 * o.seconds / o.simulations : NAN);
     }
     if (md.empty()) return "";
-    auto ranking = [](std::vector<std::pair<double, std::string>> r) {
+    auto ranking = [&](bool ours) {
+        std::vector<std::pair<double, std::string>> r;
+        for (const MeanBest& m : means)
+            if (std::isfinite(ours ? m.ours : m.thesis)) r.push_back({ours ? m.ours : m.thesis, m.entry->experiment.id});
         std::stable_sort(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
         std::string text;
         for (const auto& [value, id] : r) text += (text.empty() ? "" : " > ") + fmt::format("{} ({:.3g})", id, value);
         return text;
     };
-    md = "## Beside the thesis's own summary\n\n| experiment | quantity | thesis | ours |\n|---|---|---:|---:|\n" + md + "\n";
-    if (thesisRank.size() > 1)
-        md += "Ranking of the GA experiments by mean best fitness: thesis " + ranking(thesisRank) + "; ours " + ranking(ourRank) + ".\n\n";
+    md = "<a id=\"thesis-summary\"></a>\n\n## Beside the thesis's own summary\n\n| experiment | quantity | thesis | ours |\n|---|---|---:|---:|\n" + md + "\n";
+    if (means.size() > 1)
+        md += "Ranking of the GA experiments by mean best fitness: thesis " + ranking(false) + "; ours " + ranking(true) +
+              " (the item table counts which pairs keep the thesis's order).\n\n";
     return md;
 }
 
@@ -156,7 +226,9 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
     const std::vector<ItemLine> items = AllItemLines(entries);
     if (!items.empty()) {
         const auto unexplained = std::count_if(items.begin(), items.end(), [](const ItemLine& l) { return l.verdict == Verdict::Unexplained; });
-        md += fmt::format("| thesis items | {} compared, **{} unexplained** ([table](#thesis-items)) |\n", items.size(), unexplained);
+        const auto followed = std::count_if(items.begin(), items.end(), [](const ItemLine& l) { return l.verdict == Verdict::Followed; });
+        md += fmt::format("| thesis items | {} claims compared, **{} unexplained**; {} settings tables followed ([table](#thesis-items)) |\n",
+                          items.size() - followed, unexplained, followed);
     }
     md += "\n";
     if (!items.empty()) md += ItemsMarkdown(items, quick) + BesideMarkdown(entries);
@@ -191,19 +263,19 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
             for (const auto& row : o.rows)
                 md += "| " + row.quantity + " | " + Cell(row.ours) + " | " + Cell(row.thesis) + " | " +
                       (std::isfinite(row.ours) && std::isfinite(row.thesis) ? fmt::format("{:+.3g}", row.ours - row.thesis) : std::string("-")) +
-                      (MarkedlyDifferent(row.ours, row.thesis) ? " **" : "") + " |\n";
+                      (RowDiffers(e, row) ? " **" : "") + " |\n";
             md += "\n";
         }
         md += o.tables;
         for (const auto& line : o.details) md += "- " + line + "\n";
         if (!o.details.empty()) md += "\n";
         bool differs = false;
-        for (const auto& row : o.rows) differs = differs || MarkedlyDifferent(row.ours, row.thesis);
+        for (const auto& row : o.rows) differs = differs || RowDiffers(e, row);
         if (differs && quick) md += "Differences here come from the quick run's reduced grids and generations.\n\n";
         // Reasons are computed by the run from its own numbers; a file's `explanation` adds context.
         std::string reasons;
         for (const auto& row : o.rows)
-            if (!row.why.empty() && (MarkedlyDifferent(row.ours, row.thesis) || !std::isfinite(row.thesis)))
+            if (!row.why.empty() && (RowDiffers(e, row) || !std::isfinite(row.thesis)))
                 reasons += "- " + row.quantity + ": " + row.why + (row.explained ? " (explained)" : " (unexplained)") + "\n";
         if (!reasons.empty()) md += "**Why the numbers differ** (rows marked **), computed from this run:\n\n" + reasons + "\n";
         if (!e.explanation.empty() && differs && !quick) md += "Context: " + e.explanation + "\n\n";

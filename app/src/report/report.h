@@ -25,7 +25,8 @@ std::string ReportMarkdown(const std::vector<ReportEntry>& entries, bool quick, 
 // One sentence on the experiment's model and its settings (units included).
 std::string ModelDescription(const Experiment& e);
 
-// A difference worth explaining: more than 10% of the thesis's value and more than 0.05 apart.
-bool MarkedlyDifferent(double ours, double thesis);
+// A row that differs from the thesis: outside its item's tolerance (thesis_check.h's rule, the one
+// the item table uses), or the default tolerance when no item names it.
+bool RowDiffers(const Experiment& e, const ComparisonRow& row);
 
 }  // namespace app

@@ -120,15 +120,16 @@ TEST(ThesisData, AGenomeWhoseLengthDisagreesWithItsTableIsRefused) {
 }
 
 TEST(ThesisReportCheck, CatchesAFalseRelationAWrongVerdictAMissingItemAndWrongCounts) {
-    const std::string header = "**1 reproduced, 0 explained differences, 1 unexplained**\n\n"
+    const std::string header = "2 claims of the thesis's tables, figures and analyses: **1 reproduced, 0 explained differences, 1 unexplained**; and 1 settings tables followed\n\n"
                                "| thesis | claim | thesis value | ours | difference | tolerance | verdict | reason (computed from this run) |\n"
                                "|---|---|---:|---:|---:|---:|---|---|\n";
     const std::string good = header + "| [Figure 4.1](#a) | x | 0.75 | 0.74 | -0.01 | 0.0375 | reproduced |  |\n"
-                                      "| [Table 4.4](#a) | y | 1.74 | 1.999 | +0.26 | 0.087 | unexplained | 1.999 differs from 1.74 by more than 0.087 |\n";
+                                      "| [Table 4.4](#a), Figure 4.6 | y | 1.74 | 1.999 ([figure](a/x.png), [Figure 4.6](a/y.png)) | +0.26 | 0.087 | unexplained | 1.999 differs from 1.74 by more than 0.087 |\n"
+                                      "| [Table 4.1](#a) | settings | - | as printed | - | - | followed |  |\n";
     const auto problems = testing_support::ThesisReportProblems(good);
-    // Only the items this small table lacks.
+    // Only the items this small table lacks: a figure listed beside a table's claim has its row.
     for (const auto& p : problems) EXPECT_THAT(p, ::testing::EndsWith("has no row"));
-    EXPECT_EQ(problems.size(), 33u - 2);
+    EXPECT_EQ(problems.size(), 33u - 4);
     auto count = [](const std::string& report, const std::string& what) {
         int n = 0;
         for (const auto& p : testing_support::ThesisReportProblems(report)) n += p.find(what) != std::string::npos;
@@ -146,6 +147,10 @@ TEST(ThesisReportCheck, CatchesAFalseRelationAWrongVerdictAMissingItemAndWrongCo
     std::string wrongCount = good;
     wrongCount.replace(wrongCount.find("**1 reproduced"), 14, "**2 reproduced");
     EXPECT_EQ(count(wrongCount, "summary's counts"), 1);
+    std::string settingsReproduced = good;
+    settingsReproduced.replace(settingsReproduced.find("| followed |"), 12, "| reproduced |");
+    EXPECT_EQ(count(settingsReproduced, "a settings table judged 'reproduced'"), 1);
+    EXPECT_EQ(count(settingsReproduced, "summary's counts"), 1);
     std::string noVerdict = good;
     noVerdict.replace(noVerdict.find("| reproduced |"), 14, "|  |");
     EXPECT_EQ(count(noVerdict, "no verdict"), 1);

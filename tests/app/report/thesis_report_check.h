@@ -64,7 +64,7 @@ inline std::vector<std::string> RelationProblems(const std::string& sentence) {
 inline std::vector<std::string> ThesisReportProblems(const std::string& report) {
     std::vector<std::string> problems;
     std::set<std::string> items;
-    int reproduced = 0, explained = 0, unexplained = 0;
+    int reproduced = 0, explained = 0, unexplained = 0, followed = 0;
     const size_t start = report.find("| thesis | claim | thesis value | ours | difference | tolerance | verdict |");
     if (start == std::string::npos) return {"no comparison table of thesis items"};
     std::istringstream lines(report.substr(start));
@@ -77,14 +77,20 @@ inline std::vector<std::string> ThesisReportProblems(const std::string& report) 
             problems.push_back("a row without 8 cells: " + line);
             continue;
         }
-        const std::string item = cells[0].substr(1, cells[0].find(']') - 1);  // "[Figure 4.1](#...)"
-        items.insert(item);
+        const std::string item = cells[0].substr(1, cells[0].find(']') - 1);  // "[Figure 4.1](#...), Figure 4.2"
+        static const std::regex named(R"((Table|Figure) [0-9]+\.[0-9]+)");
+        for (std::sregex_iterator it(cells[0].begin(), cells[0].end(), named), end; it != end; ++it) items.insert(it->str());
         const std::string& verdict = cells[6];
         const double thesis = CellNumber(cells[2]), ours = CellNumber(cells[3]), tolerance = CellNumber(cells[5]);
         const bool atLeast = cells[2].rfind("> ", 0) == 0;
+        if (verdict == "followed") {
+            ++followed;
+            if (cells[3] != "as printed") problems.push_back(item + ": 'followed' is for settings tables, yet ours is " + cells[3]);
+            continue;
+        }
+        if (cells[3] == "as printed") problems.push_back(item + ": a settings table judged '" + verdict + "'");
         if (verdict == "reproduced") {
             ++reproduced;
-            if (cells[3] == "as printed") continue;  // a settings table
             const bool holds = atLeast ? ours >= thesis : std::fabs(ours - thesis) <= tolerance * 1.001 + 1e-4;
             if (!holds) problems.push_back(item + ": 'reproduced', yet ours " + cells[3] + " against " + cells[2] + " (tolerance " + cells[5] + ")");
         } else if (verdict == "explained difference" || verdict == "unexplained") {
@@ -103,10 +109,11 @@ inline std::vector<std::string> ThesisReportProblems(const std::string& report) 
         for (int k = 1; k <= n; ++k)
             if (!items.count(prefix + std::to_string(k))) problems.push_back(prefix + std::to_string(k) + " has no row");
     // The summary counts what the table holds.
-    const std::regex summary(R"(\*\*([0-9]+) reproduced, ([0-9]+) explained differences, ([0-9]+) unexplained\*\*)");
+    const std::regex summary(R"(([0-9]+) claims of the thesis's tables, figures and analyses: \*\*([0-9]+) reproduced, ([0-9]+) explained differences, ([0-9]+) unexplained\*\*; and ([0-9]+) settings tables followed)");
     std::smatch m;
     if (!std::regex_search(report, m, summary)) problems.push_back("no summary of the verdicts");
-    else if (std::stoi(m[1]) != reproduced || std::stoi(m[2]) != explained || std::stoi(m[3]) != unexplained)
+    else if (std::stoi(m[1]) != reproduced + explained + unexplained || std::stoi(m[2]) != reproduced || std::stoi(m[3]) != explained ||
+             std::stoi(m[4]) != unexplained || std::stoi(m[5]) != followed)
         problems.push_back("the summary's counts (" + m.str() + ") are not the table's");
     // The explanations in the sections state relations too.
     for (size_t at = report.find("**Why the numbers differ**"); at != std::string::npos; at = report.find("**Why the numbers differ**", at + 1)) {
