@@ -48,6 +48,28 @@ std::string ChangeText(const MeshChange& c) {
     return fmt::format("{:.2f} points ({:.1f} %){}", c.points, c.relative, c.within ? "" : " **");
 }
 
+// What a design's wall carries: no fibres (an isotropic study, or a fibre study's design with both
+// families switched off), one family (a single helix, meridian or hoop) or a braid (both).
+enum FibreClass { kNoFibres, kOneFamily, kBraid, kFibreClasses };
+FibreClass ClassOf(const sim::EvalJob& job) {
+    const auto* def = std::get_if<sim::ShellDef>(&job.def);
+    if (!def || def->fibres.layout == sim::FibreLayout::None) return kNoFibres;
+    const int on = def->fibres.layout == sim::FibreLayout::Braid ? def->fibres.plus + def->fibres.minus : def->fibres.plus;
+    return on == 2 ? kBraid : on == 1 ? kOneFamily : kNoFibres;
+}
+const char* const kClassNames[kFibreClasses] = {"without fibres", "with one fibre family", "with a braid"};
+
+// What the study adds to a thesis shape beyond the shape itself: "" for an isotropic study, else its
+// fibres as the job carries them (", with a braid at +/-30 deg added").
+std::string FibresAdded(const sim::EvalJob& job) {
+    const auto* def = std::get_if<sim::ShellDef>(&job.def);
+    switch (ClassOf(job)) {
+        case kBraid: return fmt::format(", with a braid at +/-{:g} deg added", def->fibres.angleDeg);
+        case kOneFamily: return fmt::format(", with one fibre family at {:g} deg added", def->fibres.angleDeg);
+        default: return "";
+    }
+}
+
 // The same design meshed twice as finely in both directions.
 sim::EvalJob Finer(sim::EvalJob job) {
     job.Shell().geometry.ringVertices *= 2;
@@ -55,11 +77,17 @@ sim::EvalJob Finer(sim::EvalJob job) {
     return job;
 }
 
+struct ClassTally {
+    int evaluated = 0, ok = 0, contracting = 0;
+    std::optional<ArchiveRecord> best;  // the record of the best contraction (no meshes)
+};
+
 struct Tally {
     std::map<std::string, int> statuses;
     int evaluated = 0, contracting = 0;
     double bestContraction = NAN;
     std::optional<ArchiveRecord> best;  // the record of the best contraction (no meshes)
+    ClassTally classes[kFibreClasses];
 };
 
 Tally TallyOf(const fs::path& archive) {
@@ -70,8 +98,12 @@ Tally TallyOf(const fs::path& archive) {
         if (r.role == Role::Figure) return true;
         ++t.evaluated;
         ++t.statuses[sim::Name(r.result.status)];
+        ClassTally& c = t.classes[ClassOf(r.job)];
+        ++c.evaluated;
         if (r.result.status == sim::Status::Ok) {
-            if (r.result.contractionPercent > 0) ++t.contracting;
+            ++c.ok;
+            if (r.result.contractionPercent > 0) ++t.contracting, ++c.contracting;
+            if (!c.best || r.result.contractionPercent > c.best->result.contractionPercent) c.best = r;
             if (!(r.result.contractionPercent <= t.bestContraction)) {
                 t.bestContraction = r.result.contractionPercent;
                 t.best = std::move(r);
@@ -80,6 +112,18 @@ Tally TallyOf(const fs::path& archive) {
         return true;
     });
     return t;
+}
+
+// "+0.68 %; at twice the mesh +0.71 %, 4.6 % apart: converged by the 5 % rule" beside a headline number.
+std::string WithMeshVerdict(double coarse, const ChapterRow& row) {
+    std::string text = fmt::format("{:+.2f} %", coarse);
+    const bool same = row.physical->outcome.bestJob && std::fabs(row.physical->outcome.bestFitness - coarse) < 1e-9;
+    if (!same || !row.fineEvaluated) return text + " (not re-run at twice the mesh)";
+    if (row.fine.status != sim::Status::Ok) return text + fmt::format(" (at twice the mesh: {}; not converged)", sim::Name(row.fine.status));
+    const MeshChange c = ChangeOf(coarse, row.fine.contractionPercent);
+    return text + fmt::format(" (at twice the mesh {:+.2f} %, {}: {})", row.fine.contractionPercent,
+                              std::fabs(row.fine.contractionPercent) < 1 ? fmt::format("{:.2f} points apart", c.points) : fmt::format("{:.1f} % apart", c.relative),
+                              c.within ? "converged by the mesh rule" : "outside the mesh rule, so not yet converged");
 }
 
 std::string StatusText(const std::map<std::string, int>& statuses) {
@@ -161,10 +205,11 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
             return;
         }
         row.thesisBestHere = std::move(result);
+        row.thesisBestJob = jobs[k];
         // A design that cannot be built as a tube has no wall to draw: the text gives its status.
         if (row.thesisBestHere.status == sim::Status::InvalidGeometry || row.thesisBestHere.initial.Size() == 0) return;
         row.thesisBestFigure = chapter.folder + "/" + id + "_thesis_best_under_" + model + ".png";
-        const std::string title = fmt::format("{}: the thesis model's best design under the {} model", row.thesis->experiment.id, model);
+        const std::string title = fmt::format("{}: the thesis model's best shape under the {} model{}", row.thesis->experiment.id, model, FibresAdded(jobs[k]));
         WritePng((dir / row.thesisBestFigure).string(), renderer->Render(BeforeAfterScene(title, row.thesisBestHere, jobs[k])), 6);
     });
 
@@ -187,7 +232,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
     return chapter;
 }
 
-std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
+std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optional<SearchEvidence>& search) {
     if (chapter.rows.empty()) return "";
     const Experiment& first = chapter.rows.front().physical->experiment;
     const std::string model = sim::Name(first.model);
@@ -202,33 +247,34 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
 
     md += "| experiment | designs evaluated | their statuses | thesis model's best (mesh units) | that design here | best here | best at 2x mesh | change |\n";
     md += "|---|---:|---|---:|---|---:|---:|---:|\n";
-    int evaluated = 0, ok = 0, contracting = 0, thesisBestsValid = 0, thesisBests = 0, thesisRows = 0;
-    int fibreEvaluated = 0, fibreOk = 0, fibreContracting = 0;
-    double bestOverall = NAN;
-    // The best design of the isotropic experiments and of those with fibres, with their records.
+    int thesisBestsValid = 0, thesisBests = 0, thesisRows = 0;
+    // Designs by what their wall carries: the isotropic studies' designs, and the fibre studies' by
+    // class (braids, single families and both families off are not the same actuator).
+    ClassTally isotropic, fibreStudy[kFibreClasses];
     struct Best {
         const ChapterRow* row = nullptr;
         std::optional<ArchiveRecord> record;
     } bestIsotropic, bestWithFibres;
     int meshChecked = 0, meshWithin = 0;
-    std::string bestWhere;
     for (const ChapterRow& row : chapter.rows) {
         Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");
         const bool fibres = std::get<sim::ShellDef>(row.physical->experiment.def).fibres.layout != sim::FibreLayout::None;
-        const int okHere = tally.statuses.count("ok") ? tally.statuses.at("ok") : 0;
-        (fibres ? fibreEvaluated : evaluated) += tally.evaluated;
-        (fibres ? fibreContracting : contracting) += tally.contracting;
-        (fibres ? fibreOk : ok) += okHere;
-        const double best = row.physical->outcome.bestFitness;
-        if (!fibres && std::isfinite(best) && !(best <= bestOverall)) {
-            bestOverall = best;
-            bestWhere = row.physical->experiment.id;
+        for (int k = 0; k < kFibreClasses; ++k) {
+            ClassTally& into = fibres ? fibreStudy[k] : isotropic;
+            const ClassTally& from = tally.classes[k];
+            into.evaluated += from.evaluated;
+            into.ok += from.ok;
+            into.contracting += from.contracting;
         }
         Best& slot = fibres ? bestWithFibres : bestIsotropic;
-        if (tally.best && (!slot.record || tally.best->result.contractionPercent > slot.record->result.contractionPercent)) {
-            slot.row = &row;
-            slot.record = std::move(tally.best);
+        for (int k = fibres ? kOneFamily : kNoFibres; k < (fibres ? kFibreClasses : kOneFamily); ++k) {
+            const auto& candidate = tally.classes[k].best;
+            if (candidate && (!slot.record || candidate->result.contractionPercent > slot.record->result.contractionPercent)) {
+                slot.row = &row;
+                slot.record = candidate;
+            }
         }
+        const double best = row.physical->outcome.bestFitness;
         const double fine = row.fineEvaluated && row.fine.status == sim::Status::Ok ? row.fine.contractionPercent : NAN;
         const MeshChange change = ChangeOf(best, fine);
         if (std::isfinite(change.points)) {
@@ -249,22 +295,25 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
     }
     md += "\n";
 
-    // The finding, from the numbers.
+    // The finding, from this run's numbers only.
     md += "**Finding.** ";
-    md += fmt::format("Of {} isotropic designs (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium", evaluated, model,
-                      shell.load.pressureKpa, ok);
-    if (contracting == 0)
-        md += " and every one of them lengthened: none of them contracts. The thesis's premise, that shaping an isotropic tube makes a "
-              "contracting actuator, is not borne out in a model with equilibrium and units: shaped tubes of one isotropic silicone balloon "
-              "and lengthen. These runs are samples, not a proof: a search aimed at contraction alone (`actuator evolve "
-              "assets/experiments/optimizers/O5.2_cmaes_shell.json`, CMA-ES) finds thin-necked spindles that shorten by about a tenth of a "
-              "percent, the same at twice and three times the mesh. Useful contraction needs what docs/models/shell.md names: stiff fibres (McKibben and "
-              "pleated muscles) or vacuum.";
+    md += fmt::format("Of {} designs of the isotropic studies (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium and {} "
+                      "contracted", isotropic.evaluated, model, shell.load.pressureKpa, isotropic.ok, isotropic.contracting);
+    if (isotropic.contracting > 0 && bestIsotropic.record)
+        md += fmt::format(", the best by {} (experiment {}).", WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row),
+                          bestIsotropic.row->physical->experiment.id);
+    else if (bestIsotropic.record)
+        md += fmt::format(": every one that reached equilibrium lengthened, the least by {} (experiment {}).",
+                          WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row), bestIsotropic.row->physical->experiment.id);
     else
-        md += fmt::format("; {} of them contracted, the best by {:.2f} % (experiment {}).", contracting, bestOverall, bestWhere);
+        md += ".";
+    if (search) {
+        md += fmt::format(" Part 3's searches aimed at contraction alone under the same model ({} runs, {} evaluations: [optimizers compared](#optimizers)) "
+                          "found at best {:+.3f} % ({}, seed {}){}.", search->runs, search->evaluations, search->bestContractionPercent, search->bestLabel,
+                          search->bestSeed, search->bestContractionPercent > 0 ? "" : ": none of their designs contracted either");
+    }
     if (thesisRows > 0)
-        md += fmt::format(" Of the thesis model's {} best designs, {} reach equilibrium here; the others are refused or fail as the table says "
-                          "(sine and abs-sine profiles that pass through zero radius cannot be built as tubes).",
+        md += fmt::format(" Of the thesis model's {} best designs, {} reach equilibrium here; the others are refused or fail as the table says.",
                           thesisBests, thesisBestsValid);
     else  // part 2 alone (--part physical): there is nothing of part 1's to re-evaluate
         md += " Part 1's results (the thesis model's runs) are not in this folder, so its best designs were not re-evaluated here: "
@@ -273,17 +322,27 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
         md += fmt::format(" Mesh convergence (docs/models/shell.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
                           "under 1 % contraction, within 0.05 percentage points): {} of {} best designs pass{}.",
                           meshWithin, meshChecked, meshWithin == meshChecked ? "" : "; the others (marked **) need a finer mesh than the default to be trusted");
+    int fibreEvaluated = 0;
+    for (const ClassTally& c : fibreStudy) fibreEvaluated += c.evaluated;
     if (fibreEvaluated > 0) {
-        md += fmt::format("\n\n**With fibres.** Of {} designs with a braid on the wall, {} reached equilibrium and {} contracted.", fibreEvaluated, fibreOk,
-                          fibreContracting);
+        md += fmt::format("\n\n**With fibres.** The fibre studies evaluated {} designs, counted by what their wall carries:", fibreEvaluated);
+        for (int k : {kBraid, kOneFamily, kNoFibres}) {
+            const ClassTally& c = fibreStudy[k];
+            md += fmt::format("{} {} {}{}, {} reached equilibrium and {} contracted", k == kBraid ? "" : ";", c.evaluated, kClassNames[k],
+                              k == kNoFibres ? " (both families switched off)" : "", c.ok, c.contracting);
+        }
+        md += ".";
         auto describe = [&](const Best& b, const char* what) {
             if (!b.record) return;
             const sim::ShellOutputs& o = b.record->result.shell;
-            md += fmt::format(" The best {} design (experiment {}): contraction {:+.2f} % at {:g} kPa, blocking force {} N, largest stretch {:.2f} (limit {:.2f})",
-                              what, b.row->physical->experiment.id, b.record->result.contractionPercent, o.targetPressureKpa,
-                              Cell(o.blockingForceN), o.maxStretch, o.stretchLimit);
-            if (std::isfinite(o.fibreAngleDeg)) md += fmt::format(", braid at {:.0f} deg to the axis at that pressure, fibre strain {:.2f} %", o.fibreAngleDeg,
-                                                                 100 * o.maxFibreStrain);
+            const FibreClass fibreClass = ClassOf(b.record->job);
+            md += fmt::format(" The best {} design (experiment {}{}): contraction {} at {:g} kPa, blocking force {} N, largest stretch {:.2f} (limit {:.2f})",
+                              what, b.row->physical->experiment.id, fibreClass == kNoFibres ? "" : fmt::format(", {}", kClassNames[fibreClass]),
+                              WithMeshVerdict(b.record->result.contractionPercent, *b.row), o.targetPressureKpa, Cell(o.blockingForceN), o.maxStretch,
+                              o.stretchLimit);
+            if (std::isfinite(o.fibreAngleDeg))
+                md += fmt::format(", {} at {:.0f} deg to the axis at that pressure, fibre strain {:.2f} %", fibreClass == kBraid ? "braid" : "fibres", o.fibreAngleDeg,
+                                  100 * o.maxFibreStrain);
             // The top's turn as the study's ends had it: free (a bench's default) or held by a torque.
             if (const auto* def = std::get_if<sim::ShellDef>(&b.record->job.def)) {
                 if (def->ends.twist == sim::TwistEnd::Held) md += fmt::format(", its top held from turning by {} N mm", Cell(o.torqueNMm));
@@ -321,11 +380,11 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick) {
         if (!row.thesis) continue;
         md += fmt::format("### {} beside {}\n\n", row.physical->experiment.id, row.thesis->experiment.id);
         if (row.thesis->outcome.bestJob)
-            md += fmt::format("The thesis model's best, {} (fitness {:.3f} mesh units), under the `{}` model: {}.\n\n", ShapeTitle(row.thesis->outcome.bestJob->shape),
-                              row.thesis->outcome.bestFitness, model, Outcome(row.thesisBestHere));
+            md += fmt::format("The thesis model's best, {} (fitness {:.3f} mesh units), under the `{}` model{}: {}.\n\n", ShapeTitle(row.thesis->outcome.bestJob->shape),
+                              row.thesis->outcome.bestFitness, model, FibresAdded(row.thesisBestJob), Outcome(row.thesisBestHere));
         for (const auto& figure : row.thesis->outcome.figures)
             if (figure == "best_inflation.png") md += "![" + row.thesis->experiment.id + " best, thesis model](" + row.thesis->folder + "/" + figure + ")\n";
-        if (!row.thesisBestFigure.empty()) md += "![the same design under the " + model + " model](" + row.thesisBestFigure + ")\n";
+        if (!row.thesisBestFigure.empty()) md += "![the same shape under the " + model + " model" + FibresAdded(row.thesisBestJob) + "](" + row.thesisBestFigure + ")\n";
         md += "\n";
     }
     return md;

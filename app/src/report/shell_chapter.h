@@ -24,6 +24,7 @@ struct ChapterRow {
     const ReportEntry* thesis = nullptr;    // its thesis-model experiment (null when not run)
     std::map<std::string, int> statuses;    // of the re-run's evaluations, by status name
     sim::SimResult thesisBestHere;          // the thesis model's best design under the physical model
+    sim::EvalJob thesisBestJob;             // and its job (the study's model, load and fibres)
     sim::SimResult fine;                    // the re-run's best at twice the mesh in both directions
     bool fineEvaluated = false;             // false when there was no best to re-run
     std::string thesisBestFigure, bestFigure;  // pictures under `folder`, relative to the report
@@ -48,7 +49,17 @@ struct Chapter {
 // `dir / folder / comparison.csv`. `entries` holds both chapters' experiments.
 Chapter CompareChapters(const std::vector<ReportEntry>& entries, const std::filesystem::path& dir, Evaluator& evaluator);
 
-// The chapter as markdown: a table, the mesh study, the finding, the pictures.
-std::string ChapterMarkdown(const Chapter& chapter, bool quick);
+// What part 3's searches under the chapter's model found: the finding cites it beside the studies'.
+struct SearchEvidence {
+    int runs = 0;
+    long long evaluations = 0;
+    double bestContractionPercent = NAN;
+    std::string bestLabel;  // the contender that found it
+    int bestSeed = 0;
+};
+
+// The chapter as markdown: a table, the mesh study, the finding (with part 3's search when given),
+// the pictures.
+std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optional<SearchEvidence>& search = std::nullopt);
 
 }  // namespace app
