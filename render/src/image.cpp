@@ -107,8 +107,8 @@ bool DecodePng(const std::vector<std::uint8_t>& bytes, Image* image, std::string
 std::string ImageComparison::Summary() const {
     if (!sameSize) return "images differ in size";
     char line[200];
-    std::snprintf(line, sizeof line, "%.4f%% of pixels differ, max channel delta %d, mean delta %.3f",
-                  100.0 * differingFraction, maxChannelDelta, meanAbsoluteDelta);
+    std::snprintf(line, sizeof line, "%.4f%% of pixels differ (at most %d in one 16 x 16 tile), max channel delta %d, mean delta %.3f",
+                  100.0 * differingFraction, maxDifferingInTile, maxChannelDelta, meanAbsoluteDelta);
     return line;
 }
 
@@ -142,7 +142,19 @@ ImageComparison CompareImages(const Image& expected, const Image& actual, const 
     result.differingFraction = pixels ? double(differing) / pixels : 0.0;
     result.maxChannelDelta = maxDelta;
     result.meanAbsoluteDelta = pixels ? double(deltaSum) / (pixels * 4) : 0.0;
-    result.matches = result.differingFraction <= tolerance.maxDifferingFraction;
+    constexpr int kTile = 16;
+    for (int ty = 0; ty < expected.height; ty += kTile)
+        for (int tx = 0; tx < expected.width; tx += kTile) {
+            int inTile = 0;
+            for (int y = ty; y < std::min(ty + kTile, expected.height); ++y)
+                for (int x = tx; x < std::min(tx + kTile, expected.width); ++x) {
+                    const std::uint8_t* out = &result.diff.rgba[(static_cast<size_t>(y) * expected.width + x) * 4];
+                    inTile += out[0] == 255 && out[1] == 0 && out[2] == 0;  // marked red above
+                }
+            result.maxDifferingInTile = std::max(result.maxDifferingInTile, inTile);
+        }
+    result.matches = result.differingFraction <= tolerance.maxDifferingFraction &&
+                     (tolerance.maxDifferingPerTile <= 0 || result.maxDifferingInTile <= tolerance.maxDifferingPerTile);
     return result;
 }
 

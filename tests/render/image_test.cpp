@@ -72,3 +72,22 @@ TEST(Image, ComparisonCountsPixelsOverTheThreshold) {
     EXPECT_TRUE(render::IsUniform(render::Image{2, 1, std::vector<std::uint8_t>(8, 255)}));
     EXPECT_FALSE(render::IsUniform(a));
 }
+
+// A one-pixel line across a 200 x 200 picture is 0.5 % of it, but 16 pixels in each tile it crosses;
+// the same number of changed pixels scattered one per tile passes the tile bound.
+TEST(Image, TheTileBoundSeesAConcentratedMarkThatTheFractionBoundMisses) {
+    const auto a = Gradient(200, 200);
+    auto flip = [&](render::Image& image, int x, int y) {
+        std::uint8_t& red = image.rgba[(static_cast<size_t>(y) * 200 + x) * 4];
+        red = static_cast<std::uint8_t>(red > 127 ? red - 100 : red + 100);
+    };
+    auto line = a, scattered = a;
+    for (int x = 0; x < 200; ++x) flip(line, x, 100);
+    for (int k = 0; k < 144; ++k) flip(scattered, (k % 12) * 16 + 3, (k / 12) * 16 + 5);  // one per tile
+    const render::ImageTolerance fractionOnly{24, 0.01}, tiled{24, 0.01, 12};
+    EXPECT_TRUE(render::CompareImages(a, line, fractionOnly).matches);
+    const auto r = render::CompareImages(a, line, tiled);
+    EXPECT_FALSE(r.matches);
+    EXPECT_EQ(r.maxDifferingInTile, 16);
+    EXPECT_TRUE(render::CompareImages(a, scattered, tiled).matches);
+}

@@ -77,7 +77,7 @@ void WriteEvolutionFigure(RunContext& c, const SearchEngine& engine, const std::
         curve.showBestSoFar = !engine.KeepsItsBest();
         if (r < e.thesisResult.runBest.size()) {
             curve.reference = e.thesisResult.runBest[r];
-            curve.referenceLabel = fmt::format("thesis's best: {:g}", e.thesisResult.runBest[r]);
+            curve.referenceLabel = ThesisBestLegend(e.thesisResult.runBest, runs.size());
         }
         curves.push_back(std::move(curve));
     }

@@ -24,6 +24,12 @@ namespace fs = std::filesystem;
 std::string ShapeTitle(const sim::Shape& shape) {
     std::string title = sim::ShapeName(shape);
     auto sine = [&](double amplitude, double a, double b) {
+        // One phase at both ends is a constant radius: a cylinder (SF1's braided tube), not a sine.
+        if (a == b) {
+            const double factor = std::fabs(amplitude * std::sin(a));
+            title = std::fabs(factor - 1) < 1e-12 ? "cylinder" : fmt::format("cylinder of {:.3g} x the base radius", factor);
+            return;
+        }
         title += fmt::format("  A = {:.3g}, phase {} to {}", amplitude, FormatRadians(a), FormatRadians(b));
     };
     if (const auto* s = std::get_if<sim::SineShape>(&shape)) sine(s->amplitude, s->phaseStart, s->phaseEnd);
@@ -240,14 +246,39 @@ render::Scene PairsScene(const std::string& title, const std::vector<std::string
     scene.lines = lines;
     scene.columns = 2 * std::max(1, pairsPerRow);
     std::vector<const sim::Positions*> framed;
+    std::vector<std::string> escaped;
     for (const DesignPair& pair : pairs) {
         const sim::SimResult& r = *pair.result;
+        // A mesh that moved farther than its own size has exploded (the thesis model's low-resolution
+        // meshes do): its number is no contraction, and the picture says so.
+        const std::string escape = EscapeWarning(r);
+        if (!escape.empty()) escaped.push_back(pair.label + " " + escape);
         scene.panels.push_back({r.initial, {}, pair.label + ": before", 0, {}, {}});
-        scene.panels.push_back(ColouredPanel(scene, r.final, r, *pair.job, Colouring::Auto, "after: " + FitnessCaption(r)));
+        scene.panels.push_back(ColouredPanel(scene, r.final, r, *pair.job, Colouring::Auto, (escape.empty() ? "after: " : "! after: ") + FitnessCaption(r)));
         framed.push_back(&r.initial);
         if (r.status == sim::Status::Ok) framed.push_back(&r.final);
     }
     scene.framing = render::FrameMeshes(framed);
+    for (const std::string& e : escaped) scene.lines.push_back("! " + e + ": the mesh exploded; its number is not a contraction");
+    // One colour scale serves every design: when one design's values span only a small part of it
+    // (4.3's design 1 moves 2 units on a scale that design 3's 34 sets), the reader is told.
+    std::vector<double> highs;
+    double low = INFINITY, high = -INFINITY;
+    for (size_t k = 1; k < scene.panels.size(); k += 2) {
+        const std::vector<double> values = render::VertexValues(scene.colorBy.value_or(render::ColorBy::Displacement), *scene.surface, scene.panels[k]);
+        double panelHigh = -INFINITY;
+        for (double v : values)
+            if (std::isfinite(v)) low = std::min(low, v), panelHigh = std::max(panelHigh, v);
+        highs.push_back(panelHigh);
+        high = std::max(high, panelHigh);
+    }
+    if (scene.colorMin) low = *scene.colorMin;
+    if (scene.colorMax) high = *scene.colorMax;
+    std::string small;
+    for (size_t k = 0; k < highs.size(); ++k)
+        if (std::isfinite(highs[k]) && high > low && (highs[k] - low) < 0.25 * (high - low))
+            small += fmt::format("{}{} reaches {:.3g}", small.empty() ? "" : ", ", pairs[k].label, highs[k]);
+    if (!small.empty()) scene.lines.push_back(fmt::format("one colour scale for all designs, up to {:.3g}: {}", high, small));
     return scene;
 }
 

@@ -152,6 +152,7 @@ render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& 
         render::LinePlot plot;
         plot.title = run.title;
         plot.xLabel = "generation";
+        plot.integerX = true;
         plot.yLabel = e.fitnessLabel;
         // The whole population's spread (worst to best) and its middle half (interquartile range),
         // with the best and the median: bands that cannot rise above the best line.
@@ -199,6 +200,13 @@ render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& 
     return plots->RenderLines(e.title + "  -  evolution", panels);
 }
 
+std::string ThesisBestLegend(const std::vector<double>& runBest, size_t runs) {
+    if (runs <= 1 || runBest.size() <= 1) return runBest.empty() ? "" : fmt::format("thesis's best: {:g}", runBest[0]);
+    std::string values;
+    for (size_t r = 0; r < runs && r < runBest.size(); ++r) values += fmt::format("{}{:g}", r ? ", " : "", runBest[r]);
+    return fmt::format("thesis's best of that run (runs 1-{}: {})", std::min(runs, runBest.size()), values);
+}
+
 render::Image ParetoImage(const PlotContext& e, const std::vector<ParetoPoint>& all, const std::vector<ParetoPoint>& front) {
     auto plots = MakePlots(1200, 800);
     const sim::Objective& a = e.objectives[0];
@@ -229,6 +237,7 @@ render::Image HypervolumeImage(const PlotContext& e, const std::vector<std::pair
     auto plots = MakePlots(1024, 640);
     render::LinePlot plot;
     plot.xLabel = "generation";
+    plot.integerX = true;
     std::string units;
     for (const sim::Objective& o : e.objectives) units += (units.empty() ? "" : " x ") + std::string(sim::ObjectiveUnit(o.kind));
     plot.yLabel = "hypervolume of every valid design so far (" + units + ")";

@@ -40,7 +40,7 @@ struct RunCurve {
     // best (CMA-ES). The GA's elitism keeps its best, so its best line already is the best so far.
     bool showBestSoFar = false;
     double reference = NAN;           // the thesis's best for this run, drawn as a line; NaN: none
-    std::string referenceLabel{};     // e.g. "thesis, Table 5.4: 1.13"
+    std::string referenceLabel{};     // e.g. "thesis, Table 5.4: 1.13"; ThesisBestLegend
 };
 render::Image EvolutionImage(const PlotContext& e, const std::vector<RunCurve>& runs);
 
@@ -90,5 +90,9 @@ render::Image TensileCurveImage(const TensileFigure& figure);
 
 // How a sweep axis is named on plots, e.g. "amplitude A".
 std::string AxisLabel(sim::SweepParameter parameter);
+
+// The legend of the thesis's reference lines: one legend serves every run's panel, so with several
+// runs it names each run's number in run order ("thesis's best of that run: 1.13, 1.09, 1.14").
+std::string ThesisBestLegend(const std::vector<double>& runBest, size_t runs);
 
 }  // namespace app

@@ -33,6 +33,10 @@ bool DecodePng(const std::vector<std::uint8_t>& bytes, Image* image, std::string
 struct ImageTolerance {
     int channelThreshold = 24;        // a pixel differs when any channel differs by more than this (0-255)
     double maxDifferingFraction = 0.003;  // images match when at most this fraction of pixels differ
+    // And, when > 0, at most this many differing pixels in any 16 x 16 tile: a new or lost mark (a
+    // cross, a one-pixel zero line) is concentrated where noise is spread thin, and a fraction of the
+    // whole picture cannot see it. 0: off (3-D scenes, whose shading noise is not spread thin).
+    int maxDifferingPerTile = 0;
 };
 
 struct ImageComparison {
@@ -41,6 +45,7 @@ struct ImageComparison {
     double differingFraction = 1.0;  // share of pixels over the channel threshold
     int maxChannelDelta = 255;
     double meanAbsoluteDelta = 255;  // over all channels, 0-255
+    int maxDifferingInTile = 0;      // the most differing pixels in one 16 x 16 tile
     Image diff;                      // expected faded to grey, differing pixels in red
     std::string Summary() const;     // one line with the numbers
 };

@@ -38,6 +38,7 @@ struct LinePlot {
     std::optional<std::pair<double, double>> highlight;  // a ringed point, e.g. the best
     std::string highlightLabel;
     bool zeroLine = false;       // a thin line at y = 0
+    bool integerX = false;       // x counts things (generations): ticks only at whole numbers
 };
 
 struct Heatmap {

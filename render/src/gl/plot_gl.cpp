@@ -169,7 +169,14 @@ Image PlotRendererGl::RenderLines(const std::string& title, const std::vector<Li
     }
     if (!(xMax >= xMin)) { xMin = 0; xMax = 1; }
     if (!(yMax >= yMin)) { yMin = 0; yMax = 1; }
-    const auto xTicks = NiceTicks(xMin, xMax, 6), yTicks = NiceTicks(yMin, yMax, 6);
+    auto xTicks = NiceTicks(xMin, xMax, 6);
+    const auto yTicks = NiceTicks(yMin, yMax, 6);
+    // A count's axis has no 0.2 of a generation: keep whole ticks (two generations: 0, 1, 2).
+    if (std::all_of(plots.begin(), plots.end(), [](const LinePlot& p) { return p.integerX; })) {
+        auto whole = xTicks;
+        std::erase_if(whole, [](double t) { return std::fabs(t - std::round(t)) > 1e-9; });
+        if (whole.size() >= 2) xTicks = whole;
+    }
     if (xMax == xMin) { xMin = xTicks.front(); xMax = xTicks.back(); }
     // A little room around the data, so that lines, markers and rings at the extremes stay visible.
     const double xPad = 0.02 * (xMax - xMin), yPad = 0.07 * (yMax - yMin);

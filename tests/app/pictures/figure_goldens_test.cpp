@@ -13,6 +13,7 @@
 #include "pictures/figures.h"
 #include "pictures/plots.h"
 #include "render/image.h"
+#include "render/plot.h"
 #include "sim/batch.h"
 #include "sim/solid.h"
 
@@ -24,6 +25,10 @@ std::vector<std::uint8_t> ReadBytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
+
+// Plots are flat drawings: a mark is a handful of pixels in one place, so the goldens also bound the
+// differing pixels per tile (a lost zero line or failure cross fails; noise spread thin does not).
+const render::ImageTolerance kPlotTolerance{24, 0.003, 12};
 
 void ExpectMatchesGolden(const std::string& name, const render::Image& actual) {
     ASSERT_FALSE(actual.Empty());
@@ -39,7 +44,7 @@ void ExpectMatchesGolden(const std::string& name, const render::Image& actual) {
     std::string error;
     ASSERT_TRUE(fs::exists(golden)) << golden << " is missing; run UPDATE_GOLDENS=1 ctest -L visual to create it";
     ASSERT_TRUE(render::DecodePng(ReadBytes(golden), &expected, &error)) << error;
-    const auto comparison = render::CompareImages(expected, actual, render::ImageTolerance{});
+    const auto comparison = render::CompareImages(expected, actual, kPlotTolerance);
     if (!comparison.matches) {
         const fs::path out = fs::path(ACTUATOR_VISUAL_OUT_DIR);
         fs::create_directories(out);
@@ -81,12 +86,44 @@ TEST(FigureGoldens, LandscapeHeatmapSaysWhatItsGreyCellsAre) {
     ExpectMatchesGolden("plot_landscape_heatmap_failed", app::LandscapeImage(app::PlotContextOf(e), fitness, 32, "best: amplitude 6, cycles 4"));
 }
 
-// Logbooks of `count` GA runs that rise towards 3, each with the thesis's best beside it.
-std::vector<app::RunCurve> RisingRuns(int count) {
+// Contractions that are all negative (part 3's shell searches): 0 is on the axis, drawn as a line,
+// so the sign reads at a glance. Without the line the picture must not match: the per-tile bound sees
+// a one-pixel line that the 0.3 % bound on the whole picture does not.
+render::Image NegativeCurves(bool zeroLine) {
+    std::string error;
+    auto plots = render::PlotRenderer::Create(1200, 800, &error);
+    EXPECT_TRUE(plots) << error;
+    if (!plots) return {};
+    render::LinePlot plot;
+    plot.xLabel = "evaluations";
+    plot.yLabel = "best so far: contraction, %";
+    plot.zeroLine = zeroLine;
+    render::LineSeries a{"first (median)", {}, {}, {0.10f, 0.55f, 0.20f}}, b{"second (median)", {}, {}, {0.13f, 0.35f, 0.75f}};
+    for (int i = 0; i <= 24; ++i) {
+        a.x.push_back(5 * i);
+        a.y.push_back(-0.12 + 0.1 * (1 - std::exp(-i / 6.0)));
+        b.x.push_back(5 * i);
+        b.y.push_back(-0.17 * (1 - std::exp(-i / 3.0)));  // from 0: the range is the same with or without the line
+    }
+    plot.series = {a, b};
+    return plots->RenderLines("All below zero: best so far against evaluations", {plot});
+}
+
+TEST(FigureGoldens, CurvesBelowZeroShowTheZeroLine) {
+    const render::Image withLine = NegativeCurves(true), without = NegativeCurves(false);
+    ExpectMatchesGolden("plot_below_zero", withLine);
+    const auto plain = render::CompareImages(withLine, without, render::ImageTolerance{});
+    const auto tiled = render::CompareImages(withLine, without, kPlotTolerance);
+    EXPECT_TRUE(tiled.matches == false) << "a lost zero line must fail the goldens: " << tiled.Summary();
+    EXPECT_TRUE(plain.differingFraction < 0.01) << "the line is a small part of the picture: " << plain.Summary();
+}
+
+// Logbooks of `count` GA runs of `generations` that rise towards 3, each with the thesis's best beside it.
+std::vector<app::RunCurve> RisingRuns(int count, int generations = 20) {
     std::vector<app::RunCurve> runs;
     for (int r = 0; r < count; ++r) {
         app::RunCurve curve{"run " + std::to_string(r + 1), {}};
-        for (int g = 0; g <= 20; ++g) {
+        for (int g = 0; g <= generations; ++g) {
             sim::LogbookRow row;
             row.generation = g;
             row.evaluations = 10;
@@ -110,6 +147,13 @@ TEST(FigureGoldens, EvolutionWithRangeQuartilesAndTheThesisLine) {
         "evolve": {"runs": 2, "genome": {"kind": "bspline"}}})", "golden.json");
     const std::vector<app::RunCurve> runs = RisingRuns(2);
     ExpectMatchesGolden("plot_evolution", app::EvolutionImage(app::PlotContextOf(e), runs));
+}
+
+// A quick run's two generations: the axis counts generations, 0, 1, 2, never 0.2 of one.
+TEST(FigureGoldens, EvolutionOfTwoGenerationsHasWholeTicks) {
+    const app::Experiment e = app::ParseExperiment(R"({"model": {"name": "thesis"}, "id": "G", "title": "quick GA", "sim": {"iterations": 2000},
+        "evolve": {"runs": 1, "genome": {"kind": "bspline"}}})", "golden.json");
+    ExpectMatchesGolden("plot_evolution_two_generations", app::EvolutionImage(app::PlotContextOf(e), RisingRuns(1, 2)));
 }
 
 // A title that wraps on one run's narrow figure pushes the panel's label down, never under itself.

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "pictures/figures.h"
+#include "pictures/plots.h"
 #include "sim/batch.h"
 
 namespace {
@@ -114,3 +115,60 @@ TEST(BeforeAfterScene, TheScaleReachesTheLargestValueTheResultStates) {
     ASSERT_TRUE(stress.colorMax.has_value());
     EXPECT_DOUBLE_EQ(*stress.colorMax, r.shell.maxStressKpa);
 }
+
+namespace {
+
+// One legend serves the three panels of 5.2's evolution figure: it must not name run 1's number alone
+// while runs 2 and 3 draw theirs.
+TEST(EvolutionLegend, NamesEveryRunsThesisValueWhenThereAreSeveralRuns) {
+    EXPECT_EQ(app::ThesisBestLegend({1.13, 1.09, 1.14}, 3), "thesis's best of that run (runs 1-3: 1.13, 1.09, 1.14)");
+    EXPECT_EQ(app::ThesisBestLegend({3.5}, 1), "thesis's best: 3.5");
+    EXPECT_EQ(app::ThesisBestLegend({1.13, 1.09, 1.14}, 2), "thesis's best of that run (runs 1-2: 1.13, 1.09)");
+    EXPECT_EQ(app::ThesisBestLegend({}, 3), "");
+}
+
+}  // namespace
+
+namespace {
+
+// 4.3's three designs of Table 4.4 share one displacement scale that the exploded third sets: the
+// picture must say that the third exploded and that the first two use a small part of the scale.
+TEST(PairsScene, SaysWhenAMeshExplodedAndWhenADesignUsesLittleOfTheSharedScale) {
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Thesis);
+    const sim::SimResult calm = sim::Evaluate(job);
+    ASSERT_EQ(calm.status, sim::Status::Ok);
+    sim::SimResult exploded = calm;
+    for (int i = 0; i < exploded.final.Size(); ++i) exploded.final.x[i] = exploded.initial.x[i] + 40.0 * (i % 7);  // far beyond the mesh's size
+    ASSERT_FALSE(app::EscapeWarning(exploded).empty());
+    ASSERT_TRUE(app::EscapeWarning(calm).empty());
+
+    auto linesWith = [](const render::Scene& scene, const std::string& text) {
+        int n = 0;
+        for (const std::string& line : scene.lines) n += line.find(text) != std::string::npos;
+        return n;
+    };
+    const render::Scene mixed = app::PairsScene("pairs", {}, {{&calm, &job, "design 1"}, {&exploded, &job, "design 2"}}, 2);
+    EXPECT_EQ(mixed.panels[3].caption.rfind("! after", 0), 0u) << mixed.panels[3].caption;
+    EXPECT_NE(mixed.panels[1].caption.rfind("! after", 0), 0u) << mixed.panels[1].caption;
+    EXPECT_EQ(linesWith(mixed, "design 2 moved"), 1);
+    EXPECT_EQ(linesWith(mixed, "one colour scale for all designs"), 1);
+    EXPECT_EQ(linesWith(mixed, "design 1 reaches"), 1);
+
+    const render::Scene alike = app::PairsScene("pairs", {}, {{&calm, &job, "design 1"}, {&calm, &job, "design 2"}}, 2);
+    EXPECT_EQ(linesWith(alike, "one colour scale"), 0) << "designs of one size need no note";
+    EXPECT_EQ(linesWith(alike, "exploded"), 0);
+}
+
+}  // namespace
+
+namespace {
+
+// SF1 sweeps a braided straight tube given as a sine of one phase: its titles call it a cylinder.
+TEST(ShapeTitle, ASineOfOnePhaseIsACylinder) {
+    EXPECT_EQ(app::ShapeTitle(sim::SineShape{1, std::numbers::pi / 2, std::numbers::pi / 2}), "cylinder");
+    EXPECT_EQ(app::ShapeTitle(sim::SineShape{2, std::numbers::pi / 2, std::numbers::pi / 2}), "cylinder of 2 x the base radius");
+    EXPECT_EQ(app::ShapeTitle(sim::SineShape{4.1, 0.5, std::numbers::pi - 0.5}).rfind("sine  A = 4.1", 0), 0u);
+}
+
+}  // namespace
