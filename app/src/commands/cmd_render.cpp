@@ -76,30 +76,6 @@ struct PictureOptions {
 };
 
 
-// One camera and one colour scale over a sequence's scenes, so that only the mesh moves.
-void FixFramingAndScale(std::vector<render::Scene>& scenes) {
-    std::vector<const sim::Positions*> all;
-    double low = INFINITY, high = -INFINITY;
-    for (const auto& scene : scenes)
-        for (const auto& panel : scene.panels) {
-            all.push_back(&panel.positions);
-            const render::ColorBy colorBy = scene.colorBy.value_or(render::ColorBy::Displacement);
-            for (double v : render::VertexValues(colorBy, *scene.surface, panel))
-                if (std::isfinite(v)) {
-                    low = std::min(low, v);
-                    high = std::max(high, v);
-                }
-        }
-    const render::Framing framing = render::FrameMeshes(all);
-    for (auto& scene : scenes) {
-        scene.framing = framing;
-        if (std::isfinite(high)) {
-            scene.colorMax = high;
-            if (!scene.colorMin) scene.colorMin = scene.colorBy == render::ColorBy::Values ? low : 0.0;
-        }
-    }
-}
-
 // The thesis model's inflation watched: the first state, every `interval` iterations, the last.
 template <class Sequence>
 void WriteThesisTimelapse(const sim::EvalJob& job, const std::string& title, Colouring colouring, const PictureOptions& p, Sequence&& sequence) {
@@ -125,7 +101,7 @@ void WriteThesisTimelapse(const sim::EvalJob& job, const std::string& title, Col
         scene.panels.front().caption = "iteration " + std::to_string(iteration);
         scenes.push_back(std::move(scene));
     }
-    FixFramingAndScale(scenes);
+    ShareFramingAndScale(scenes);
     sequence("timelapse", static_cast<int>(scenes.size()), [&](int k) { return scenes[k]; });
 }
 
@@ -367,7 +343,7 @@ static int RunRender(int argc, char** argv, int first) {
             scenes.push_back(LoadStepScene(title + "  -  inflating", inflated, job, k, colouring));
         if (scenes.empty()) std::cerr << "note: no load step converged (" << sim::Name(inflated.status) << "), so no time-lapse is written\n";
         else {
-            FixFramingAndScale(scenes);
+            ShareFramingAndScale(scenes);
             sequence("timelapse", static_cast<int>(scenes.size()), [&](int k) { return scenes[k]; });
         }
     }

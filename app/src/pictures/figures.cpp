@@ -299,6 +299,33 @@ render::Scene StagesScene(const std::string& title, const std::vector<std::strin
     return scene;
 }
 
+void ShareFramingAndScale(std::vector<render::Scene>& scenes) {
+    std::vector<const sim::Positions*> all;
+    double low = INFINITY, high = -INFINITY;
+    for (const auto& scene : scenes)
+        for (const auto& panel : scene.panels) {
+            all.push_back(&panel.positions);
+            const render::ColorBy colorBy = scene.colorBy.value_or(render::ColorBy::Displacement);
+            for (double v : render::VertexValues(colorBy, *scene.surface, panel))
+                if (std::isfinite(v)) {
+                    low = std::min(low, v);
+                    high = std::max(high, v);
+                }
+        }
+    // A scene's own top (the result's largest stretch or stress, which its subtitle states) is kept:
+    // the vertex values are means of triangles' and fall short of it.
+    for (const auto& scene : scenes)
+        if (scene.colorMax) high = std::max(high, *scene.colorMax);
+    const render::Framing framing = render::FrameMeshes(all);
+    for (auto& scene : scenes) {
+        scene.framing = framing;
+        if (std::isfinite(high)) {
+            scene.colorMax = high;
+            if (!scene.colorMin) scene.colorMin = scene.colorBy == render::ColorBy::Values ? low : 0.0;
+        }
+    }
+}
+
 render::Image PairsImage(const render::Scene& scene) {
     const int columns = scene.columns > 0 ? scene.columns : std::max<int>(1, scene.panels.size());  // no grid: one row
     const int rows = static_cast<int>((scene.panels.size() + columns - 1) / columns);

@@ -67,6 +67,9 @@ render::Scene PairsScene(const std::string& title, const std::vector<std::string
 render::Scene StagesScene(const std::string& title, const std::vector<std::string>& lines, const std::vector<const sim::SimResult*>& stages,
                           const sim::EvalJob& job);
 // The scenes above drawn at a size that gives each panel about 240 x 420 pixels.
+// One camera and one colour scale over a sequence's scenes (a time-lapse), so that only the mesh
+// moves; the scale reaches the largest value any scene states (its result's max stretch or stress).
+void ShareFramingAndScale(std::vector<render::Scene>& scenes);
 render::Image PairsImage(const render::Scene& scene);
 
 // An exported part's solids (sim/solid.h): the parts side by side with the mold's split faces turned

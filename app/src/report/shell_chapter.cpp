@@ -206,8 +206,10 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         }
         row.thesisBestHere = std::move(result);
         row.thesisBestJob = jobs[k];
-        // A design that cannot be built as a tube has no wall to draw: the text gives its status.
-        if (row.thesisBestHere.status == sim::Status::InvalidGeometry || row.thesisBestHere.initial.Size() == 0) return;
+        // A design refused before any solve (it cannot be built as a tube, or lies outside the study's
+        // envelope) has no loaded wall to draw: the text gives its status.
+        const sim::Status status = row.thesisBestHere.status;
+        if (status == sim::Status::InvalidGeometry || status == sim::Status::OutsideEnvelope || row.thesisBestHere.initial.Size() == 0) return;
         row.thesisBestFigure = chapter.folder + "/" + id + "_thesis_best_under_" + model + ".png";
         const std::string title = fmt::format("{}: the thesis model's best shape under the {} model{}", row.thesis->experiment.id, model, FibresAdded(jobs[k]));
         WritePng((dir / row.thesisBestFigure).string(), renderer->Render(BeforeAfterScene(title, row.thesisBestHere, jobs[k])), 6);
@@ -300,11 +302,11 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optio
     md += fmt::format("Of {} designs of the isotropic studies (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium and {} "
                       "contracted", isotropic.evaluated, model, shell.load.pressureKpa, isotropic.ok, isotropic.contracting);
     if (isotropic.contracting > 0 && bestIsotropic.record)
-        md += fmt::format(", the best by {} (experiment {}).", WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row),
-                          bestIsotropic.row->physical->experiment.id);
+        md += fmt::format("; the best, in experiment {}: {}.", bestIsotropic.row->physical->experiment.id,
+                          WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row));
     else if (bestIsotropic.record)
-        md += fmt::format(": every one that reached equilibrium lengthened, the least by {} (experiment {}).",
-                          WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row), bestIsotropic.row->physical->experiment.id);
+        md += fmt::format(": every one that reached equilibrium lengthened; the best, in experiment {}: {}.", bestIsotropic.row->physical->experiment.id,
+                          WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row));
     else
         md += ".";
     if (search) {

@@ -172,3 +172,24 @@ TEST(ShapeTitle, ASineOfOnePhaseIsACylinder) {
 }
 
 }  // namespace
+
+namespace {
+
+// A time-lapse's frames share one scale: it must reach the largest stretch the result states, which
+// lies above the largest vertex mean the frames colour with.
+TEST(ShareFramingAndScale, TheSharedScaleReachesTheStatedLargestStretch) {
+    const sim::EvalJob job = SmallShellJob(sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5});
+    const sim::SimResult r = sim::Evaluate(job);
+    ASSERT_EQ(r.status, sim::Status::Ok);
+    std::vector<render::Scene> scenes{app::TurntableScene("t", r, job, 0, app::Colouring::Stretch), app::TurntableScene("t", r, job, 90, app::Colouring::Stretch)};
+    double vertexHigh = 0;
+    for (double v : render::VertexValues(render::ColorBy::Values, *scenes[0].surface, scenes[0].panels.front())) vertexHigh = std::max(vertexHigh, v);
+    ASSERT_LT(vertexHigh, r.shell.maxStretch) << "the test needs vertex means below the stated largest stretch";
+    app::ShareFramingAndScale(scenes);
+    for (const auto& scene : scenes) {
+        ASSERT_TRUE(scene.colorMax.has_value());
+        EXPECT_GE(*scene.colorMax, r.shell.maxStretch);
+    }
+}
+
+}  // namespace
