@@ -191,7 +191,9 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             if (thesis) break;  // refused earlier (ColouringError)
             const sim::ShellFields fields = sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, deformed);
             AddFibres(panel, fields, colouring == Colouring::Stretch);
-            const std::string fibreLine = "lines: the fibres, coloured by their stretch on the same scale";
+            // Said as drawn: under stress colouring the fibres are plain lines, not coloured by anything.
+            const std::string fibreLine = colouring == Colouring::Stretch ? "lines: the fibres, coloured by their stretch on the same scale"
+                                                                          : "dark lines: the fibres (their stress is not on this scale)";
             if (!fields.fibres.empty() && std::find(scene.lines.begin(), scene.lines.end(), fibreLine) == scene.lines.end())
                 scene.lines.push_back(fibreLine);  // once for a scene of many panels
             const bool stretch = colouring == Colouring::Stretch;
@@ -223,11 +225,19 @@ std::string AfterCaption(const sim::SimResult& r, const sim::EvalJob& job) {
 
 }  // namespace
 
+std::vector<std::string> ResultLines(const sim::SimResult& r, const sim::EvalJob& job) {
+    std::vector<std::string> lines{ResultLine(r, job)};
+    // "status ok" under a mesh that flew apart would vouch for a number that is no contraction.
+    if (const std::string escape = EscapeWarning(r); !escape.empty())
+        lines.push_back("! the mesh exploded (" + escape + "): its fitness is not a contraction");
+    return lines;
+}
+
 render::Scene BeforeAfterScene(const std::string& title, const sim::SimResult& r, const sim::EvalJob& job, Colouring colouring) {
     render::Scene scene;
     scene.surface = SharedSurface(job);
     scene.title = title;
-    scene.lines = {ResultLine(r, job)};
+    scene.lines = ResultLines(r, job);
     scene.panels = {{r.initial, {}, "before", 0, {}, {}}};
     if (job.model != sim::ModelKind::Thesis && job.Shell().fibres.layout != sim::FibreLayout::None)
         AddFibres(scene.panels.front(), sim::ShellFieldValues(job.Shell(), job.shape, job.model == sim::ModelKind::Shell, r.initial), false);
@@ -465,7 +475,7 @@ render::Scene TurntableScene(const std::string& title, const sim::SimResult& r, 
     render::Scene scene;
     scene.surface = SharedSurface(job);
     scene.title = title;
-    scene.lines = {ResultLine(r, job)};
+    scene.lines = ResultLines(r, job);
     scene.panels = {ColouredPanel(scene, r.final, r, job, colouring, fmt::format("turned {:.0f} degrees", angleDegrees), angleDegrees)};
     return scene;
 }

@@ -29,6 +29,9 @@ std::string JobTitle(const sim::EvalJob& job);
 // stretch against its limit and Newton iterations (membrane, shell); and the mesh size.
 std::string ResultLine(const sim::SimResult& result, const sim::EvalJob& job);
 std::string FitnessCaption(const sim::SimResult& result);  // "0.582" or the status
+// ResultLine, and a warning line when the mesh exploded (EscapeWarning): the lines under a
+// picture's title.
+std::vector<std::string> ResultLines(const sim::SimResult& result, const sim::EvalJob& job);
 
 // What colours the deformed mesh. `Auto` is displacement under the thesis model and the largest
 // principal stretch under the membrane and shell models.

@@ -193,3 +193,48 @@ TEST(ShareFramingAndScale, TheSharedScaleReachesTheStatedLargestStretch) {
 }
 
 }  // namespace
+
+namespace {
+
+// 4.3's best (A = 10, 8 cycles) flies apart under the thesis model: its picture must not say only
+// "status ok" above it.
+TEST(BeforeAfterScene, AnExplodedMeshIsWarnedOfUnderTheTitle) {
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Thesis);
+    sim::SimResult r = sim::Evaluate(job);
+    ASSERT_EQ(r.status, sim::Status::Ok);
+    auto warned = [](const render::Scene& scene) {
+        for (const std::string& line : scene.lines)
+            if (line.find("the mesh exploded") != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_FALSE(warned(app::BeforeAfterScene("t", r, job)));
+    for (int i = 0; i < r.final.Size(); ++i) r.final.z[i] += 50.0 * (i % 5);
+    EXPECT_TRUE(warned(app::BeforeAfterScene("t", r, job)));
+    EXPECT_TRUE(warned(app::TurntableScene("t", r, job, 0, app::Colouring::Auto)));
+}
+
+}  // namespace
+
+namespace {
+
+// The line under the title says how the fibres are drawn: coloured by stretch under stretch
+// colouring, plain under stress colouring (where "coloured by their stretch" described another picture).
+TEST(BeforeAfterScene, TheFibreLineDescribesTheColouringShown) {
+    sim::EvalJob job = SmallShellJob(sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5});
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
+    const sim::SimResult r = sim::Evaluate(job);
+    ASSERT_EQ(r.status, sim::Status::Ok);
+    auto has = [](const render::Scene& scene, const std::string& text) {
+        return std::any_of(scene.lines.begin(), scene.lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+    };
+    const render::Scene stretch = app::BeforeAfterScene("t", r, job, app::Colouring::Stretch);
+    const render::Scene stress = app::BeforeAfterScene("t", r, job, app::Colouring::Stress);
+    EXPECT_TRUE(has(stretch, "coloured by their stretch"));
+    EXPECT_FALSE(has(stress, "coloured by their stretch"));
+    EXPECT_TRUE(has(stress, "not on this scale"));
+    for (const render::Segment& segment : stress.panels.back().segments)
+        if (!segment.mark) EXPECT_FALSE(std::isfinite(segment.value)) << "stress colouring draws plain fibres";
+}
+
+}  // namespace
