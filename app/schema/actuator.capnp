@@ -79,7 +79,7 @@ struct ShellDef {
   thicknessMm @2 :Float64;
   ringVertices @3 :UInt32;
   rings @4 :UInt32;
-  clampRings @5 :UInt32;
+  clampRings @5 :UInt32;           # records before clampMm: rings each clamp held (clampMm = (clampRings - 1) L / (rings - 1))
   ends @6 :Text;
   preset @7 :Text;
   law @8 :Text;
@@ -118,6 +118,7 @@ struct ShellDef {
   maxRadiusMm @41 :Float64;
   maxSiliconeG @42 :Float64;
   newtonBudget @43 :UInt32;         # Newton iterations for the whole evaluation; 0: none (records before it had none)
+  clampMm @44 :Float64;             # length each end clamp holds, mm; 0 in records before it (read clampRings)
 }
 
 struct FibreBand {

@@ -187,7 +187,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setThicknessMm(g.thicknessMm);
     s.setRingVertices(Count(g.ringVertices));
     s.setRings(Count(g.rings));
-    s.setClampRings(Count(g.clampRings));
+    s.setClampMm(g.clampMm);
     s.setEnds(sim::Name(g.ends));
     const sim::MaterialDef& m = def.material;
     s.setPreset(sim::Name(m.preset));
@@ -245,7 +245,9 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     g.thicknessMm = s.getThicknessMm();
     g.ringVertices = Count(s.getRingVertices());
     g.rings = Count(s.getRings());
-    g.clampRings = Count(s.getClampRings());
+    // Records before clampMm held their clamps by ring count: the same length in millimetres.
+    if (s.getClampMm() > 0) g.clampMm = s.getClampMm();
+    else if (s.getClampRings() > 0) g.clampMm = (s.getClampRings() - 1.0) * g.lengthMm / std::max(1, RingCount(g) - 1);
     g.ends = NamedEnum<sim::EndCondition>(s.getEnds(), "end condition");
     sim::MaterialDef& m = def.material;
     m.preset = NamedEnum<sim::MaterialPreset>(s.getPreset(), "material");

@@ -60,7 +60,7 @@ void SizePart(const PartOptions& o, const sim::ShellDef& def, sim::PartDef& part
     part.radiusMm = g.radiusMm;
     part.lengthMm = g.lengthMm;
     part.thicknessMm = g.thicknessMm;
-    part.clampFraction = rings > 1 ? static_cast<double>(g.clampRings - 1) / (rings - 1) : 0;
+    part.clampFraction = g.clampMm / g.lengthMm;
     part.angularSamples = 8 * ((g.ringVertices * o.sampling + 7) / 8);
     part.axialSamples = (rings - 1) * o.sampling + 1;
 }

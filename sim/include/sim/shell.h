@@ -51,6 +51,11 @@ enum class EndCondition {
     Sliding,  // end plates the end rings slide on: free radially, held axially (closed-form checks)
 };
 
+// The clamp of the thesis-sized tube (L = 150 mm) as two clamp rings held it on the 30-ring mesh:
+// one ring spacing, 150 / 29 mm. Fixed in millimetres, so that refining the mesh refines the same
+// problem (at 59 rings the clamp holds three rings).
+inline constexpr double kThesisTubeClampMm = 150.0 / 29.0;
+
 struct GeometryDef {
     double radiusMm = 5;      // base radius R: one thesis radius unit
     double lengthMm = 150;    // between the ends, including the clamped rings
@@ -60,7 +65,9 @@ struct GeometryDef {
                               // 30, the thesis's mesh size: near-equilateral at R = 5, L = 150 is 30 x 166
                               // and 30 times slower, for a contraction within 1 % (the mesh study of
                               // the reproduce chapter)
-    int clampRings = 2;       // rings held by each end clamp
+    double clampMm = kThesisTubeClampMm;  // length each end clamp holds, mm: a property of the fixture,
+                              // not of the mesh. The mesh puts a ring at the clamp's edge and the
+                              // clamp holds every ring within it (ClampRingCount)
     EndCondition ends = EndCondition::Clamped;
 };
 
@@ -190,6 +197,14 @@ std::string ShellDefError(const ShellDef& def);
 
 // The mesh size a definition gives: rings chosen for near-equilateral triangles when rings is 0.
 int RingCount(const GeometryDef& geometry);
+// Ring spacings each clamp spans: the clamp's length in whole spacings of the uniform mesh (at
+// least one), so that a ring falls on its edge.
+int ClampIntervals(const GeometryDef& geometry);
+// Rings each clamp holds, its edge ring included: ClampIntervals + 1.
+int ClampRingCount(const GeometryDef& geometry);
+// Ring j's height, mm: clamp intervals of clampMm / ClampIntervals at each end and equal intervals
+// between (the uniform L j / (H - 1) when the clamp falls on a ring of it).
+double RingHeightMm(const GeometryDef& geometry, int ring);
 
 // The memory one evaluation needs, estimated from its mesh before anything is built: 1,750 bytes x
 // V log2 V (the sparse factor's fill under nested dissection and the solver's workspaces; fitted to

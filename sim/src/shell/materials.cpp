@@ -1,6 +1,7 @@
 // Silicone presets and the checks of a shell model's definition.
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "sim/material_fit.h"
 #include "sim/shell.h"
@@ -145,6 +146,14 @@ double StretchLimit(const MaterialDef& m) {
 
 ShellDef DefaultShellDef() { return ShellDef{}; }
 
+namespace {
+std::string Millimetres(double mm) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4g mm", mm);
+    return text;
+}
+}  // namespace
+
 std::string ShellDefError(const ShellDef& d) {
     const GeometryDef& g = d.geometry;
     auto positive = [](double v) { return std::isfinite(v) && v > 0; };
@@ -153,9 +162,14 @@ std::string ShellDefError(const ShellDef& d) {
     if (!positive(g.thicknessMm)) return "wall thickness must be a positive number of millimetres";
     if (g.thicknessMm >= g.radiusMm) return "the wall (" + std::to_string(g.thicknessMm) + " mm) must be thinner than the radius (" + std::to_string(g.radiusMm) + " mm)";
     if (g.ringVertices < 6) return "a ring needs at least 6 vertices";
-    if (g.clampRings < 1) return "each clamp holds at least one ring";
+    if (!positive(g.clampMm)) return "the clamp length must be a positive number of millimetres";
+    if (g.ends == EndCondition::Clamped && 2 * g.clampMm >= g.lengthMm)
+        return "the clamps (" + Millimetres(g.clampMm) + " each) leave no free length on a " + Millimetres(g.lengthMm) + " tube";
     const int rings = RingCount(g);
-    if (rings < 2 * g.clampRings + 2) return "the tube needs at least two free rings between its clamps (" + std::to_string(2 * g.clampRings + 2) + " rings)";
+    if (rings < 6) return "the tube needs at least 6 rings";
+    if (g.ends == EndCondition::Clamped && rings - 1 - 2 * ClampIntervals(g) < 3)
+        return "the tube needs at least two free rings between its clamps: " + std::to_string(rings) + " rings put " + std::to_string(ClampRingCount(g)) +
+               " in each " + Millimetres(g.clampMm) + " clamp";
     const MaterialDef& m = d.material;
     for (const double bound : {d.envelope.maxRadiusRatio, d.envelope.maxRadiusMm, d.envelope.maxSiliconeG})
         if (!(bound >= 0) || !std::isfinite(bound)) return "an envelope's bounds are 0 (none) or positive";

@@ -79,7 +79,7 @@ WallCells WallCellValues(const ShellDef& def, const Shape& shape, bool bending, 
     if (!error.empty() || deformed.Size() != problem.vertexCount()) return cells;
     const size_t wall = problem.wall.size(), n = wall + problem.caps.size();
     const int R = def.geometry.ringVertices, H = RingCount(def.geometry);
-    const int clamp = def.geometry.ends == EndCondition::Clamped ? def.geometry.clampRings : 0;
+    const int clamp = def.geometry.ends == EndCondition::Clamped ? ClampRingCount(def.geometry) : 0;
     auto clamped = [&](int v) { return v / R < clamp || v / R >= H - clamp; };
     for (int f = 0; f < 2; ++f) {
         cells.fibreDirection[f].assign(n, {NAN, NAN, NAN});

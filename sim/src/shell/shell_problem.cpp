@@ -117,17 +117,40 @@ double MembraneMaterialShearModulus(const MembraneMaterial& m) {
 }
 
 namespace {
+// The fewest rings a clamped tube can have: a clamp interval at each end and three free ones.
+constexpr int kMinimumRings = 6;
 // Rings for near-equilateral triangles (ring spacing sqrt(3)/2 of the edge along the ring), as a real
 // number: it may be far beyond what an int holds for a long thin tube.
 double EquilateralRings(const GeometryDef& g) {
     const double edge = 2 * std::numbers::pi * g.radiusMm / g.ringVertices;
-    return std::max<double>(2 * g.clampRings + 2, std::round(g.lengthMm / (0.5 * std::sqrt(3.0) * edge)) + 1);
+    return std::max<double>(kMinimumRings, std::round(g.lengthMm / (0.5 * std::sqrt(3.0) * edge)) + 1);
 }
 }  // namespace
 
 int RingCount(const GeometryDef& g) {
     if (g.rings > 0) return g.rings;
     return static_cast<int>(std::min(EquilateralRings(g), 1e9));
+}
+
+int ClampIntervals(const GeometryDef& g) {
+    const int H = RingCount(g);
+    if (H < 2 || !(g.lengthMm > 0) || !(g.clampMm > 0)) return 1;
+    const double spacing = g.lengthMm / (H - 1);
+    return static_cast<int>(std::clamp(std::round(g.clampMm / spacing), 1.0, double(H)));
+}
+
+int ClampRingCount(const GeometryDef& g) { return ClampIntervals(g) + 1; }
+
+double RingHeightMm(const GeometryDef& g, int j) {
+    const int H = RingCount(g), k = ClampIntervals(g), m = H - 1 - 2 * k;
+    const double uniform = g.lengthMm / (H - 1);
+    // The clamp on a ring of the uniform mesh (the default tube at 30, 59, 117 rings): the uniform
+    // heights, bit for bit.
+    if (std::fabs(g.clampMm - k * uniform) <= 1e-12 * g.lengthMm || g.ends != EndCondition::Clamped || m < 1) return g.lengthMm * j / (H - 1);
+    const double clampStep = g.clampMm / k, freeStep = (g.lengthMm - 2 * g.clampMm) / m;
+    if (j <= k) return clampStep * j;
+    if (j >= H - 1 - k) return g.lengthMm - clampStep * (H - 1 - j);
+    return g.clampMm + freeStep * (j - k);
 }
 
 double EvaluationBytesEstimate(const ShellDef& def) {
@@ -139,17 +162,19 @@ double EvaluationBytesEstimate(const ShellDef& def) {
 
 ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bending, std::string* error) {
     const GeometryDef& g = def.geometry;
-    const int R = g.ringVertices, H = RingCount(g), c = g.clampRings;
+    const int R = g.ringVertices, H = RingCount(g), c = ClampRingCount(g);
     const int ringCount = R * H;
     ShellProblem p;
     p.material = MembraneMaterialOf(def);
     p.bending = bending;
     p.rest.Resize(ringCount + 2);
-    const double clampFraction = H > 1 ? double(c - 1) / (H - 1) : 0;
+    const double clampFraction = g.clampMm / g.lengthMm;
     auto fail = [&](const std::string& why) {
         if (error) *error = why;
         return ShellProblem{};
     };
+    if (g.ends == EndCondition::Clamped && (H - 1 - 2 * ClampIntervals(g) < 1 || !(g.clampMm > 0)))
+        return fail("the clamps leave no free ring between them (ShellDefError says why)");
     const auto* freeXY = std::get_if<FreeXYShape>(&shape);
     const auto* mesh = std::get_if<MeshShape>(&shape);
     if (freeXY && (static_cast<int>(freeXY->dx.size()) != ringCount || static_cast<int>(freeXY->dy.size()) != ringCount))
@@ -159,7 +184,7 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
         return fail("the mesh has " + std::to_string(mesh->positions.Size()) + " vertices; the ring mesh needs " + std::to_string(ringCount) + " (" +
                     std::to_string(R) + " per ring x " + std::to_string(H) + " rings)");
     for (int j = 0; j < H; ++j) {
-        const double z = g.lengthMm * j / (H - 1);
+        const double z = RingHeightMm(g, j);
         for (int i = 0; i < R; ++i) {
             const int v = j * R + i;
             const double angle = 2 * std::numbers::pi * (i + 0.5 * j) / R;

@@ -126,7 +126,7 @@ TEST(Experiment, KeysWithoutEffectAreRefusedNamingWhatDecides) {
     EXPECT_THAT(Refusal(shell(R"("material": {"density_kg_per_m3": 0}, "envelope": {"max_silicone_g": 8})")), HasSubstr("max_silicone_g needs the material's density"));
     EXPECT_THAT(Refusal(R"({"model": {"name": "thesis", "envelope": {"max_radius_ratio": 2}}, "sweep": {"shape": {"family": "sine"}, "axes": [{"parameter": "amplitude", "values": [1]}]}})"),
                 HasSubstr("'model.envelope': does not apply to the thesis model"));
-    EXPECT_THAT(Refusal(shell(R"("geometry": {"ends": "sliding", "clamp_rings": 3})")), HasSubstr("'model.geometry.clamp_rings'"));
+    EXPECT_THAT(Refusal(shell(R"("geometry": {"ends": "sliding", "clamp_mm": 8})")), HasSubstr("'model.geometry.clamp_mm'"));
     EXPECT_THAT(Refusal(shell(R"("fibre_angle_deg": 40)")), HasSubstr("\"fibres\" is braid or single, not none"));
     EXPECT_THAT(Refusal(shell(R"("fibre_stiffness_n_per_mm": 5)")), HasSubstr("'model.fibre_stiffness_n_per_mm'"));
     EXPECT_THAT(Refusal(shell(R"("fibres": "hoop", "fibre_bands": [{"from": 0, "to": 1, "angle_deg": 30}])")), HasSubstr("'model.fibre_bands'"));

@@ -94,9 +94,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     EXPECT_EQ(back.model, sim::ModelKind::Membrane);
     EXPECT_EQ(back.shape, job.shape);
     const sim::ShellDef& b = back.Shell();
-    EXPECT_EQ(std::tie(b.geometry.radiusMm, b.geometry.lengthMm, b.geometry.thicknessMm, b.geometry.ringVertices, b.geometry.rings, b.geometry.clampRings,
+    EXPECT_EQ(std::tie(b.geometry.radiusMm, b.geometry.lengthMm, b.geometry.thicknessMm, b.geometry.ringVertices, b.geometry.rings, b.geometry.clampMm,
                        b.geometry.ends),
-              std::tie(d.geometry.radiusMm, d.geometry.lengthMm, d.geometry.thicknessMm, d.geometry.ringVertices, d.geometry.rings, d.geometry.clampRings,
+              std::tie(d.geometry.radiusMm, d.geometry.lengthMm, d.geometry.thicknessMm, d.geometry.ringVertices, d.geometry.rings, d.geometry.clampMm,
                        d.geometry.ends));
     EXPECT_EQ(std::tie(b.material.preset, b.material.law, b.material.muKpa, b.material.c10Kpa, b.material.c01Kpa, b.material.c20Kpa, b.material.c30Kpa,
                        b.material.tensileStrengthKpa, b.material.elongationAtBreak, b.material.stretchLimit, b.material.densityKgPerM3),
@@ -224,4 +224,22 @@ TEST(SchemaConvert, JobsAndResultsAsBytesRoundTripExactlyAndGarbageIsRefused) {
     for (const std::string& bad : {std::string(), std::string("1234567"), std::string(16, '\xff'), app::JobBytes(job).substr(0, 16)})
         EXPECT_THROW(app::JobFromBytes(bad), std::runtime_error) << bad.size() << " bytes";
     EXPECT_THROW(app::ResultFromBytes(std::string(24, '\0') + "garbage!"), std::runtime_error);
+}
+
+// Records written before clamps were in millimetres held them by ring count: they read back as the
+// same length (three clamp rings at 59 rings of a 150 mm tube: two spacings, 5.17 mm), so an old
+// archive's designs are the same problem they were.
+TEST(SchemaConvert, ARecordWithClampRingsReadsAsTheSameLengthInMillimetres) {
+    sim::ShellDef d;
+    d.geometry.rings = 59;
+    capnp::MallocMessageBuilder message;
+    auto builder = message.initRoot<app::schema::ShellDef>();
+    app::SetShellDef(builder, d);
+    builder.setClampMm(0);
+    builder.setClampRings(3);
+    const sim::ShellDef back = app::GetShellDef(builder.asReader());
+    EXPECT_NEAR(back.geometry.clampMm, 2 * 150.0 / 58, 1e-12);
+    EXPECT_EQ(sim::ClampRingCount(back.geometry), 3);
+    builder.setClampMm(7.5);  // a record with the length keeps it
+    EXPECT_EQ(app::GetShellDef(builder.asReader()).geometry.clampMm, 7.5);
 }

@@ -213,6 +213,7 @@ TEST(FibreDerivatives, AFibreReinforcedTubesEnergyMatchesCentralDifferences) {
     def.geometry.lengthMm = 12;
     def.geometry.ringVertices = 8;
     def.geometry.rings = 7;
+    def.geometry.clampMm = 2;  // one ring spacing: each clamp holds two rings
     def.fibres.layout = sim::FibreLayout::Braid;
     def.fibres.angleDeg = 35;
     def.fibres.stiffnessNPerMm = 0.5;

@@ -34,6 +34,7 @@ sim::ShellProblem SmallTube(sim::MaterialLaw law, bool bending, sim::EndConditio
     def.geometry.lengthMm = 12;
     def.geometry.ringVertices = 8;
     def.geometry.rings = 7;
+    def.geometry.clampMm = 2;  // one ring spacing: each clamp holds two rings
     def.geometry.ends = ends;
     def.material.law = law;
     def.material.muKpa = 30;
