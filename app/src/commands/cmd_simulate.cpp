@@ -8,6 +8,7 @@
 #include "options/cli.h"
 #include "commands/registry.h"
 #include "evaluation/evaluator.h"
+#include "evaluation/mesh_check.h"
 #include "formats/files.h"
 #include "formats/json_out.h"
 #include "options/model_options.h"
@@ -35,6 +36,7 @@ static int RunSimulate(int argc, char** argv, int first) {
     ModelOptions model;
     std::string from, saveMesh, saveInitial, saveVtu, savePvd;
     int index = 0;
+    bool meshCheck = false;
     AddShapeOptions(cli, shape);
     AddModelOptions(cli, model);
     cli.Group("Design from an archive");
@@ -42,6 +44,9 @@ static int RunSimulate(int argc, char** argv, int first) {
         ->type_name("ARCHIVE");
     cli.Integer("--index", index, "with --from: the evaluation id (see actuator inspect)", 0, 1ll << 40)->default_str("");
     cli.Group("Output");
+    cli.Flag("--mesh-check", meshCheck,
+             "membrane and shell: also evaluate the design meshed twice as finely in both directions (the clamps keep their length) and report "
+             "mesh_check: its contraction and how far it moved, against the rule of docs/models/shell.md section 2");
     cli.Text("--save-mesh", saveMesh, "write the final positions as OBJ (full precision; reads back with --mesh)")->type_name("FILE.obj");
     cli.Text("--save-initial", saveInitial, "write the initial (shaped) mesh as OBJ")->type_name("FILE.obj");
     cli.Text("--save-vtu", saveVtu,
@@ -62,6 +67,7 @@ static int RunSimulate(int argc, char** argv, int first) {
         "  actuator simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 \\\n"
         "                    --ring-vertices 30 --rings 30 --pressure-kpa 1.8\n"
         "  actuator simulate --model shell --shape sine --amplitude 1.3 --material dragon-skin-10 --pressure-kpa 10\n"
+        "  actuator simulate --model shell --shape sine --amplitude 1.3 --fibres braid --mesh-check\n"
         "  actuator simulate --model shell --shape sine --amplitude 1.3 --fibres braid --save-vtu inflated.vtu --save-pvd steps/\n");
     if (!cli.Parse(argc, argv, first)) return 0;
 
@@ -81,12 +87,17 @@ static int RunSimulate(int argc, char** argv, int first) {
     if (cli.Given("--save-vtu")) RefuseOutputThatIsInput(saveVtu, "--save-vtu", inputs);
     if (cli.Given("--save-mesh") && cli.Given("--save-initial") && saveMesh == saveInitial)
         throw UsageError("--save-mesh and --save-initial name the same file");
+    if (meshCheck && !sim::ModelOf(job).physical)
+        throw UsageError("--mesh-check: the thesis model's 30 x 30 helix is part of its definition; the check is for membrane and shell");
     if (cli.Given("--save-pvd")) {
         if (!sim::ModelOf(job).physical) throw UsageError("--save-pvd: the thesis model has no load steps (membrane or shell); --save-vtu writes its final mesh");
         CheckNewOrEmptyFolder(savePvd, "--save-pvd");
     }
 
-    const sim::SimResult result = MakeLocalEvaluator(1)->EvaluateAll({job}).front();
+    std::vector<sim::EvalJob> jobs{job};
+    if (meshCheck) jobs.push_back(RefinedJob(job));
+    const std::vector<sim::SimResult> results = MakeLocalEvaluator(static_cast<int>(jobs.size()))->EvaluateAll(jobs);
+    const sim::SimResult& result = results.front();
 
     const auto surface = sim::SurfaceOf(job);
     const std::string size = sim::ModelOf(job).meshText(job);
@@ -102,6 +113,19 @@ static int RunSimulate(int argc, char** argv, int first) {
     out["shape"] = ShapeJson(job.shape);
     out["model"] = ModelJson(job);
     if (cli.Given("--from")) out["from"] = Json{{"archive", from}, {"index", index}};
+    if (meshCheck) {
+        const sim::SimResult& fine = results.back();
+        const bool bothOk = result.status == sim::Status::Ok && fine.status == sim::Status::Ok;
+        const MeshChange change = bothOk ? ChangeOf(result.contractionPercent, fine.contractionPercent) : MeshChange{};
+        auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+        out["mesh_check"] = Json{{"mesh", sim::ModelOf(jobs.back()).meshText(jobs.back())},
+                                 {"status", sim::Name(fine.status)},
+                                 {"contraction_percent", number(fine.status == sim::Status::Ok ? fine.contractionPercent : NAN)},
+                                 {"difference_points", number(change.points)},
+                                 {"relative_difference_percent", number(change.relativePercent)},
+                                 {"converged", bothOk && change.within},
+                                 {"rule", kMeshRule}};
+    }
     std::cout << out.dump() << "\n";
     return 0;
 }

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <optional>
 
+#include "evaluation/mesh_check.h"
 #include "formats/archive.h"
 #include "formats/csv.h"
 #include "formats/table.h"
@@ -28,24 +29,9 @@ std::string Outcome(const sim::SimResult& r) {
     return text;
 }
 
-// How far a contraction moves when the mesh is refined, against docs/models/shell.md's 5 %: relative, except
-// that contractions under 1 % are compared in absolute terms (0.05 percentage points), where a
-// relative figure of two near-zero numbers says nothing.
-struct MeshChange {
-    double points = NAN, relative = NAN;
-    bool within = false;
-};
-MeshChange ChangeOf(double coarse, double fine) {
-    MeshChange c;
-    if (!std::isfinite(coarse) || !std::isfinite(fine)) return c;
-    c.points = std::fabs(fine - coarse);
-    c.relative = 100 * c.points / std::max(std::fabs(fine), 1e-12);
-    c.within = std::fabs(fine) < 1 ? c.points <= 0.05 : c.relative <= 5;
-    return c;
-}
 std::string ChangeText(const MeshChange& c) {
     if (!std::isfinite(c.points)) return "-";
-    return fmt::format("{:.2f} points ({:.1f} %){}", c.points, c.relative, c.within ? "" : " **");
+    return fmt::format("{:.2f} points ({:.1f} %){}", c.points, c.relativePercent, c.within ? "" : " **");
 }
 
 // What a design's wall carries: no fibres (an isotropic study, or a fibre study's design with both
@@ -68,13 +54,6 @@ std::string FibresAdded(const sim::EvalJob& job) {
         case kOneFamily: return fmt::format(", with one fibre family at {:g} deg added", def->fibres.angleDeg);
         default: return "";
     }
-}
-
-// The same design meshed twice as finely in both directions.
-sim::EvalJob Finer(sim::EvalJob job) {
-    job.Shell().geometry.ringVertices *= 2;
-    if (job.Shell().geometry.rings > 0) job.Shell().geometry.rings = 2 * job.Shell().geometry.rings - 1;  // every edge halved
-    return job;
 }
 
 struct ClassTally {
@@ -122,7 +101,7 @@ std::string WithMeshVerdict(double coarse, const ChapterRow& row) {
     if (row.fine.status != sim::Status::Ok) return text + fmt::format(" (at twice the mesh: {}; not converged)", sim::Name(row.fine.status));
     const MeshChange c = ChangeOf(coarse, row.fine.contractionPercent);
     return text + fmt::format(" (at twice the mesh {:+.2f} %, {}: {})", row.fine.contractionPercent,
-                              std::fabs(row.fine.contractionPercent) < 1 ? fmt::format("{:.2f} points apart", c.points) : fmt::format("{:.1f} % apart", c.relative),
+                              std::fabs(row.fine.contractionPercent) < 1 ? fmt::format("{:.2f} points apart", c.points) : fmt::format("{:.1f} % apart", c.relativePercent),
                               c.within ? "converged by the mesh rule" : "outside the mesh rule, so not yet converged");
 }
 
@@ -184,7 +163,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
             slots.push_back({chapter.rows.size(), false});
         }
         if (entry.outcome.bestJob) {
-            jobs.push_back(Finer(*entry.outcome.bestJob));
+            jobs.push_back(RefinedJob(*entry.outcome.bestJob));
             slots.push_back({chapter.rows.size(), true});
         }
         chapter.rows.push_back(std::move(row));
@@ -226,7 +205,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         table.AddRow({row.physical->experiment.id, row.physical->experiment.compare, std::to_string(evaluated), StatusText(row.statuses),
                        row.thesis ? CsvNumber(row.thesis->outcome.bestFitness) : "", row.thesis ? sim::Name(row.thesisBestHere.status) : "",
                        CsvNumber(row.thesisBestHere.status == sim::Status::Ok ? row.thesisBestHere.contractionPercent : NAN), CsvNumber(best),
-                       CsvNumber(fine), CsvNumber(ChangeOf(best, fine).relative)});
+                       CsvNumber(fine), CsvNumber(ChangeOf(best, fine).relativePercent)});
     }
     WriteFileAtomically((dir / chapter.folder / "comparison.csv").string(), table.Csv());
     chapter.bestCurves = BestFibreCurves(chapter, dir);
@@ -321,8 +300,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optio
         md += " Part 1's results (the thesis model's runs) are not in this folder, so its best designs were not re-evaluated here: "
               "run `actuator reproduce` with `--part both` (the default) for that comparison.";
     if (meshChecked > 0)
-        md += fmt::format(" Mesh convergence (docs/models/shell.md section 2: within 5 % of the same design meshed twice as finely in both directions; "
-                          "under 1 % contraction, within 0.05 percentage points): {} of {} best designs pass{}.",
+        md += fmt::format(" Mesh convergence (docs/models/shell.md section 2: {}): {} of {} best designs pass{}.", kMeshRule,
                           meshWithin, meshChecked, meshWithin == meshChecked ? "" : "; the others (marked **) need a finer mesh than the default to be trusted");
     int fibreEvaluated = 0;
     for (const ClassTally& c : fibreStudy) fibreEvaluated += c.evaluated;

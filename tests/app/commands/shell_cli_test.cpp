@@ -23,7 +23,7 @@ const std::string kSmall = " --ring-vertices 16 --rings 20 --steps 2";
 // The example: a plain tube at P = p R / (mu h) = 0.6 lengthens by about 3 %.
 TEST_F(ShellCli, APlainTubeLengthensAndTheJsonCarriesEveryOutputInUnits) {
     const Result r = Run("simulate --model membrane --shape cylinder --radius-mm 10 --length-mm 60 --thickness-mm 1 --mu-kpa 30 "
-                         "--ring-vertices 30 --rings 30 --pressure-kpa 1.8");
+                         "--ring-vertices 30 --rings 30 --pressure-kpa 1.8 --clamp-mm 2.0689655");  // the clamp of 2 of 30 rings on 60 mm, as measured
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     EXPECT_EQ(json["status"], "ok");
@@ -424,4 +424,25 @@ TEST_F(ShellCli, ABendingActuatorsTipTiltsWhenFreeAndFeelsAMomentWhenHeld) {
     ExpectRefused("simulate --model membrane --ends sliding --tip free" + kSmall, "--tip applies to --ends clamped, not --ends sliding");
     ExpectRefused("simulate --model thesis --tip free", "--tip");
     ExpectRefused("simulate --model membrane --tip bent" + kSmall, "held or free");
+}
+
+// --mesh-check: the same design meshed twice as finely (every edge halved, the clamps the same length
+// in millimetres), its contraction and how far it moved; the thesis model, whose mesh is its
+// definition, is refused.
+TEST_F(ShellCli, MeshCheckReportsTheSameDesignAtTwiceTheMeshAgainstTheRule) {
+    const std::string design = "simulate --model shell --shape sine --amplitude 1.3 --steps 2 --pressure-kpa 1";
+    const Result checked = Run(design + " --ring-vertices 12 --rings 16 --mesh-check");
+    ASSERT_EQ(checked.exitCode, 0) << checked.err;
+    const auto json = nlohmann::json::parse(checked.out);
+    ASSERT_TRUE(json.contains("mesh_check"));
+    const auto& check = json["mesh_check"];
+    EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x 31 rings"));
+    const auto fine = nlohmann::json::parse(Run(design + " --ring-vertices 24 --rings 31").out);
+    EXPECT_EQ(check["contraction_percent"], fine["contraction_percent"]) << "the refined design is the plain run at that mesh";
+    const double coarse = json["contraction_percent"].get<double>(), finer = fine["contraction_percent"].get<double>();
+    EXPECT_NEAR(check["difference_points"].get<double>(), std::fabs(finer - coarse), 1e-12);
+    EXPECT_NEAR(check["relative_difference_percent"].get<double>(), 100 * std::fabs(finer - coarse) / std::fabs(finer), 1e-9);
+    EXPECT_EQ(check["converged"].get<bool>(), std::fabs(finer) < 1 ? std::fabs(finer - coarse) <= 0.05 : 100 * std::fabs(finer - coarse) / std::fabs(finer) <= 5);
+    EXPECT_FALSE(nlohmann::json::parse(Run(design + " --ring-vertices 12 --rings 16").out).contains("mesh_check")) << "only when asked";
+    ExpectRefused("simulate --model thesis --mesh-check", "--mesh-check");
 }

@@ -1,0 +1,27 @@
+// A physical-model result's mesh error estimate (docs/models/shell.md section 2): the same design,
+// the same clamps in millimetres, meshed twice as finely in both directions, and how far its
+// contraction moves. `simulate --mesh-check` reports it; reproduce's mesh-convergence study is made of it.
+#pragma once
+
+#include <string>
+
+#include "sim/batch.h"
+
+namespace app {
+
+// The design meshed with every edge halved: twice the ring vertices, 2 H - 1 rings (0, near-
+// equilateral, stays 0 and halves with the ring). The clamps keep their length.
+sim::EvalJob RefinedJob(sim::EvalJob job);
+
+// How far a contraction moves under refinement, against the 5 % rule: relative, except that
+// contractions under 1 % are compared in absolute terms (0.05 percentage points), where a relative
+// figure of two near-zero numbers says nothing.
+struct MeshChange {
+    double points = NAN, relativePercent = NAN;
+    bool within = false;
+};
+MeshChange ChangeOf(double coarse, double fine);
+inline constexpr const char* kMeshRule =
+    "within 5 % of the same design meshed twice as finely in both directions; under 1 % contraction, within 0.05 percentage points";
+
+}  // namespace app
