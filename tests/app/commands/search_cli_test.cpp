@@ -671,6 +671,15 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
         EXPECT_THAT(section, Not(HasSubstr("_thesis_best_under_"))) << section;
     }
     EXPECT_GT(unbuildable, 0u) << "the quick run's 4.2 and 4.3 bests pass through zero radius";
+    // A thesis shape under a fibre study carries the study's braid: not "the same design".
+    EXPECT_THAT(report, Not(HasSubstr("the same design under")));
+    EXPECT_THAT(report, HasSubstr("### S5.4F beside 5.4"));
+    const size_t fibreSection = report.find("### S5.4F beside 5.4");
+    EXPECT_THAT(report.substr(fibreSection, report.find("\n### ", fibreSection + 1) - fibreSection), HasSubstr("with a braid at +/-30 deg added"));
+    // Part 2's finding is computed: part 3's shell searches are cited with their numbers, and the fibre
+    // studies' designs are counted by class.
+    EXPECT_THAT(report, HasSubstr("Part 3's searches aimed at contraction alone under the same model ("));
+    EXPECT_THAT(report, HasSubstr("counted by what their wall carries"));
     // Every table and figure of chapters 4-6 has a row and a verdict, and no reason contradicts the
     // run's own numbers.
     EXPECT_THAT(testing_support::ThesisReportProblems(report), ::testing::IsEmpty());
