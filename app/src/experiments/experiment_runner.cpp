@@ -2,6 +2,8 @@
 #include "formats/json_out.h"
 #include "experiments/experiment_runner.h"
 
+#include "evaluation/mesh_check.h"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -45,17 +47,42 @@ std::string SummaryJson(const Experiment& e, const ExperimentOutcome& o) {
         rows.push_back(Json{{"quantity", row.quantity},
                             {"ours", std::isfinite(row.ours) ? Json(row.ours) : Json(nullptr)},
                             {"thesis", std::isfinite(row.thesis) ? Json(row.thesis) : Json(nullptr)}});
-    return Json{{"experiment", ExperimentTitle(e)},
-                {"results", rows},
-                {"details", o.details},
-                {"figures", o.figures},
-                {"simulations", o.simulations},
-                {"seconds", o.seconds},
-                {"evaluations_per_second", o.seconds > 0 ? o.simulations / o.seconds : 0.0}}
-        .dump();
+    Json summary{{"experiment", ExperimentTitle(e)},
+                 {"results", rows},
+                 {"details", o.details},
+                 {"figures", o.figures},
+                 {"simulations", o.simulations},
+                 {"seconds", o.seconds},
+                 {"evaluations_per_second", o.seconds > 0 ? o.simulations / o.seconds : 0.0}};
+    if (!o.meshCheckJson.empty()) summary["mesh_check"] = Json::parse(o.meshCheckJson);
+    return summary.dump();
 }
 
 }  // namespace
+
+// The best design again at twice the mesh (clamps the same length): its contraction, how far it
+// moved and the rule's verdict, in summary.json and a line of the report.
+static void CheckBestMesh(RunContext& c) {
+    const sim::EvalJob fine = RefinedJob(*c.outcome.bestJob);
+    const sim::SimResult r = c.recorder.EvaluateOne(fine, {Role::Figure, 0, -1, "mesh check of the best design"});
+    const bool ok = r.status == sim::Status::Ok && std::isfinite(c.outcome.bestFitness);
+    const MeshChange change = ok ? ChangeOf(c.outcome.bestFitness, r.contractionPercent) : MeshChange{};
+    auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    c.outcome.meshCheckJson = Json{{"mesh", sim::ModelOf(fine).meshText(fine)},
+                                   {"status", sim::Name(r.status)},
+                                   {"best_contraction_percent", number(c.outcome.bestFitness)},
+                                   {"contraction_percent", number(ok ? r.contractionPercent : NAN)},
+                                   {"difference_points", number(change.points)},
+                                   {"relative_difference_percent", number(change.relativePercent)},
+                                   {"converged", ok && change.within},
+                                   {"rule", kMeshRule}}
+                                  .dump();
+    c.outcome.details.push_back(
+        ok ? fmt::format("mesh check of the best design: {:+.3f} % here, {:+.3f} % at twice the mesh ({}), {:.3f} points ({:.1f} %) apart: {}",
+                         c.outcome.bestFitness, r.contractionPercent, sim::ModelOf(fine).meshText(fine), change.points, change.relativePercent,
+                         change.within ? "converged by the mesh rule" : "outside the mesh rule, so not yet converged")
+           : fmt::format("mesh check of the best design: at twice the mesh it is {}", sim::Name(r.status)));
+}
 
 std::string SheetName(int generation) { return fmt::format("sheets/generation_{:03}.png", generation); }
 
@@ -74,6 +101,7 @@ ExperimentOutcome RunExperiment(const Experiment& e, const fs::path& out, const 
         case ExperimentKind::Evolve:
         case ExperimentKind::Optimize: RunSearch(context); break;
     }
+    if (options.meshCheck && outcome.bestJob && sim::ModelOf(*outcome.bestJob).physical) CheckBestMesh(context);
     outcome.simulations = recorder.Simulated();
     outcome.evaluations = static_cast<long long>(recorder.Count());
     outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -39,6 +39,7 @@ struct ExperimentOutcome {
     std::optional<sim::EvalJob> bestJob;  // the best design found (sweeps and GA runs), with its fitness
     double bestFitness = NAN;
     std::vector<std::string> details;   // lines such as the best genome of each run
+    std::string meshCheckJson;          // with RunOptions::meshCheck: the best design at twice the mesh, as JSON
     std::string tables;                 // markdown tables beside the rows (the thesis's designs against ours)
     std::string summaryJson;            // what the command prints
 };
@@ -48,6 +49,7 @@ struct RunOptions {
     bool resume = false;                 // continue from the folder's archive and checkpoints
     bool progress = true;                // progress lines on stderr
     ResultsFolder* folder = nullptr;     // told of the first complete result (--overwrite)
+    bool meshCheck = false;              // physical models: the best design again at twice the mesh (mesh_check.h)
 };
 
 // Throws UsageError on bad input (an edited experiment on resume, an unwritable folder, no GL).

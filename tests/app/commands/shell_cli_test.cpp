@@ -446,3 +446,26 @@ TEST_F(ShellCli, MeshCheckReportsTheSameDesignAtTwiceTheMeshAgainstTheRule) {
     EXPECT_FALSE(nlohmann::json::parse(Run(design + " --ring-vertices 12 --rings 16").out).contains("mesh_check")) << "only when asked";
     ExpectRefused("simulate --model thesis --mesh-check", "--mesh-check");
 }
+
+// sweep --mesh-check: the best design again at twice the mesh, in summary.json and the report, equal
+// to simulating that design at that mesh; a thesis-model experiment is refused.
+TEST_F(ShellCli, ASweepsMeshCheckIsItsBestDesignAtTwiceTheMesh) {
+    Write("checked.json", R"({"id": "c", "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2},
+        "fibres": "braid"}, "sweep": {"shape": {"family": "sine", "amplitude": 1, "phase": ["pi/2", "pi/2"]},
+        "axes": [{"parameter": "fibre_angle_deg", "values": [25, 40]}]}, "render": {"thumbnails": false, "figures": false}})");
+    const Result r = Run("sweep " + Path("checked.json") + " --out " + Path("checked") + " --mesh-check");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto summary = nlohmann::json::parse(r.out);
+    ASSERT_TRUE(summary.contains("mesh_check")) << r.out;
+    const auto& check = summary["mesh_check"];
+    double bestAngle = NAN;
+    for (const auto& row : summary["results"])
+        if (row["quantity"] == "best fibre_angle_deg") bestAngle = row["ours"].get<double>();
+    ASSERT_TRUE(std::isfinite(bestAngle));
+    const auto fine = nlohmann::json::parse(Run("simulate --model shell --shape sine --amplitude 1 --phase pi/2,pi/2 --fibres braid --steps 2 "
+                                                "--ring-vertices 24 --rings 31 --fibre-angle-deg " + std::to_string(bestAngle)).out);
+    EXPECT_EQ(check["contraction_percent"], fine["contraction_percent"]);
+    EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x 31 rings"));
+    EXPECT_THAT(Slurp(dir_ / "checked" / "report.md"), HasSubstr("mesh check of the best design: "));
+    ExpectRefused("sweep 4.1_amplitude_sweep --out " + Path("thesis") + " --mesh-check", "--mesh-check");
+}
