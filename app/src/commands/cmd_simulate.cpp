@@ -113,19 +113,7 @@ static int RunSimulate(int argc, char** argv, int first) {
     out["shape"] = ShapeJson(job.shape);
     out["model"] = ModelJson(job);
     if (cli.Given("--from")) out["from"] = Json{{"archive", from}, {"index", index}};
-    if (meshCheck) {
-        const sim::SimResult& fine = results.back();
-        const bool bothOk = result.status == sim::Status::Ok && fine.status == sim::Status::Ok;
-        const MeshChange change = bothOk ? ChangeOf(result.contractionPercent, fine.contractionPercent) : MeshChange{};
-        auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-        out["mesh_check"] = Json{{"mesh", sim::ModelOf(jobs.back()).meshText(jobs.back())},
-                                 {"status", sim::Name(fine.status)},
-                                 {"contraction_percent", number(fine.status == sim::Status::Ok ? fine.contractionPercent : NAN)},
-                                 {"difference_points", number(change.points)},
-                                 {"relative_difference_percent", number(change.relativePercent)},
-                                 {"converged", bothOk && change.within},
-                                 {"rule", kMeshRule}};
-    }
+    if (meshCheck) out["mesh_check"] = MeshCheckJson(result.status == sim::Status::Ok ? result.contractionPercent : NAN, jobs.back(), results.back());
     std::cout << out.dump() << "\n";
     return 0;
 }

@@ -12,6 +12,19 @@ sim::EvalJob RefinedJob(sim::EvalJob job) {
     return job;
 }
 
+nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine) {
+    const bool ok = fine.status == sim::Status::Ok && std::isfinite(coarseContraction);
+    const MeshChange change = ok ? ChangeOf(coarseContraction, fine.contractionPercent) : MeshChange{};
+    auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    return {{"mesh", sim::ModelOf(refined).meshText(refined)},
+            {"status", sim::Name(fine.status)},
+            {"contraction_percent", number(fine.status == sim::Status::Ok ? fine.contractionPercent : NAN)},
+            {"difference_points", number(change.points)},
+            {"relative_difference_percent", number(change.relativePercent)},
+            {"converged", ok && change.within},
+            {"rule", kMeshRule}};
+}
+
 MeshChange ChangeOf(double coarse, double fine) {
     MeshChange c;
     if (!std::isfinite(coarse) || !std::isfinite(fine)) return c;

@@ -3,6 +3,7 @@
 // contraction moves. `simulate --mesh-check` reports it; reproduce's mesh-convergence study is made of it.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "sim/batch.h"
@@ -23,5 +24,9 @@ struct MeshChange {
 MeshChange ChangeOf(double coarse, double fine);
 inline constexpr const char* kMeshRule =
     "within 5 % of the same design meshed twice as finely in both directions; under 1 % contraction, within 0.05 percentage points";
+
+// The check as simulate and the searches report it ("mesh_check"): the refined mesh, its status and
+// contraction, the difference from `coarseContraction` in points and percent, the verdict and the rule.
+nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine);
 
 }  // namespace app

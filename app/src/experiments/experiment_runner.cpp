@@ -67,16 +67,9 @@ static void CheckBestMesh(RunContext& c) {
     const sim::SimResult r = c.recorder.EvaluateOne(fine, {Role::Figure, 0, -1, "mesh check of the best design"});
     const bool ok = r.status == sim::Status::Ok && std::isfinite(c.outcome.bestFitness);
     const MeshChange change = ok ? ChangeOf(c.outcome.bestFitness, r.contractionPercent) : MeshChange{};
-    auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-    c.outcome.meshCheckJson = Json{{"mesh", sim::ModelOf(fine).meshText(fine)},
-                                   {"status", sim::Name(r.status)},
-                                   {"best_contraction_percent", number(c.outcome.bestFitness)},
-                                   {"contraction_percent", number(ok ? r.contractionPercent : NAN)},
-                                   {"difference_points", number(change.points)},
-                                   {"relative_difference_percent", number(change.relativePercent)},
-                                   {"converged", ok && change.within},
-                                   {"rule", kMeshRule}}
-                                  .dump();
+    Json check = MeshCheckJson(c.outcome.bestFitness, fine, r);
+    check["best_contraction_percent"] = std::isfinite(c.outcome.bestFitness) ? Json(c.outcome.bestFitness) : Json(nullptr);
+    c.outcome.meshCheckJson = check.dump();
     c.outcome.details.push_back(
         ok ? fmt::format("mesh check of the best design: {:+.3f} % here, {:+.3f} % at twice the mesh ({}), {:.3f} points ({:.1f} %) apart: {}",
                          c.outcome.bestFitness, r.contractionPercent, sim::ModelOf(fine).meshText(fine), change.points, change.relativePercent,
