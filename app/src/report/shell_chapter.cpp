@@ -39,8 +39,7 @@ std::string ChangeText(const MeshChange& c) {
 enum FibreClass { kNoFibres, kOneFamily, kBraid, kFibreClasses };
 FibreClass ClassOf(const sim::EvalJob& job) {
     const auto* def = std::get_if<sim::ShellDef>(&job.def);
-    if (!def || def->fibres.layout == sim::FibreLayout::None) return kNoFibres;
-    const int on = def->fibres.layout == sim::FibreLayout::Braid ? def->fibres.plus + def->fibres.minus : def->fibres.plus;
+    const int on = def ? sim::FamiliesOn(def->fibres) : 0;
     return on == 2 ? kBraid : on == 1 ? kOneFamily : kNoFibres;
 }
 const char* const kClassNames[kFibreClasses] = {"without fibres", "with one fibre family", "with a braid"};

@@ -147,6 +147,10 @@ struct FibreDef {
     bool plus = true, minus = true;       // which families are on (+alpha, and a braid's -alpha): GA genes
 };
 
+// Fibre families the wall carries: a braid's switched-on families (0-2), a single family when on,
+// meridian and hoop fibres always one, none without fibres. The one rule the model and its reports use.
+int FamiliesOn(const FibreDef& fibres);
+
 // The angle to the meridian (degrees) of the +alpha family at a rest point: by band of its height
 // (a fraction of the length), by sector of its angle (radians from +x), or the def's one angle.
 double FibreAngleDegAt(const FibreDef& fibres, double heightFraction, double angle);

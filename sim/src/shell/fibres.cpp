@@ -8,6 +8,18 @@
 #include "shell/shell_problem.h"
 
 namespace sim {
+
+int FamiliesOn(const FibreDef& f) {
+    switch (f.layout) {
+        case FibreLayout::None: return 0;
+        case FibreLayout::Braid: return int(f.plus) + int(f.minus);
+        case FibreLayout::Single: return int(f.plus);
+        case FibreLayout::Meridian:
+        case FibreLayout::Hoop: return 1;
+    }
+    return 0;
+}
+
 namespace {
 
 Eigen::Vector3d At(const Positions& p, int v) { return {p.x[v], p.y[v], p.z[v]}; }
@@ -100,7 +112,7 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
             case FibreLayout::Hoop: angle = 90; break;
             default: angle = FibreAngleDegAt(f, centroid.z() / lengthMm, std::atan2(centroid.y(), centroid.x()));
         }
-        std::vector<double> angles;
+        std::vector<double> angles;  // FamiliesOn's rule
         if (f.layout == FibreLayout::Braid) {
             if (f.plus) angles.push_back(angle);
             if (f.minus) angles.push_back(-angle);
