@@ -49,7 +49,7 @@ std::string FibreTitle(const sim::FibreDef& f) {
     if (f.layout == sim::FibreLayout::Meridian || f.layout == sim::FibreLayout::Hoop) return std::string(sim::Name(f.layout)) + " fibres";
     const bool braid = f.layout == sim::FibreLayout::Braid && f.plus && f.minus;
     std::string title = braid ? "braid" : "one fibre family";
-    if (!f.plus && !f.minus) return "fibres switched off";
+    if (sim::FamiliesOn(f) == 0) return "fibres switched off";  // a single family's minus switch carries nothing
     const char* sign = braid ? "+/-" : (f.layout == sim::FibreLayout::Braid && !f.plus) ? "-" : "+";
     std::vector<double> angles;
     for (const auto& band : f.bands) angles.push_back(band.angleDeg);

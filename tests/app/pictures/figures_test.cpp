@@ -238,3 +238,22 @@ TEST(BeforeAfterScene, TheFibreLineDescribesTheColouringShown) {
 }
 
 }  // namespace
+
+namespace {
+
+// A title names the families the model carries (sim::FamiliesOn): a single family switched off is none.
+TEST(FibreTitle, NamesTheFamiliesTheModelCarries) {
+    sim::FibreDef f;
+    f.layout = sim::FibreLayout::Single;
+    f.plus = false;
+    EXPECT_EQ(app::FibreTitle(f), "fibres switched off");
+    f.plus = true;
+    EXPECT_EQ(app::FibreTitle(f), "one fibre family +30 deg");
+    f.layout = sim::FibreLayout::Braid;
+    f.minus = false;
+    EXPECT_EQ(app::FibreTitle(f), "one fibre family +30 deg");
+    f.plus = false;
+    EXPECT_EQ(app::FibreTitle(f), "fibres switched off");
+}
+
+}  // namespace
