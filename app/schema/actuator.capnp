@@ -119,6 +119,7 @@ struct ShellDef {
   maxSiliconeG @42 :Float64;
   newtonBudget @43 :UInt32;         # Newton iterations for the whole evaluation; 0: none (records before it had none)
   clampMm @44 :Float64;             # length each end clamp holds, mm; 0 in records before it (read clampRings)
+  edgeSpacingMm @45 :Float64;       # graded rings' spacing at each clamp's edge, mm; 0: evenly spaced (every record before it)
 }
 
 struct FibreBand {

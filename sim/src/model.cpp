@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace sim {
 namespace {
@@ -127,8 +128,11 @@ std::string ThesisMeshText(const EvalJob& job) {
 }
 std::string ShellMeshText(const EvalJob& job) {
     const MeshDef rings = ShellDesignMesh(job);
-    return std::to_string(rings.resolution) + " vertices per ring x " + std::to_string(rings.turns) +
-           " rings and two cap centres, millimetres";
+    const GeometryDef& g = job.Shell().geometry;
+    char graded[96] = "";
+    if (RingsGraded(g)) std::snprintf(graded, sizeof graded, " (%.3g mm apart at the clamps' edges)", g.edgeSpacingMm);
+    return std::to_string(rings.resolution) + " vertices per ring x " + std::to_string(rings.turns) + " rings" + graded +
+           " and two cap centres, millimetres";
 }
 const char* ThesisLoadName(const EvalJob& job) { return Name(job.Thesis().params.load); }
 const char* ShellLoadName(const EvalJob& job) { return Name(job.Shell().load.kind); }

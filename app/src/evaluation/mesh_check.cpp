@@ -9,6 +9,7 @@ sim::EvalJob RefinedJob(sim::EvalJob job) {
     sim::GeometryDef& g = job.Shell().geometry;
     g.ringVertices *= 2;
     if (g.rings > 0) g.rings = 2 * g.rings - 1;  // every edge halved
+    g.edgeSpacingMm /= 2;                        // a graded mesh's at the clamps too
     return job;
 }
 

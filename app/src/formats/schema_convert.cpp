@@ -188,6 +188,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setRingVertices(Count(g.ringVertices));
     s.setRings(Count(g.rings));
     s.setClampMm(g.clampMm);
+    s.setEdgeSpacingMm(g.edgeSpacingMm);
     s.setEnds(sim::Name(g.ends));
     const sim::MaterialDef& m = def.material;
     s.setPreset(sim::Name(m.preset));
@@ -245,6 +246,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     g.thicknessMm = s.getThicknessMm();
     g.ringVertices = Count(s.getRingVertices());
     g.rings = Count(s.getRings());
+    g.edgeSpacingMm = s.getEdgeSpacingMm();  // 0, evenly spaced rings, in every record before it
     // Records before clampMm held their clamps by ring count: the same length in millimetres.
     if (s.getClampMm() > 0) g.clampMm = s.getClampMm();
     else if (s.getClampRings() > 0) g.clampMm = (s.getClampRings() - 1.0) * g.lengthMm / std::max(1, RingCount(g) - 1);

@@ -183,6 +183,7 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Shell
             for (const auto& key : GivenKeys(cli, o.shell.fibres)) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
         cli.RefuseIfGiven("--load", nothing);
         cli.RefuseIfGiven("--ends", nothing);
+        cli.RefuseIfGiven("--edge-spacing-mm", "does not apply here: the part samples the shape evenly (the rings' grading toward the clamps is the simulation's)");
         for (const auto& key : GivenKeys(cli, o.materialFields))
             if (key != "density_kg_per_m3") cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (of the material, the part uses its density)");
     }

@@ -56,7 +56,11 @@ void SizePart(const PartOptions& o, const sim::ThesisDef& def, sim::PartDef& par
 }
 void SizePart(const PartOptions& o, const sim::ShellDef& def, sim::PartDef& part) {
     const sim::GeometryDef& g = def.geometry;
-    const int rings = sim::RingCount(g);
+    // The part samples the shape evenly, as many rows as evenly spaced rings: the model's grading
+    // toward the clamps is for the wall's bending there, not for the shape.
+    sim::GeometryDef evenly = g;
+    evenly.edgeSpacingMm = 0;
+    const int rings = sim::RingCount(evenly);
     part.radiusMm = g.radiusMm;
     part.lengthMm = g.lengthMm;
     part.thicknessMm = g.thicknessMm;

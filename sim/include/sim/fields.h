@@ -57,6 +57,7 @@ void VisitFields(Def& g, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Integer("ring_vertices", g.ringVertices, "vertices per ring", 6, 4096);
     v.Integer("rings", g.rings, "rings along the length (0: near-equilateral triangles)", 0, 100000);
     v.Number("clamp_mm", g.clampMm, "length each end clamp holds, mm (the mesh puts a ring at its edge; default one ring spacing of the 30-ring thesis tube)", 1e-3, 1e5);
+    v.Number("edge_spacing_mm", g.edgeSpacingMm, "ring spacing at each clamp's edge, mm, growing by a quarter a ring up to the middle's: rings added where the wall bends hardest (0: evenly spaced rings)", 0, 1e5);
     v.Enum("ends", g.ends, "rigid clamps, or end plates the end rings slide on (closed-form checks)");
 }
 
@@ -217,7 +218,7 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     if (key == "c01_kpa") return unless(law == M::MooneyRivlin, "law", "mooney-rivlin", sim::Name(law));
     if (key == "c20_kpa" || key == "c30_kpa") return unless(law == M::Yeoh, "law", "yeoh", sim::Name(law));
     // Sliding ends hold the end rings alone; the clamp's rings are a clamp's.
-    if (key == "clamp_mm") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
+    if (key == "clamp_mm" || key == "edge_spacing_mm") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
     if (key == "fibre_stiffness_n_per_mm") return unless(fibres != sim::FibreLayout::None, "fibres", "meridian, hoop, braid or single", sim::Name(fibres));
     // Angles by band or sector replace a braid's or a single family's one angle.
     if (key == "fibre_bands" || key == "fibre_sectors_deg")

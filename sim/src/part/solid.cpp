@@ -135,8 +135,11 @@ RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error) {
     const int r = g.ringVertices, rings = RingCount(g);
     std::vector<double> rho(static_cast<size_t>(r) * rings);
     for (int v = 0; v < r * rings; ++v) rho[v] = std::hypot(problem.rest.x[v], problem.rest.y[v]) / g.radiusMm;
-    // Ring j's vertex i lies at angle 2 pi (i + j/2) / R, ring j at height fraction j / (rings - 1).
-    return [rho, r, rings, pi](double t, double angle) {
+    // Ring j's vertex i lies at angle 2 pi (i + j/2) / R, ring j at height fraction heights[j] (graded
+    // meshes space them unevenly).
+    std::vector<double> heights = RingHeightsMm(g);
+    for (double& z : heights) z /= g.lengthMm;
+    return [rho, r, rings, pi, heights](double t, double angle) {
         auto ring = [&](int j) {
             double u = angle * r / (2 * pi) - 0.5 * j;
             u -= r * std::floor(u / r);
@@ -144,9 +147,10 @@ RadiusField MeasuredRadiusField(const EvalJob& job, std::string* error) {
             const double f = u - std::floor(u);
             return rho[static_cast<size_t>(j) * r + i] + f * (rho[static_cast<size_t>(j) * r + (i + 1) % r] - rho[static_cast<size_t>(j) * r + i]);
         };
-        const double x = std::clamp(t, 0.0, 1.0) * (rings - 1);
-        const int j = std::min(static_cast<int>(x), rings - 2);
-        return ring(j) + (x - j) * (ring(j + 1) - ring(j));
+        const double s = std::clamp(t, 0.0, 1.0);
+        const int j = std::clamp(static_cast<int>(std::upper_bound(heights.begin(), heights.end(), s) - heights.begin()) - 1, 0, rings - 2);
+        const double f = std::clamp((s - heights[j]) / (heights[j + 1] - heights[j]), 0.0, 1.0);
+        return ring(j) + f * (ring(j + 1) - ring(j));
     };
 }
 

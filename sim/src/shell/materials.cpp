@@ -165,6 +165,7 @@ std::string ShellDefError(const ShellDef& d) {
     if (!positive(g.clampMm)) return "the clamp length must be a positive number of millimetres";
     if (g.ends == EndCondition::Clamped && 2 * g.clampMm >= g.lengthMm)
         return "the clamps (" + Millimetres(g.clampMm) + " each) leave no free length on a " + Millimetres(g.lengthMm) + " tube";
+    if (!(g.edgeSpacingMm >= 0) || !std::isfinite(g.edgeSpacingMm)) return "the clamps' edge spacing is 0 (evenly spaced rings) or a positive number of millimetres";
     const int rings = RingCount(g);
     if (rings < 6) return "the tube needs at least 6 rings";
     if (g.ends == EndCondition::Clamped && rings - 1 - 2 * ClampIntervals(g) < 3)

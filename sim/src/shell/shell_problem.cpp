@@ -125,37 +125,86 @@ double EquilateralRings(const GeometryDef& g) {
     const double edge = 2 * std::numbers::pi * g.radiusMm / g.ringVertices;
     return std::max<double>(kMinimumRings, std::round(g.lengthMm / (0.5 * std::sqrt(3.0) * edge)) + 1);
 }
+
+// Where the rings go, counted without placing them (a long thin tube may have more than memory holds).
+struct RingPlan {
+    double count = 0;          // rings in all, a real number until checked (RingCount caps it)
+    int clampIntervals = 1;    // in each clamp
+    int sideIntervals = 0;     // graded: intervals growing from each clamp's edge toward the middle
+    double sideMm = 0;         // graded: their length
+    double middleIntervals = 0;  // graded: equal intervals between the two graded sides
+};
+
+RingPlan PlanOf(const GeometryDef& g) {
+    RingPlan plan;
+    const double evenRings = g.rings > 0 ? g.rings : EquilateralRings(g);
+    plan.count = evenRings;
+    if (evenRings < 2 || !(g.lengthMm > 0) || !(g.clampMm > 0)) return plan;
+    const double evenSpacing = g.lengthMm / (evenRings - 1);
+    const double freeMm = g.lengthMm - 2 * g.clampMm;
+    const bool graded = g.edgeSpacingMm > 0 && g.edgeSpacingMm < evenSpacing && g.ends == EndCondition::Clamped && freeMm > 0;
+    if (!graded) {
+        plan.clampIntervals = static_cast<int>(std::clamp(std::round(g.clampMm / evenSpacing), 1.0, evenRings));
+        return plan;
+    }
+    // Spacings edge q^d up to the even spacing, as many as the free length has room for on both sides
+    // with at least one even interval between.
+    for (double spacing = g.edgeSpacingMm; spacing < evenSpacing && 2 * (plan.sideMm + spacing) < freeMm; spacing *= kRingGrowth) {
+        plan.sideMm += spacing;
+        ++plan.sideIntervals;
+    }
+    plan.middleIntervals = std::max(1.0, std::round((freeMm - 2 * plan.sideMm) / evenSpacing));
+    plan.clampIntervals = g.clampMm >= 2 * g.edgeSpacingMm ? 2 : 1;
+    plan.count = 1 + 2 * plan.clampIntervals + 2 * plan.sideIntervals + plan.middleIntervals;
+    return plan;
+}
 }  // namespace
 
-int RingCount(const GeometryDef& g) {
-    if (g.rings > 0) return g.rings;
-    return static_cast<int>(std::min(EquilateralRings(g), 1e9));
-}
+int RingCount(const GeometryDef& g) { return static_cast<int>(std::min(PlanOf(g).count, 1e9)); }
 
-int ClampIntervals(const GeometryDef& g) {
-    const int H = RingCount(g);
-    if (H < 2 || !(g.lengthMm > 0) || !(g.clampMm > 0)) return 1;
-    const double spacing = g.lengthMm / (H - 1);
-    return static_cast<int>(std::clamp(std::round(g.clampMm / spacing), 1.0, double(H)));
-}
+bool RingsGraded(const GeometryDef& g) { return PlanOf(g).sideIntervals > 0; }
+
+int ClampIntervals(const GeometryDef& g) { return PlanOf(g).clampIntervals; }
 
 int ClampRingCount(const GeometryDef& g) { return ClampIntervals(g) + 1; }
 
-double RingHeightMm(const GeometryDef& g, int j) {
-    const int H = RingCount(g), k = ClampIntervals(g), m = H - 1 - 2 * k;
+std::vector<double> RingHeightsMm(const GeometryDef& g) {
+    const RingPlan plan = PlanOf(g);
+    const int H = RingCount(g), k = plan.clampIntervals, m = H - 1 - 2 * k;
+    std::vector<double> z(std::max(H, 0));
     const double uniform = g.lengthMm / (H - 1);
     // The clamp on a ring of the uniform mesh (the default tube at 30, 59, 117 rings): the uniform
     // heights, bit for bit.
-    if (std::fabs(g.clampMm - k * uniform) <= 1e-12 * g.lengthMm || g.ends != EndCondition::Clamped || m < 1) return g.lengthMm * j / (H - 1);
-    const double clampStep = g.clampMm / k, freeStep = (g.lengthMm - 2 * g.clampMm) / m;
-    if (j <= k) return clampStep * j;
-    if (j >= H - 1 - k) return g.lengthMm - clampStep * (H - 1 - j);
-    return g.clampMm + freeStep * (j - k);
+    if (g.ends != EndCondition::Clamped || m < 1 || (plan.sideIntervals == 0 && std::fabs(g.clampMm - k * uniform) <= 1e-12 * g.lengthMm)) {
+        for (int j = 0; j < H; ++j) z[j] = g.lengthMm * j / (H - 1);
+        return z;
+    }
+    // The free length's intervals: graded sides around an even middle, or all even.
+    const double freeMm = g.lengthMm - 2 * g.clampMm;
+    std::vector<double> free(m, freeMm / m);
+    if (plan.sideIntervals > 0) {
+        const int n = plan.sideIntervals;
+        const double middle = (freeMm - 2 * plan.sideMm) / (m - 2 * n);
+        for (int i = 0; i < m; ++i) {
+            const int d = std::min(i, m - 1 - i);
+            free[i] = d < n ? g.edgeSpacingMm * std::pow(kRingGrowth, d) : middle;
+        }
+    }
+    // Each clamp: graded, its edge interval as long as the first free one, the rest of it before.
+    std::vector<double> clamp(k, g.clampMm / k);
+    if (plan.sideIntervals > 0 && k == 2) clamp = {g.clampMm - free.front(), free.front()};
+    for (int j = 1; j <= k; ++j) z[j] = z[j - 1] + clamp[j - 1];
+    z[k] = g.clampMm;
+    for (int i = 0; i < m; ++i) z[k + 1 + i] = z[k + i] + free[i];
+    z[H - 1 - k] = g.lengthMm - g.clampMm;
+    for (int j = 1; j <= k; ++j) z[H - 1 - k + j] = z[H - 2 - k + j] + clamp[k - j];
+    z[H - 1] = g.lengthMm;
+    return z;
 }
 
 double EvaluationBytesEstimate(const ShellDef& def) {
     const GeometryDef& g = def.geometry;
-    const double vertices = double(std::max(1, g.ringVertices)) * (g.rings > 0 ? g.rings : EquilateralRings(g)) + 2;
+    const double vertices = double(std::max(1, g.ringVertices)) * PlanOf(g).count + 2;
     const double positionsPerStep = 24 * vertices;
     return 40e6 + 1750 * vertices * std::log2(std::max(2.0, vertices)) + positionsPerStep * (std::max(1, def.load.steps) + 2);
 }
@@ -183,8 +232,9 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
     if (mesh && mesh->positions.Size() != ringCount)
         return fail("the mesh has " + std::to_string(mesh->positions.Size()) + " vertices; the ring mesh needs " + std::to_string(ringCount) + " (" +
                     std::to_string(R) + " per ring x " + std::to_string(H) + " rings)");
+    const std::vector<double> heights = RingHeightsMm(g);
     for (int j = 0; j < H; ++j) {
-        const double z = RingHeightMm(g, j);
+        const double z = heights[j];
         for (int i = 0; i < R; ++i) {
             const int v = j * R + i;
             const double angle = 2 * std::numbers::pi * (i + 0.5 * j) / R;

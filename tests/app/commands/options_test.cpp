@@ -178,7 +178,7 @@ std::vector<std::string> With(std::vector<std::string> args, const Option& optio
     return args;
 }
 
-const std::vector<std::string> kSmallShell{"--ring-vertices", "12", "--rings", "16", "--steps", "1", "--pressure-kpa", "1"};
+const std::vector<std::string> kSmallShell{"--ring-vertices", "12", "--rings", "16", "--edge-spacing-mm", "0", "--steps", "1", "--pressure-kpa", "1"};
 
 std::vector<std::string> Joined(std::vector<std::string> a, const std::vector<std::string>& b) {
     a.insert(a.end(), b.begin(), b.end());
@@ -279,8 +279,8 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
     for (const std::string load : {"inflate", "gas", "volume", "force", "blocked"})
         modes.push_back({"shell " + load, Registered("simulate"),
                          Joined({"--model", "shell", "--load", load},
-                                load == "force"    ? std::vector<std::string>{"--ring-vertices", "12", "--rings", "16", "--steps", "1", "--force-n", "0.5"}
-                                : load == "volume" ? std::vector<std::string>{"--ring-vertices", "12", "--rings", "16", "--steps", "1"}
+                                load == "force"    ? std::vector<std::string>{"--ring-vertices", "12", "--rings", "16", "--edge-spacing-mm", "0", "--steps", "1", "--force-n", "0.5"}
+                                : load == "volume" ? std::vector<std::string>{"--ring-vertices", "12", "--rings", "16", "--edge-spacing-mm", "0", "--steps", "1"}
                                                    : kSmallShell),
                          {"--model", "--load"}});
     modes.push_back({"membrane braid", Registered("simulate"), Joined({"--model", "membrane", "--fibres", "braid"}, kSmallShell), {"--model"}});

@@ -34,7 +34,7 @@ protected:
     // objective), or NSGA-II under a coarse shell (two).
     std::string SmallOptimizer(const std::string& algorithm, int generations, int runs = 1) const {
         const bool multi = algorithm == "nsga2" || algorithm == "moead";
-        const std::string model = multi ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2},
+        const std::string model = multi ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "load": {"pressure_kpa": 1, "steps": 2},
                                                        "fibres": "braid", "fibre_stiffness_n_per_mm": 50},)"
                                         : R"("model": {"name": "thesis"}, "sim": {"iterations": 3000},)";
         const std::string objectives = multi ? R"(["contraction", "max_stretch"])" : R"(["thesis_fitness"])";
@@ -245,7 +245,7 @@ TEST_F(SearchCli, EveryAlgorithmRunsUnderTheThesisAndTheShellModel) {
     for (const std::string algorithm : {"cmaes", "xnes", "de", "sade", "pso", "nsga2", "moead"})
         for (const bool shell : {false, true}) {
             const bool multi = algorithm == "nsga2" || algorithm == "moead";
-            const std::string model = shell ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"pressure_kpa": 1, "steps": 2}},)"
+            const std::string model = shell ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "load": {"pressure_kpa": 1, "steps": 2}},)"
                                             : R"("model": {"name": "thesis"}, "sim": {"iterations": 2000},)";
             const std::string objectives = shell ? (multi ? (algorithm == "nsga2" ? R"(["contraction", "blocking_force"])" : R"(["contraction", "limit_margin"])") : R"(["contraction"])")
                                                  : (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])");

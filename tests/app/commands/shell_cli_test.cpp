@@ -16,7 +16,7 @@ namespace {
 
 // A small, fast mesh and two load steps: the commands' plumbing, not the physics (that is the
 // verification label's).
-const std::string kSmall = " --ring-vertices 16 --rings 20 --steps 2";
+const std::string kSmall = " --ring-vertices 16 --rings 20 --edge-spacing-mm 1 --steps 2";  // rings graded to 1 mm at the clamps: 30 in all
 
 }  // namespace
 
@@ -149,7 +149,7 @@ TEST_F(ShellCli, ModelBlockKeysThatDoNotApplyAreRefused) {
 
 // The GA under the membrane model gives the same bytes on one thread or two.
 TEST_F(ShellCli, EvolveUnderTheMembraneModelDoesNotDependOnThreads) {
-    Write("ga.json", R"({"id": "g", "seed": 4, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16},
+    Write("ga.json", R"({"id": "g", "seed": 4, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0},
         "load": {"steps": 1, "pressure_kpa": 0.5}},
         "evolve": {"runs": 1, "population": 4, "generations": 1, "elite": 1, "genome": {"kind": "bspline", "region": "middle", "splines": 1}},
         "render": {"figures": false, "thumbnails": false}})");
@@ -192,7 +192,7 @@ TEST_F(ShellCli, FibresReachTheModelAndBadFibreInputIsRefused) {
 
 // A fibre angle sweep: the braid's angle is a sweep axis, and the magic angle shows in the numbers.
 TEST_F(ShellCli, AFibreAngleSweepCrossesZeroAtTheMagicAngle) {
-    Write("angles.json", R"({"id": "a", "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2},
+    Write("angles.json", R"({"id": "a", "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 2}, "load": {"steps": 2},
         "fibres": "braid"}, "sweep": {"shape": {"family": "sine", "amplitude": 1, "phase": ["pi/2", "pi/2"]},
         "axes": [{"parameter": "pressure_kpa", "values": [2, 4]}, {"parameter": "fibre_angle_deg", "values": [35, 75]}]},
         "render": {"thumbnails": false}})");
@@ -214,7 +214,7 @@ TEST_F(ShellCli, AFibreAngleSweepCrossesZeroAtTheMagicAngle) {
 
 // The GA searches fibre genes beside the shape's, and they are archived with the design.
 TEST_F(ShellCli, TheGaSearchesFibreGenes) {
-    Write("genes.json", R"({"id": "g", "seed": 7, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16},
+    Write("genes.json", R"({"id": "g", "seed": 7, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0},
         "load": {"pressure_kpa": 3, "steps": 1}, "fibres": "braid"},
         "evolve": {"runs": 1, "population": 6, "generations": 2, "elite": 1,
                    "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [1, 3], "fibre_angles": 2, "fibre_switches": true}},
@@ -317,7 +317,7 @@ TEST_F(ShellCli, CharacterizeDrawsTheMusclesCurvesFromItsOwnTests) {
 // The bench objectives are the evaluations' own outputs: the isobaric force at the held stroke and
 // the top's turn, each front design's values those of its row in the evaluation log.
 TEST_F(ShellCli, TheForceAtAStrokeAndTheTwistAreObjectives) {
-    Write("bench.json", R"({"id": "o", "seed": 3, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "fibres": "single",
+    Write("bench.json", R"({"id": "o", "seed": 3, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "fibres": "single",
         "fibre_angle_deg": 30, "load": {"kind": "blocked", "pressure_kpa": 1.2, "stroke_percent": 2, "steps": 1}},
         "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 2, "objectives": ["force_at_stroke", "twist"],
                       "genome": {"family": "bspline", "control_points": 4}}, "render": {"figures": false, "thumbnails": false}})");
@@ -359,7 +359,7 @@ TEST_F(ShellCli, AnInflationWithIsobaricPointsGivesTheWorkOfAStroke) {
     EXPECT_EQ(plain["contraction_percent"], j["contraction_percent"]) << "the held strokes come after the free state is measured";
     ExpectRefused(braid + " --load blocked --isobaric-points 4", "--isobaric-points applies to --load inflate, not --load blocked");
 
-    const std::string study = R"({"id": "w", "seed": 5, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16}, "fibres": "braid",
+    const std::string study = R"({"id": "w", "seed": 5, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "fibres": "braid",
         "fibre_angle_deg": 30, "load": {"pressure_kpa": 5, "steps": 1LOAD}}, "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 1,
         "objectives": ["work_per_gram", "max_stretch"], "genome": {"family": "bspline", "control_points": 4}}, "render": {"figures": false, "thumbnails": false}})";
     auto withLoad = [&](const std::string& extra) { std::string s = study; s.replace(s.find("LOAD"), 4, extra); return s; };
@@ -421,7 +421,7 @@ TEST_F(ShellCli, ABendingActuatorsTipTiltsWhenFreeAndFeelsAMomentWhenHeld) {
     EXPECT_EQ(json["model"]["tip"], "free");
     EXPECT_EQ(json["tip_tilt_deg"].get<double>(), free.Number(0, "tip_tilt_deg"));
     // Where a tip cannot move: sliding ends, and the thesis model.
-    ExpectRefused("simulate --model membrane --ends sliding --tip free" + kSmall, "--tip applies to --ends clamped, not --ends sliding");
+    ExpectRefused("simulate --model membrane --ends sliding --tip free --ring-vertices 16 --rings 20", "--tip applies to --ends clamped, not --ends sliding");
     ExpectRefused("simulate --model thesis --tip free", "--tip");
     ExpectRefused("simulate --model membrane --tip bent" + kSmall, "held or free");
 }
@@ -431,26 +431,29 @@ TEST_F(ShellCli, ABendingActuatorsTipTiltsWhenFreeAndFeelsAMomentWhenHeld) {
 // definition, is refused.
 TEST_F(ShellCli, MeshCheckReportsTheSameDesignAtTwiceTheMeshAgainstTheRule) {
     const std::string design = "simulate --model shell --shape sine --amplitude 1.3 --steps 2 --pressure-kpa 1";
-    const Result checked = Run(design + " --ring-vertices 12 --rings 16 --mesh-check");
+    const Result checked = Run(design + " --ring-vertices 12 --rings 16 --edge-spacing-mm 2 --mesh-check");
     ASSERT_EQ(checked.exitCode, 0) << checked.err;
     const auto json = nlohmann::json::parse(checked.out);
     ASSERT_TRUE(json.contains("mesh_check"));
     const auto& check = json["mesh_check"];
-    EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x 31 rings"));
-    const auto fine = nlohmann::json::parse(Run(design + " --ring-vertices 24 --rings 31").out);
+    // Every length halved: the rings' spacing in the middle and at the clamps' edges.
+    const auto fine = nlohmann::json::parse(Run(design + " --ring-vertices 24 --rings 31 --edge-spacing-mm 1").out);
+    const int fineRings = fine["model"]["rings_used"].get<int>();
+    EXPECT_GT(fineRings, 31) << "graded toward the clamps";
+    EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x " + std::to_string(fineRings) + " rings (1 mm apart at the clamps' edges)"));
     EXPECT_EQ(check["contraction_percent"], fine["contraction_percent"]) << "the refined design is the plain run at that mesh";
     const double coarse = json["contraction_percent"].get<double>(), finer = fine["contraction_percent"].get<double>();
     EXPECT_NEAR(check["difference_points"].get<double>(), std::fabs(finer - coarse), 1e-12);
     EXPECT_NEAR(check["relative_difference_percent"].get<double>(), 100 * std::fabs(finer - coarse) / std::fabs(finer), 1e-9);
     EXPECT_EQ(check["converged"].get<bool>(), std::fabs(finer) < 1 ? std::fabs(finer - coarse) <= 0.05 : 100 * std::fabs(finer - coarse) / std::fabs(finer) <= 5);
-    EXPECT_FALSE(nlohmann::json::parse(Run(design + " --ring-vertices 12 --rings 16").out).contains("mesh_check")) << "only when asked";
+    EXPECT_FALSE(nlohmann::json::parse(Run(design + " --ring-vertices 12 --rings 16 --edge-spacing-mm 2").out).contains("mesh_check")) << "only when asked";
     ExpectRefused("simulate --model thesis --mesh-check", "--mesh-check");
 }
 
 // sweep --mesh-check: the best design again at twice the mesh, in summary.json and the report, equal
 // to simulating that design at that mesh; a thesis-model experiment is refused.
 TEST_F(ShellCli, ASweepsMeshCheckIsItsBestDesignAtTwiceTheMesh) {
-    Write("checked.json", R"({"id": "c", "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2},
+    Write("checked.json", R"({"id": "c", "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 2}, "load": {"steps": 2},
         "fibres": "braid"}, "sweep": {"shape": {"family": "sine", "amplitude": 1, "phase": ["pi/2", "pi/2"]},
         "axes": [{"parameter": "fibre_angle_deg", "values": [25, 40]}]}, "render": {"thumbnails": false, "figures": false}})");
     const Result r = Run("sweep " + Path("checked.json") + " --out " + Path("checked") + " --mesh-check");
@@ -463,9 +466,9 @@ TEST_F(ShellCli, ASweepsMeshCheckIsItsBestDesignAtTwiceTheMesh) {
         if (row["quantity"] == "best fibre_angle_deg") bestAngle = row["ours"].get<double>();
     ASSERT_TRUE(std::isfinite(bestAngle));
     const auto fine = nlohmann::json::parse(Run("simulate --model shell --shape sine --amplitude 1 --phase pi/2,pi/2 --fibres braid --steps 2 "
-                                                "--ring-vertices 24 --rings 31 --fibre-angle-deg " + std::to_string(bestAngle)).out);
+                                                "--ring-vertices 24 --rings 31 --edge-spacing-mm 1 --fibre-angle-deg " + std::to_string(bestAngle)).out);
     EXPECT_EQ(check["contraction_percent"], fine["contraction_percent"]);
-    EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x 31 rings"));
+    EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x " + std::to_string(fine["model"]["rings_used"].get<int>()) + " rings"));
     EXPECT_THAT(Slurp(dir_ / "checked" / "report.md"), HasSubstr("mesh check of the best design: "));
     ExpectRefused("sweep 4.1_amplitude_sweep --out " + Path("thesis") + " --mesh-check", "--mesh-check");
 }

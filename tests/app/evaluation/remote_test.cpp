@@ -100,7 +100,7 @@ TEST_F(Remote, TwoServersGiveTheSameResultsAsALocalRun) {
     EXPECT_EQ(Slurp(dir_ / "ga-remote" / "evaluations.csv"), Slurp(dir_ / "ga-local" / "evaluations.csv"));
 
     // A pagmo optimizer's batches go through the same pool: NSGA-II under the shell model.
-    Write("nsga2.json", R"({"id": "remote-nsga2", "seed": 5, "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16}, "load": {"steps": 2}},
+    Write("nsga2.json", R"({"id": "remote-nsga2", "seed": 5, "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "load": {"steps": 2}},
         "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 2, "objectives": ["contraction", "max_stretch"],
                       "genome": {"family": "bspline", "splines": 1, "control_points": 5}},
         "render": {"figures": false, "thumbnails": false}})");

@@ -69,7 +69,7 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     job.shape = sim::SineShape{1.3, 0.5, 2.5};
     job.SetModel(sim::ModelKind::Membrane);
     sim::ShellDef& d = job.Shell();
-    d.geometry = {7.5, 90, 1.25, 24, 40, 3, sim::EndCondition::Sliding};
+    d.geometry = {7.5, 90, 1.25, 24, 40, 3, 0.5, sim::EndCondition::Sliding};
     d.material = sim::MaterialPresetDef(sim::MaterialPreset::DragonSkin10);
     d.material.law = sim::MaterialLaw::Yeoh;
     d.material.muKpa = 31;
@@ -95,9 +95,9 @@ TEST(SchemaConvert, ShellJobsAndOutputsRoundTrip) {
     EXPECT_EQ(back.shape, job.shape);
     const sim::ShellDef& b = back.Shell();
     EXPECT_EQ(std::tie(b.geometry.radiusMm, b.geometry.lengthMm, b.geometry.thicknessMm, b.geometry.ringVertices, b.geometry.rings, b.geometry.clampMm,
-                       b.geometry.ends),
+                       b.geometry.edgeSpacingMm, b.geometry.ends),
               std::tie(d.geometry.radiusMm, d.geometry.lengthMm, d.geometry.thicknessMm, d.geometry.ringVertices, d.geometry.rings, d.geometry.clampMm,
-                       d.geometry.ends));
+                       d.geometry.edgeSpacingMm, d.geometry.ends));
     EXPECT_EQ(std::tie(b.material.preset, b.material.law, b.material.muKpa, b.material.c10Kpa, b.material.c01Kpa, b.material.c20Kpa, b.material.c30Kpa,
                        b.material.tensileStrengthKpa, b.material.elongationAtBreak, b.material.stretchLimit, b.material.densityKgPerM3),
               std::tie(d.material.preset, d.material.law, d.material.muKpa, d.material.c10Kpa, d.material.c01Kpa, d.material.c20Kpa, d.material.c30Kpa,
@@ -237,6 +237,7 @@ TEST(SchemaConvert, ARecordWithClampRingsReadsAsTheSameLengthInMillimetres) {
     app::SetShellDef(builder, d);
     builder.setClampMm(0);
     builder.setClampRings(3);
+    builder.setEdgeSpacingMm(0);  // records before it had evenly spaced rings
     const sim::ShellDef back = app::GetShellDef(builder.asReader());
     EXPECT_NEAR(back.geometry.clampMm, 2 * 150.0 / 58, 1e-12);
     EXPECT_EQ(sim::ClampRingCount(back.geometry), 3);

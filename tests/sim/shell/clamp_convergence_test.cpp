@@ -1,11 +1,12 @@
 // The same physical problem at every mesh (docs/models/shell.md section 2): each end clamp holds a
 // length in millimetres, not a number of rings. The clamp is checked on the built problem at several
-// meshes, and the plain tube's contraction converges as the mesh refines with it fixed, where a
-// clamp of two rings (L / (H - 1), shrinking with the mesh) made a different problem at each
-// refinement and the sequence turned back. Label `verification`.
+// meshes, evenly spaced and graded, and four designs' contractions converge as the graded mesh
+// refines with it fixed, where a clamp of two rings (L / (H - 1), shrinking with the mesh) made a
+// different problem at each refinement. Label `verification`.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "shell/shell_problem.h"
@@ -29,10 +30,13 @@ double BottomClampMm(const sim::ShellProblem& p) {
 }
 
 TEST(ClampInMillimetres, EveryMeshHoldsTheSameLengthWithARingAtTheClampsEdge) {
-    for (const auto& [vertices, rings] : std::vector<std::pair<int, int>>{{30, 30}, {60, 59}, {30, 45}, {24, 0}, {120, 117}, {30, 12}}) {
+    for (const auto& [vertices, rings] : std::vector<std::pair<int, int>>{{30, 30}, {60, 59}, {30, 45}, {24, 0}, {120, 117}, {30, 12}})
+        for (const double edgeSpacingMm : {0.0, 0.35, 2.0})
         for (const double clampMm : {sim::kThesisTubeClampMm, 8.0, 12.5}) {
             sim::ShellDef d = Tube(vertices, rings);
             d.geometry.clampMm = clampMm;
+            d.geometry.edgeSpacingMm = edgeSpacingMm;
+            SCOPED_TRACE(::testing::Message() << vertices << " x " << rings << " / " << edgeSpacingMm << " mm, clamp " << clampMm);
             ASSERT_EQ(sim::ShellDefError(d), "") << vertices << " x " << rings << ", clamp " << clampMm;
             std::string error;
             const sim::ShellProblem p = sim::BuildTubeProblem(d, sim::CylinderShape{}, true, &error);
@@ -40,14 +44,33 @@ TEST(ClampInMillimetres, EveryMeshHoldsTheSameLengthWithARingAtTheClampsEdge) {
             EXPECT_NEAR(BottomClampMm(p), clampMm, 1e-9 * d.geometry.lengthMm) << vertices << " x " << rings << ", clamp " << clampMm;
             // Heights rise ring by ring, and the top clamp mirrors the bottom.
             const int H = sim::RingCount(d.geometry);
-            for (int j = 1; j < H; ++j) EXPECT_GT(sim::RingHeightMm(d.geometry, j), sim::RingHeightMm(d.geometry, j - 1));
-            EXPECT_NEAR(sim::RingHeightMm(d.geometry, H - 1 - sim::ClampIntervals(d.geometry)), d.geometry.lengthMm - clampMm, 1e-9 * d.geometry.lengthMm);
+            const std::vector<double> z = sim::RingHeightsMm(d.geometry);
+            ASSERT_EQ(static_cast<int>(z.size()), H);
+            for (int j = 1; j < H; ++j) EXPECT_GT(z[j], z[j - 1]);
+            EXPECT_NEAR(z[H - 1 - sim::ClampIntervals(d.geometry)], d.geometry.lengthMm - clampMm, 1e-9 * d.geometry.lengthMm);
+            // Graded: the first free spacing is the edge spacing asked for, mirrored inside the clamp,
+            // and no spacing is longer than the middle's.
+            sim::GeometryDef evenly = d.geometry;
+            evenly.edgeSpacingMm = 0;
+            if (edgeSpacingMm > 0 && edgeSpacingMm < d.geometry.lengthMm / (sim::RingCount(evenly) - 1)) {
+                const int k = sim::ClampIntervals(d.geometry);
+                EXPECT_NEAR(z[k + 1] - z[k], edgeSpacingMm, 1e-9);
+                EXPECT_NEAR(z[k] - z[k - 1], edgeSpacingMm, 1e-9);
+                EXPECT_NEAR(z[H - k] - z[H - 1 - k], edgeSpacingMm, 1e-9);
+            }
         }
-    }
-    // The default is one ring spacing of the 30-ring thesis tube: two rings there, three at 59 rings.
-    EXPECT_EQ(sim::ClampRingCount(Tube(30, 30).geometry), 2);
-    EXPECT_EQ(sim::ClampRingCount(Tube(60, 59).geometry), 3);
-    EXPECT_EQ(sim::ClampRingCount(Tube(120, 117).geometry), 5);
+    // Evenly spaced, the default clamp is one ring spacing of the 30-ring thesis tube: two rings there,
+    // three at 59 rings. Graded, each clamp holds three rings, and 30 rings become 52.
+    auto even = [](int vertices, int rings) {
+        sim::ShellDef d = Tube(vertices, rings);
+        d.geometry.edgeSpacingMm = 0;
+        return d.geometry;
+    };
+    EXPECT_EQ(sim::ClampRingCount(even(30, 30)), 2);
+    EXPECT_EQ(sim::ClampRingCount(even(60, 59)), 3);
+    EXPECT_EQ(sim::ClampRingCount(even(120, 117)), 5);
+    EXPECT_EQ(sim::ClampRingCount(Tube(30, 30).geometry), 3);
+    EXPECT_EQ(sim::RingCount(Tube(30, 30).geometry), 52);
 }
 
 TEST(ClampInMillimetres, ATubeWithoutFreeLengthOrFreeRingsIsRefused) {
@@ -55,34 +78,90 @@ TEST(ClampInMillimetres, ATubeWithoutFreeLengthOrFreeRingsIsRefused) {
     d.geometry.clampMm = 80;
     EXPECT_NE(sim::ShellDefError(d).find("no free length"), std::string::npos) << sim::ShellDefError(d);
     d.geometry.clampMm = 70;
+    d.geometry.edgeSpacingMm = 0;
     EXPECT_NE(sim::ShellDefError(d).find("free rings"), std::string::npos) << sim::ShellDefError(d);
     d.geometry.clampMm = 0;
     EXPECT_NE(sim::ShellDefError(d).find("clamp length"), std::string::npos) << sim::ShellDefError(d);
 }
 
-// The plain tube of the thesis's size (R 5 mm, L 150 mm, 1 mm of Ecoflex 00-30) inflated to 1 kPa,
-// meshed 30 x 30, 60 x 59 and 120 x 117 (every edge halved twice). With the clamp fixed at 5.17 mm
-// the contraction converges monotonically at about second order (measured: -0.7032, -0.6434,
-// -0.6341 %, differences 0.060 and 0.0092: order 2.7). With clamps of two rings it read -0.7032,
-// -0.6646, -0.6660 %: not a sequence that converges to anything.
-TEST(ClampInMillimetres, ThePlainTubeConvergesAsTheMeshRefinesWithTheClampFixed) {
-    std::vector<double> contraction;
-    for (const auto& [vertices, rings] : std::vector<std::pair<int, int>>{{30, 30}, {60, 59}, {120, 117}}) {
-        sim::EvalJob job;
-        job.SetModel(sim::ModelKind::Shell);
-        job.shape = sim::CylinderShape{};
-        job.Shell().geometry.ringVertices = vertices;
-        job.Shell().geometry.rings = rings;
-        job.Shell().load.pressureKpa = 1;
-        const sim::SimResult r = sim::Evaluate(job);
-        ASSERT_EQ(r.status, sim::Status::Ok) << vertices << " x " << rings;
-        contraction.push_back(r.contractionPercent);
+// Convergence of the four designs of docs/models/shell.md section 2 on the thesis tube (R 5 mm, L 150
+// mm, 1 mm of Ecoflex 00-30, clamps 5.17 mm) at 1 kPa, on the graded family R x rings / edge spacing
+// 15 x 15 / 2 mm, 30 x 30 / 1 mm, 60 x 59 / 0.5 mm (every length halved, the clamps the same length):
+// the differences shrink at the observed order (about 1 where the clamp's edge dominates, 2 for the
+// +/-70 deg braid), and the default mesh lies within 2 % of the first-order extrapolation
+// 2 x fine - middle (the order section 2 measures on the finer family up to 120 x 117; for a
+// second-order design it overshoots, which only makes the check stricter). Had the clamp followed the ring count again, each level would be another
+// problem and the sequence would not converge to it.
+struct Design {
+    const char* name;
+    sim::Shape shape;
+    sim::FibreLayout fibres = sim::FibreLayout::None;
+    double fibreAngleDeg = 0;
+};
+
+double ContractionAt1Kpa(const Design& design, int ringVertices, int rings, double edgeSpacingMm, bool defaultMesh = false) {
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Shell);
+    job.shape = design.shape;
+    sim::ShellDef& d = job.Shell();
+    if (!defaultMesh) {
+        d.geometry.ringVertices = ringVertices;
+        d.geometry.rings = rings;
+        d.geometry.edgeSpacingMm = edgeSpacingMm;
     }
-    const double first = contraction[1] - contraction[0], second = contraction[2] - contraction[1];
-    EXPECT_GT(first * second, 0) << "monotone: " << contraction[0] << ", " << contraction[1] << ", " << contraction[2];
-    const double order = std::log2(std::fabs(first / second));
-    EXPECT_GT(order, 1.5) << "observed order " << order;
-    EXPECT_LT(std::fabs(second), 0.02 * std::fabs(contraction[2])) << "the finest two within 2 %";
+    d.fibres.layout = design.fibres;
+    d.fibres.angleDeg = design.fibreAngleDeg;
+    d.load.pressureKpa = 1;
+    const sim::SimResult r = sim::Evaluate(job);
+    EXPECT_EQ(r.status, sim::Status::Ok) << design.name << " " << ringVertices << " x " << rings << " / " << edgeSpacingMm << " mm";
+    return r.contractionPercent;
+}
+
+struct Convergence {
+    double coarse, middle, fine, order, extrapolated;
+};
+
+Convergence GradedFamily(const Design& design) {
+    Convergence c;
+    c.coarse = ContractionAt1Kpa(design, 15, 15, 2.0);
+    c.middle = ContractionAt1Kpa(design, 30, 30, 1.0);
+    c.fine = ContractionAt1Kpa(design, 60, 59, 0.5);
+    const double first = c.middle - c.coarse, second = c.fine - c.middle;
+    c.order = std::log2(std::fabs(first / second));
+    c.extrapolated = 2 * c.fine - c.middle;
+    return c;
+}
+
+void ExpectConvergesAndTheDefaultIsWithinTwoPercent(const Design& design, double lowestOrder, double highestOrder) {
+    const Convergence c = GradedFamily(design);
+    SCOPED_TRACE(::testing::Message() << design.name << ": " << c.coarse << ", " << c.middle << ", " << c.fine << " %, order " << c.order
+                                      << ", extrapolated to first order " << c.extrapolated << " %");
+    EXPECT_GT((c.middle - c.coarse) * (c.fine - c.middle), 0) << "monotone";
+    EXPECT_GE(c.order, lowestOrder);
+    EXPECT_LE(c.order, highestOrder);
+    const double atDefault = ContractionAt1Kpa(design, 0, 0, 0, true);
+    EXPECT_LT(std::fabs(atDefault / c.extrapolated - 1), 0.02) << "the default mesh: " << atDefault << " %";
+}
+
+TEST(MeshConvergence, ThePlainTube) { ExpectConvergesAndTheDefaultIsWithinTwoPercent({"plain tube", sim::CylinderShape{}}, 0.6, 1.6); }
+
+TEST(MeshConvergence, TheSineOfAmplitude1_3) {
+    ExpectConvergesAndTheDefaultIsWithinTwoPercent({"sine A = 1.3", sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}}, 0.6, 1.6);
+}
+
+TEST(MeshConvergence, TheBraidAt70Degrees) {
+    ExpectConvergesAndTheDefaultIsWithinTwoPercent({"braid +/-70 deg", sim::CylinderShape{}, sim::FibreLayout::Braid, 70}, 1.5, 2.5);
+}
+
+// The +/-30 deg braid's fibres hold the wall's shape: 30 x 30 / 1 mm and 60 x 59 / 0.5 mm agree
+// within 0.1 %, 15 x 15 / 2 mm within 1.2 %, and the 120 x 117 level of section 2 turns back within
+// 0.1 %, so there is no order to observe; the default lies within 2 % of the finest.
+TEST(MeshConvergence, TheBraidAt30Degrees) {
+    const Design braid{"braid +/-30 deg", sim::CylinderShape{}, sim::FibreLayout::Braid, 30};
+    const Convergence c = GradedFamily(braid);
+    EXPECT_NEAR(c.middle / c.fine, 1, 0.005) << c.middle << " against " << c.fine;
+    EXPECT_LT(std::fabs(c.middle - c.fine), std::fabs(c.coarse - c.fine)) << c.coarse << ", " << c.middle << ", " << c.fine;
+    EXPECT_NEAR(ContractionAt1Kpa(braid, 0, 0, 0, true) / c.fine, 1, 0.02);
 }
 
 }  // namespace
