@@ -13,17 +13,23 @@ sim::EvalJob RefinedJob(sim::EvalJob job) {
     return job;
 }
 
-nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine) {
+nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine, double coarseBlockingForceN) {
     const bool ok = fine.status == sim::Status::Ok && std::isfinite(coarseContraction);
     const MeshChange change = ok ? ChangeOf(coarseContraction, fine.contractionPercent) : MeshChange{};
     auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    return {{"mesh", sim::ModelOf(refined).meshText(refined)},
-            {"status", sim::Name(fine.status)},
-            {"contraction_percent", number(fine.status == sim::Status::Ok ? fine.contractionPercent : NAN)},
-            {"difference_points", number(change.points)},
-            {"relative_difference_percent", number(change.relativePercent)},
-            {"converged", ok && change.within},
-            {"rule", kMeshRule}};
+    nlohmann::json check = {{"mesh", sim::ModelOf(refined).meshText(refined)},
+                            {"status", sim::Name(fine.status)},
+                            {"contraction_percent", number(fine.status == sim::Status::Ok ? fine.contractionPercent : NAN)},
+                            {"difference_points", number(change.points)},
+                            {"relative_difference_percent", number(change.relativePercent)},
+                            {"converged", ok && change.within},
+                            {"rule", kMeshRule}};
+    if (std::isfinite(coarseBlockingForceN)) {
+        const double refinedForce = fine.status == sim::Status::Ok ? fine.shell.blockingForceN : NAN;
+        check["blocking_force_n"] = number(refinedForce);
+        check["blocking_force_difference_percent"] = number(100 * std::fabs(refinedForce - coarseBlockingForceN) / std::fabs(refinedForce));
+    }
+    return check;
 }
 
 MeshChange ChangeOf(double coarse, double fine) {

@@ -3,6 +3,7 @@
 // contraction moves. `simulate --mesh-check` reports it; reproduce's mesh-convergence study is made of it.
 #pragma once
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -26,7 +27,10 @@ inline constexpr const char* kMeshRule =
     "within 5 % of the same design meshed twice as finely in both directions; under 1 % contraction, within 0.05 percentage points";
 
 // The check as simulate and the searches report it ("mesh_check"): the refined mesh, its status and
-// contraction, the difference from `coarseContraction` in points and percent, the verdict and the rule.
-nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine);
+// contraction, the difference from `coarseContraction` in points and percent, the verdict and the rule;
+// with a held state's force on both meshes (`coarseBlockingForceN` finite), that force refined and how
+// far it moved, in percent: a held state's stability can depend on the mesh (docs/models/shell.md
+// section 2), and this is where it shows.
+nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine, double coarseBlockingForceN = NAN);
 
 }  // namespace app

@@ -446,6 +446,10 @@ TEST_F(ShellCli, MeshCheckReportsTheSameDesignAtTwiceTheMeshAgainstTheRule) {
     EXPECT_NEAR(check["difference_points"].get<double>(), std::fabs(finer - coarse), 1e-12);
     EXPECT_NEAR(check["relative_difference_percent"].get<double>(), 100 * std::fabs(finer - coarse) / std::fabs(finer), 1e-9);
     EXPECT_EQ(check["converged"].get<bool>(), std::fabs(finer) < 1 ? std::fabs(finer - coarse) <= 0.05 : 100 * std::fabs(finer - coarse) / std::fabs(finer) <= 5);
+    // The held state's force, refined: the blocking force of the plain run at that mesh.
+    const double coarseForce = json["blocking_force_n"].get<double>(), fineForce = fine["blocking_force_n"].get<double>();
+    EXPECT_EQ(check["blocking_force_n"], fine["blocking_force_n"]);
+    EXPECT_NEAR(check["blocking_force_difference_percent"].get<double>(), 100 * std::fabs(fineForce - coarseForce) / std::fabs(fineForce), 1e-9);
     EXPECT_FALSE(nlohmann::json::parse(Run(design + " --ring-vertices 12 --rings 16 --edge-spacing-mm 2").out).contains("mesh_check")) << "only when asked";
     ExpectRefused("simulate --model thesis --mesh-check", "--mesh-check");
 }
