@@ -71,14 +71,15 @@ struct GeometryDef {
     double clampMm = kThesisTubeClampMm;  // length each end clamp holds, mm: a property of the fixture,
                               // not of the mesh. The mesh puts a ring at the clamp's edge and the
                               // clamp holds every ring within it (ClampRingCount)
-    double edgeSpacingMm = 0.25;  // ring spacing at each clamp's edge, mm, growing by kRingGrowth a
-                              // ring up to the middle's (RingHeightsMm): rings added where the wall
-                              // bends hardest, within about sqrt(R h) = 2.2 mm of each clamp of the
-                              // thesis tube; 0: evenly spaced rings. At 0.25 (a quarter of its wall),
-                              // 30 rings become 52 and the plain tube, the A = 1.3 sine and the
-                              // +/-30 and +/-70 deg braids at 1 kPa come within 2 % of the converged
-                              // contraction, where evenly spaced rings were 7.3, 4.8, 0.3 and 7.9 %
-                              // off (docs/models/shell.md section 2)
+    double edgeSpacingMm = 1;  // ring spacing at each clamp's edge, mm, growing by kRingGrowth a ring
+                              // up to the middle's (RingHeightsMm): rings added where the wall bends
+                              // hardest, within about sqrt(R h) = 2.2 mm of each clamp of the thesis
+                              // tube; 0: evenly spaced rings. At 1 (a wall thickness), 30 rings
+                              // become 40 and the plain tube, the A = 1.3 sine and the +/-30 and
+                              // +/-70 deg braids at 1 kPa are 3.6, 2.8, 0.0 and 1.1 % off the
+                              // converged contraction (evenly spaced: 7.3, 4.8, 0.3, 7.9 %). Finer
+                              // edges converge for those four but not for designs strained hardest
+                              // at the clamp's edge (docs/models/shell.md section 2)
     EndCondition ends = EndCondition::Clamped;
 };
 
