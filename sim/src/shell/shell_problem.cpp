@@ -128,11 +128,10 @@ double EquilateralRings(const GeometryDef& g) {
 
 // Where the rings go, counted without placing them (a long thin tube may have more than memory holds).
 struct RingPlan {
-    double count = 0;          // rings in all, a real number until checked (RingCount caps it)
+    double count = 0;          // rings in all, a real number until checked (Rings caps it)
     int clampIntervals = 1;    // in each clamp
     int sideIntervals = 0;     // graded: intervals growing from each clamp's edge toward the middle
-    double sideMm = 0;         // graded: their length
-    double middleIntervals = 0;  // graded: equal intervals between the two graded sides
+    double sideMm = 0;         // graded: their length (equal intervals fill the middle between them)
 };
 
 RingPlan PlanOf(const GeometryDef& g) {
@@ -153,14 +152,16 @@ RingPlan PlanOf(const GeometryDef& g) {
         plan.sideMm += spacing;
         ++plan.sideIntervals;
     }
-    plan.middleIntervals = std::max(1.0, std::round((freeMm - 2 * plan.sideMm) / evenSpacing));
+    const double middleIntervals = std::max(1.0, std::round((freeMm - 2 * plan.sideMm) / evenSpacing));
     plan.clampIntervals = g.clampMm >= 2 * g.edgeSpacingMm ? 2 : 1;
-    plan.count = 1 + 2 * plan.clampIntervals + 2 * plan.sideIntervals + plan.middleIntervals;
+    plan.count = 1 + 2 * plan.clampIntervals + 2 * plan.sideIntervals + middleIntervals;
     return plan;
 }
+
+int Rings(const RingPlan& plan) { return static_cast<int>(std::min(plan.count, 1e9)); }
 }  // namespace
 
-int RingCount(const GeometryDef& g) { return static_cast<int>(std::min(PlanOf(g).count, 1e9)); }
+int RingCount(const GeometryDef& g) { return Rings(PlanOf(g)); }
 
 bool RingsGraded(const GeometryDef& g) { return PlanOf(g).sideIntervals > 0; }
 
@@ -170,7 +171,7 @@ int ClampRingCount(const GeometryDef& g) { return ClampIntervals(g) + 1; }
 
 std::vector<double> RingHeightsMm(const GeometryDef& g) {
     const RingPlan plan = PlanOf(g);
-    const int H = RingCount(g), k = plan.clampIntervals, m = H - 1 - 2 * k;
+    const int H = Rings(plan), k = plan.clampIntervals, m = H - 1 - 2 * k;
     std::vector<double> z(std::max(H, 0));
     const double uniform = g.lengthMm / (H - 1);
     // The clamp on a ring of the uniform mesh (the default tube at 30, 59, 117 rings): the uniform
