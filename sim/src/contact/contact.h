@@ -1,0 +1,127 @@
+// Self-contact of the shell models' walls (docs/models/shell.md section 8): the walls' mid-surfaces
+// keep at least a wall thickness apart, held there by a log barrier on point-triangle and edge-edge
+// distances (the incremental potential contact of Li et al. 2020, offset by the wall's thickness as
+// in their codimensional follow-up), with steps clipped by continuous collision detection so that no
+// step ever passes through a wall.
+//
+// Units: millimetres and newtons; energies in N mm.
+//
+// [SECTION] Pairs and distances: the closest features of a pair and its squared distance, exactly
+//           differentiated
+// [SECTION] Barrier: b(s) on the gap s = d - h, the edge-edge mollifier, one pair's energy
+// [SECTION] Surfaces and candidates: which primitives may touch (a spatial hash)
+// [SECTION] Continuous collision detection: the largest step no pair crosses
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "sim/mesh.h"
+
+namespace sim {
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Pairs and distances
+// ---------------------------------------------------------------------------------------------
+
+using Vector12 = Eigen::Matrix<double, 12, 1>;
+using Matrix12 = Eigen::Matrix<double, 12, 12>;
+
+// A pair that may touch: a point and a triangle (p, a, b, c) or two edges (a0, a1, b0, b1). Its
+// 12 coordinates are its four vertices' x, y, z in this order.
+enum class PairKind : std::uint8_t { PointTriangle, EdgeEdge };
+struct ContactPair {
+    PairKind kind = PairKind::PointTriangle;
+    std::array<int, 4> vertices{};
+    friend bool operator<(const ContactPair& a, const ContactPair& b) {
+        return a.kind != b.kind ? a.kind < b.kind : a.vertices < b.vertices;
+    }
+    friend bool operator==(const ContactPair& a, const ContactPair& b) { return a.kind == b.kind && a.vertices == b.vertices; }
+};
+
+// Where a pair's closest points lie, which decides the formula of its distance: two vertices; a
+// vertex and the inside of an edge; a vertex and the inside of the triangle (its plane); the insides
+// of two edges (their lines).
+enum class DistanceCase : std::uint8_t { PointPoint, PointEdge, PointPlane, LineLine };
+struct ClosestFeatures {
+    DistanceCase kind = DistanceCase::PointPoint;
+    std::array<int, 4> local{};  // the pair's vertices (0-3) that the case's formula takes, in its order
+};
+ClosestFeatures ClosestFeaturesOf(PairKind kind, const Vector12& x);
+
+// The squared distance (mm^2) between a pair's primitives at x, and its gradient and Hessian over the
+// 12 coordinates with the closest features held at x's (each distance is smooth within its case and
+// the cases meet continuously). Either pointer may be null.
+double SquaredDistance(PairKind kind, const Vector12& x, Vector12* gradient, Matrix12* hessian);
+
+// The pair's 12 coordinates at positions x.
+Vector12 PairCoordinates(const ContactPair& pair, const Positions& x);
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Barrier
+// ---------------------------------------------------------------------------------------------
+
+struct BarrierDef {
+    double thicknessMm = 1;    // h: the mid-surfaces' distance when the walls touch
+    double activationMm = 0.1; // s-hat: the barrier acts on gaps s = d - h below it
+    double stiffness = 1;      // kappa, N mm
+};
+
+// IPC's barrier b(s) = -(s - s_hat)^2 ln(s / s_hat) for 0 < s < s_hat, else 0; with its first and
+// second derivatives (either pointer may be null). Infinite at s <= 0.
+double Barrier(double s, double sHat, double* first, double* second);
+
+// The edge-edge mollifier: near-parallel edges' line distance has no unique closest points, so
+// their barrier fades with c = |e_a x e_b|^2 below threshold = 1e-3 |E_a|^2 |E_b|^2 (rest lengths):
+// m = (2 - c / threshold) c / threshold there, 1 above.
+double EdgeEdgeMollifierThreshold(const Vector12& rest);
+
+// One pair's barrier energy kappa m b(d - h) at x (m = 1 for point-triangle pairs), with its gradient
+// and Hessian (exact, or with project, projected to positive semi-definite for Newton's matrix).
+// `mollifierThreshold` is the edge-edge pair's, from its rest coordinates.
+double PairBarrierEnergy(PairKind kind, const Vector12& x, double mollifierThreshold, const BarrierDef& barrier,
+                         Vector12* gradient, Matrix12* hessian, bool project);
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Surfaces and candidates
+// ---------------------------------------------------------------------------------------------
+
+// The surface that may touch itself: triangles (the wall and the end caps), their unique edges, and
+// which vertices move (a pair whose four vertices are all held has constant energy and is skipped).
+struct ContactSurface {
+    std::vector<std::array<int, 3>> triangles;
+    std::vector<std::array<int, 2>> edges;   // each once, lower vertex first
+    std::vector<int> points;                 // vertices of the triangles, ascending
+    std::vector<char> moves;                 // per vertex of the mesh
+    Positions rest;
+    // Pairs whose primitives are closer than this at rest are neighbours within one wall, not walls
+    // that touch: they are never candidates (mm).
+    double neighbourMm = 0;
+};
+ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
+                                  const std::vector<char>& moves, double neighbourMm);
+
+// The pairs whose primitives may be within reachMm of each other (a uniform spatial hash on their
+// bounding boxes), or, with dx, at any point while x moves to x + dx. Pairs that share a vertex,
+// neighbours and pairs that cannot move are left out. Sorted, each once: the same list on every run.
+std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const Positions& x, const Positions* dx,
+                                           double reachMm);
+
+// ---------------------------------------------------------------------------------------------
+// [SECTION] Continuous collision detection
+// ---------------------------------------------------------------------------------------------
+
+// Additive continuous collision detection (Li et al. 2021) for one pair moving from x to x + t dx:
+// the largest t in [0, tMax] found safe, at which the pair is still at least minDistanceMm apart
+// and has kept at least a tenth of its gap beyond it. tMax when it never comes that close. x must
+// start farther apart than minDistanceMm.
+double PairImpactTime(PairKind kind, const Vector12& x, const Vector12& dx, double minDistanceMm, double tMax);
+
+// The largest fraction t in [0, 1] of the move x -> x + dx that no candidate pair crosses
+// (min over ContactCandidates of the swept move within reachMm).
+double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm,
+                      double reachMm);
+
+}  // namespace sim

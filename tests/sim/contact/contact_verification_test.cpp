@@ -1,0 +1,330 @@
+// Self-contact's pieces against independent answers (docs/models/shell.md section 8): distances
+// against brute-force sampling, every derivative against central differences, the spatial hash
+// against all pairs, continuous collision detection against dense sampling of thousands of random
+// moves, and two pressed plates whose barrier force balances the load.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <Eigen/Geometry>
+#include <random>
+
+#include "contact/contact.h"
+
+namespace sim {
+namespace {
+
+Vector12 RandomPair(std::mt19937& rng, double spread) {
+    std::uniform_real_distribution<double> u(-spread, spread);
+    Vector12 x;
+    for (int k = 0; k < 12; ++k) x[k] = u(rng);
+    return x;
+}
+
+// The distance by sampling both primitives on a fine grid (an upper bound that tends to the truth).
+double SampledDistance(PairKind kind, const Vector12& x, int n) {
+    const auto point = [&](int v) { return Eigen::Vector3d(x.segment<3>(3 * v)); };
+    double best = INFINITY;
+    if (kind == PairKind::PointTriangle) {
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; i + j <= n; ++j) {
+                const double a = double(i) / n, b = double(j) / n;
+                const Eigen::Vector3d q = point(1) + a * (point(2) - point(1)) + b * (point(3) - point(1));
+                best = std::min(best, (point(0) - q).norm());
+            }
+    } else {
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= n; ++j) {
+                const Eigen::Vector3d p = point(0) + (double(i) / n) * (point(1) - point(0));
+                const Eigen::Vector3d q = point(2) + (double(j) / n) * (point(3) - point(2));
+                best = std::min(best, (p - q).norm());
+            }
+    }
+    return best;
+}
+
+TEST(ContactDistance, MatchesSamplingInEveryCase) {
+    std::mt19937 rng(7);
+    int seen[2][4] = {};
+    for (int trial = 0; trial < 2000; ++trial) {
+        const PairKind kind = trial % 2 ? PairKind::EdgeEdge : PairKind::PointTriangle;
+        const Vector12 x = RandomPair(rng, 1.0);
+        const double d = std::sqrt(SquaredDistance(kind, x, nullptr, nullptr));
+        const double sampled = SampledDistance(kind, x, 200);
+        // Sampling finds a point at most one grid step (0.005 of an edge of length < 3.5) from the
+        // closest one, so it is above the truth by less than 0.02.
+        EXPECT_LE(d, sampled + 1e-12) << trial;
+        EXPECT_GT(d, sampled - 0.02) << trial;
+        ++seen[int(kind)][int(ClosestFeaturesOf(kind, x).kind)];
+    }
+    // Random pairs reach every case the two kinds have.
+    for (int c : {0, 1, 2}) EXPECT_GT(seen[0][c], 20) << "point-triangle case " << c;
+    for (int c : {0, 1, 3}) EXPECT_GT(seen[1][c], 20) << "edge-edge case " << c;
+}
+
+// Central differences of f's gradient g (12) and, through g, of its Hessian.
+template <typename F>
+void ExpectDerivatives(const F& f, const Vector12& x, double h, double gradientTolerance, double hessianTolerance,
+                       const char* what) {
+    Vector12 g;
+    Matrix12 H;
+    f(x, &g, &H);
+    const double scale = std::max(1.0, g.cwiseAbs().maxCoeff());
+    const double hScale = std::max(1.0, H.cwiseAbs().maxCoeff());
+    for (int k = 0; k < 12; ++k) {
+        Vector12 plus = x, minus = x;
+        plus[k] += h;
+        minus[k] -= h;
+        Vector12 gp, gm;
+        const double fd = (f(plus, &gp, nullptr) - f(minus, &gm, nullptr)) / (2 * h);
+        EXPECT_NEAR(fd, g[k], gradientTolerance * scale) << what << " gradient " << k;
+        const Vector12 column = (gp - gm) / (2 * h);
+        for (int r = 0; r < 12; ++r) EXPECT_NEAR(column[r], H(r, k), hessianTolerance * hScale) << what << " Hessian " << r << "," << k;
+    }
+    EXPECT_LT((H - H.transpose()).cwiseAbs().maxCoeff(), 1e-12 * hScale) << what;
+}
+
+TEST(ContactDistance, DerivativesMatchCentralDifferences) {
+    std::mt19937 rng(11);
+    int checked = 0;
+    for (int trial = 0; trial < 400 && checked < 120; ++trial) {
+        const PairKind kind = trial % 2 ? PairKind::EdgeEdge : PairKind::PointTriangle;
+        const Vector12 x = RandomPair(rng, 1.0);
+        // Away from case boundaries, where the Hessian jumps: the same case a step away every way.
+        const DistanceCase c = ClosestFeaturesOf(kind, x).kind;
+        bool stable = true;
+        for (int k = 0; k < 12 && stable; ++k)
+            for (double s : {-1e-4, 1e-4}) {
+                Vector12 y = x;
+                y[k] += s;
+                stable = stable && ClosestFeaturesOf(kind, y).kind == c;
+            }
+        if (!stable) continue;
+        ++checked;
+        ExpectDerivatives([&](const Vector12& y, Vector12* g, Matrix12* H) { return SquaredDistance(kind, y, g, H); }, x, 1e-6,
+                          1e-8, 1e-6, "squared distance");
+    }
+    EXPECT_GE(checked, 120);
+}
+
+TEST(ContactBarrier, FunctionIsSmoothAtTheActivationDistance) {
+    const double sHat = 0.2;
+    double b1 = 0, b2 = 0;
+    EXPECT_EQ(Barrier(sHat, sHat, &b1, &b2), 0);
+    EXPECT_EQ(b1, 0);
+    EXPECT_EQ(b2, 0);
+    EXPECT_TRUE(std::isinf(Barrier(0, sHat, nullptr, nullptr)));
+    for (double s : {1e-4, 0.01, 0.05, 0.1, 0.19}) {
+        const double h = 1e-7 * s;
+        double d1 = 0, d2 = 0, p1 = 0, m1 = 0;
+        Barrier(s, sHat, &d1, &d2);
+        const double fd1 = (Barrier(s + h, sHat, &p1, nullptr) - Barrier(s - h, sHat, &m1, nullptr)) / (2 * h);
+        EXPECT_NEAR(fd1, d1, 1e-6 * std::max(1.0, std::abs(d1))) << s;
+        EXPECT_NEAR((p1 - m1) / (2 * h), d2, 1e-5 * std::max(1.0, std::abs(d2))) << s;
+        EXPECT_GT(Barrier(s, sHat, nullptr, nullptr), 0);
+        EXPECT_LT(d1, 0);  // pushes the walls apart
+    }
+}
+
+// A random rigid placement of a pair's 12 coordinates.
+Vector12 Placed(const Vector12& x, std::mt19937& rng) {
+    const Eigen::Matrix3d rotation = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
+    (void)rng;
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Eigen::Vector3d shift(u(rng), u(rng), u(rng));
+    Vector12 y;
+    for (int k = 0; k < 4; ++k) y.segment<3>(3 * k) = rotation * x.segment<3>(3 * k) + shift;
+    return y;
+}
+
+// A pair whose distance lies inside the barrier's reach, h + (0.1 to 0.9) s_hat. Near parallel:
+// two edges at a small angle, crossing (their lines closest inside both) or overlapping by half
+// (an end of one closest to the inside of the other).
+Vector12 PairInReach(std::mt19937& rng, PairKind kind, const BarrierDef& def, bool nearParallel) {
+    std::uniform_real_distribution<double> u(0.1, 0.9), tilt(0.002, 0.01);
+    const double target = def.thicknessMm + u(rng) * def.activationMm;
+    const bool crossing = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    const double t = tilt(rng);
+    Vector12 x = RandomPair(rng, 1.0);
+    // The second primitive moves along `direction` by `offset`; bisection finds the offset.
+    const auto make = [&](double offset) {
+        Vector12 y = x;
+        if (nearParallel) {
+            y << 0, 0, 0, 1, 0, 0, 0, offset, -t, 1, offset, t;
+            if (!crossing) y << 0, 0, 0, 1, 0, 0, 0.5, offset, 0, 1.5, offset + 0.05, t;
+            return y;
+        }
+        const int first = kind == PairKind::PointTriangle ? 1 : 2;
+        const Eigen::Vector3d direction = (x.segment<3>(3 * first) - x.segment<3>(0)).normalized();
+        for (int v = first; v < 4; ++v) y.segment<3>(3 * v) += offset * direction;
+        return y;
+    };
+    double lo = nearParallel ? 0 : -4, hi = 4;
+    for (int iteration = 0; iteration < 200; ++iteration) {
+        const double mid = (lo + hi) / 2;
+        (std::sqrt(SquaredDistance(kind, make(mid), nullptr, nullptr)) < target ? lo : hi) = mid;
+    }
+    const Vector12 y = nearParallel ? Placed(make(lo), rng) : make(lo);
+    if (std::abs(std::sqrt(SquaredDistance(kind, y, nullptr, nullptr)) - target) < 1e-6) return y;
+    return PairInReach(rng, kind, def, nearParallel);  // the distance is not monotone in this offset: another pair
+}
+
+TEST(ContactBarrier, PairEnergyDerivativesMatchCentralDifferences) {
+    std::mt19937 rng(5);
+    const BarrierDef def{0.5, 0.1, 3.0};
+    int mollified = 0;
+    for (int trial = 0; trial < 90; ++trial) {
+        const PairKind kind = trial % 3 == 0 ? PairKind::PointTriangle : PairKind::EdgeEdge;
+        const bool nearParallel = trial % 3 == 2;
+        const Vector12 x = PairInReach(rng, kind, def, nearParallel);
+        const ClosestFeatures c = ClosestFeaturesOf(kind, x);
+        bool stable = true;
+        for (int k = 0; k < 12 && stable; ++k)
+            for (double s : {-1e-4, 1e-4}) {
+                Vector12 y = x;
+                y[k] += s;
+                stable = stable && ClosestFeaturesOf(kind, y).kind == c.kind;
+            }
+        if (!stable) continue;
+        // The mollifier's threshold from a rest shape at twice the edges' cross product: mollified
+        // when near parallel.
+        const double threshold = kind == PairKind::EdgeEdge ? EdgeEdgeMollifierThreshold(x) * (nearParallel ? 1e3 : 1) : 0;
+        if (nearParallel) ++mollified;
+        ExpectDerivatives([&](const Vector12& y, Vector12* g, Matrix12* H) {
+            return PairBarrierEnergy(kind, y, threshold, def, g, H, false);
+        }, x, 1e-7, 1e-6, 1e-4, nearParallel ? "mollified edge-edge barrier" : "barrier");
+    }
+    EXPECT_GT(mollified, 10);
+}
+
+TEST(ContactBarrier, ProjectedHessianIsPositiveSemiDefinite) {
+    std::mt19937 rng(9);
+    const BarrierDef def{0.5, 0.1, 3.0};
+    for (int trial = 0; trial < 40; ++trial) {
+        const PairKind kind = trial % 2 ? PairKind::EdgeEdge : PairKind::PointTriangle;
+        const Vector12 x = PairInReach(rng, kind, def, false);
+        Matrix12 exact, projected;
+        Vector12 g;
+        PairBarrierEnergy(kind, x, 0, def, &g, &exact, false);
+        PairBarrierEnergy(kind, x, 0, def, nullptr, &projected, true);
+        Eigen::SelfAdjointEigenSolver<Matrix12> e(projected), f(exact);
+        EXPECT_GE(e.eigenvalues().minCoeff(), -1e-9 * e.eigenvalues().cwiseAbs().maxCoeff());
+        // Only the negative part is removed: the largest eigenvalue (the push apart) is kept.
+        EXPECT_NEAR(e.eigenvalues().maxCoeff(), f.eigenvalues().maxCoeff(), 1e-9 * f.eigenvalues().cwiseAbs().maxCoeff());
+    }
+}
+
+// A crumpled sheet: an n x n grid folded over itself in z, so that far-apart parts of it are close.
+struct Sheet {
+    Positions x;
+    std::vector<std::array<int, 3>> triangles;
+};
+Sheet FoldedSheet(int n, double size, std::mt19937& rng) {
+    Sheet s;
+    s.x.Resize(n * n);
+    std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double u = size * i / (n - 1), v = size * j / (n - 1);
+            const double angle = 3 * M_PI * u / size;  // one and a half turns: layers about 0.4 apart
+            const int k = i * n + j;
+            s.x.x[k] = (0.3 + 0.1 * angle) * std::cos(angle) + jitter(rng);
+            s.x.y[k] = v + jitter(rng);
+            s.x.z[k] = (0.3 + 0.1 * angle) * std::sin(angle) + jitter(rng);
+        }
+    for (int i = 0; i + 1 < n; ++i)
+        for (int j = 0; j + 1 < n; ++j) {
+            const int a = i * n + j, b = a + n, c = b + 1, d = a + 1;
+            s.triangles.push_back({a, b, c});
+            s.triangles.push_back({a, c, d});
+        }
+    return s;
+}
+
+TEST(ContactCandidates, FindEveryPairWithinReach) {
+    std::mt19937 rng(3);
+    const Sheet sheet = FoldedSheet(14, 3.0, rng);
+    const double reach = 0.15;
+    const ContactSurface surface = MakeContactSurface(sheet.x, sheet.triangles, {}, 0);
+    const std::vector<ContactPair> candidates = ContactCandidates(surface, sheet.x, nullptr, reach);
+    EXPECT_TRUE(std::is_sorted(candidates.begin(), candidates.end()));
+    // All pairs by brute force.
+    int within = 0;
+    const auto expectFound = [&](const ContactPair& pair) {
+        if (std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, sheet.x), nullptr, nullptr)) > reach) return;
+        ++within;
+        EXPECT_TRUE(std::binary_search(candidates.begin(), candidates.end(), pair));
+    };
+    for (int p : surface.points)
+        for (const auto& t : surface.triangles)
+            if (p != t[0] && p != t[1] && p != t[2]) expectFound({PairKind::PointTriangle, {p, t[0], t[1], t[2]}});
+    for (std::size_t i = 0; i < surface.edges.size(); ++i)
+        for (std::size_t j = i + 1; j < surface.edges.size(); ++j) {
+            const auto &a = surface.edges[i], &b = surface.edges[j];
+            if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+            expectFound({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
+        }
+    EXPECT_GT(within, 100);                            // the folds do come within reach
+    EXPECT_LT(candidates.size(), 40u * within + 1000);  // and the hash is not all pairs
+
+    // Neighbours at rest are left out: with the rest shape as it is, every pair within reach at rest is.
+    const ContactSurface withNeighbours = MakeContactSurface(sheet.x, sheet.triangles, {}, reach);
+    for (const ContactPair& pair : ContactCandidates(withNeighbours, sheet.x, nullptr, reach))
+        EXPECT_GE(std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, sheet.x), nullptr, nullptr)), reach);
+}
+
+TEST(ContactCcd, NoRandomStepCrossesAWall) {
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double wall = 0.2;
+    int collisions = 0, steps = 0;
+    std::vector<double> ratios;  // cut step over the first contact's time
+    for (int trial = 0; trial < 4000; ++trial) {
+        const PairKind kind = trial % 2 ? PairKind::EdgeEdge : PairKind::PointTriangle;
+        const Vector12 x = RandomPair(rng, 1.0);
+        if (std::sqrt(SquaredDistance(kind, x, nullptr, nullptr)) <= wall * 1.01) continue;
+        Vector12 dx = RandomPair(rng, 1.5);
+        ++steps;
+        const double t = PairImpactTime(kind, x, dx, wall, 1.0);
+        ASSERT_GE(t, 0);
+        ASSERT_LE(t, 1);
+        // Dense sampling of [0, t]: never closer than the wall.
+        for (int k = 0; k <= 400; ++k) {
+            const double s = t * k / 400;
+            ASSERT_GT(std::sqrt(SquaredDistance(kind, x + s * dx, nullptr, nullptr)), wall) << trial << " at " << s;
+        }
+        // Sampling the whole move: a step cut short is cut before the first contact, and not far before.
+        double first = 2;
+        for (int k = 0; k <= 2000; ++k)
+            if (std::sqrt(SquaredDistance(kind, x + (k / 2000.0) * dx, nullptr, nullptr)) <= wall) {
+                first = k / 2000.0;
+                break;
+            }
+        if (first <= 1) {
+            ++collisions;
+            EXPECT_LT(t, first) << trial;
+            ratios.push_back(t / first);
+        }
+        if (t < 1 && first > 1) {
+            // A cut with no contact: the pair came within a tenth of its gap's worth of the wall.
+            const double gapAtStart = std::sqrt(SquaredDistance(kind, x, nullptr, nullptr)) - wall;
+            double closest = INFINITY;
+            for (int k = 0; k <= 2000; ++k) closest = std::min(closest, std::sqrt(SquaredDistance(kind, x + (k / 2000.0) * dx, nullptr, nullptr)) - wall);
+            EXPECT_LT(closest, 0.2 * gapAtStart + 1e-3) << trial;
+        }
+    }
+    EXPECT_GT(steps, 3000);
+    EXPECT_GT(collisions, 300);
+    // Conservative, not timid: where the move does reach the wall, the step is cut near it.
+    std::sort(ratios.begin(), ratios.end());
+    std::printf("cut step / first contact: 10 %% %.3f, median %.3f, 90 %% %.3f\n", ratios[ratios.size() / 10],
+                ratios[ratios.size() / 2], ratios[9 * ratios.size() / 10]);
+    EXPECT_GT(ratios[ratios.size() / 2], 0.8);
+    EXPECT_GT(ratios[ratios.size() / 10], 0.5);
+}
+
+}  // namespace
+}  // namespace sim
