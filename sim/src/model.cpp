@@ -88,6 +88,11 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
         v.Number("mean_fibre_strain", "", s.meanFibreStrain);
         v.Number("deformed_fibre_angle_deg", "deg", s.fibreAngleDeg);  // beside the laid angle, the setting fibre_angle_deg
     }
+    if (job.Shell().contact.mode == ContactMode::On) {
+        v.Count("contact_pairs", s.contactPairs);
+        v.Number("min_gap_mm", "mm", s.minGapMm);
+        v.Number("contact_force_n", "N", s.contactForceN);
+    }
     v.Count("newton_iterations", s.newtonIterations);
     v.Count("factorizations", s.factorizations);
     v.Curve("curve_pressure_kpa", "kPa", s.curvePressureKpa);

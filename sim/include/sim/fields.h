@@ -109,6 +109,15 @@ void VisitFields(Def& e, Visitor&& v) requires std::is_same_v<std::remove_const_
 }
 
 template <class Def, class Visitor>
+void VisitFields(Def& c, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::ContactDef> {
+    v.Enum("contact", c.mode, "self-contact: on, walls touch and rest a wall thickness apart (a barrier; vacuum actuators need it); off, a state "
+                              "that passes through itself is the status self-intersection");
+    v.Number("contact_gap_fraction", c.gapFraction, "contact on: the barrier's reach beyond a wall thickness, as a fraction of it (touching walls rest "
+                                                    "between h and h (1 + this) apart)", 1e-4, 1);
+    v.Number("contact_stiffness", c.stiffness, "contact on: the barrier's strength kappa over the wall's mu h", 1e-6, 1e6);
+}
+
+template <class Def, class Visitor>
 void VisitFields(Def& s, Visitor&& v) requires std::is_same_v<std::remove_const_t<Def>, sim::SolverDef> {
     v.Number("tolerance", s.tolerance, "converged when the largest free-node force is below this x mu h l", 1e-16, 1e-2);
     v.Integer("max_iterations", s.maxIterations, "Newton iterations per load step", 1, 10000);
@@ -219,6 +228,8 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     if (key == "c20_kpa" || key == "c30_kpa") return unless(law == M::Yeoh, "law", "yeoh", sim::Name(law));
     // Sliding ends hold the end rings alone; the clamp's rings are a clamp's.
     if (key == "clamp_mm" || key == "edge_spacing_mm") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));
+    if (key == "contact_gap_fraction" || key == "contact_stiffness")
+        return unless(def.contact.mode == sim::ContactMode::On, "contact", "on", sim::Name(def.contact.mode));
     if (key == "fibre_stiffness_n_per_mm") return unless(fibres != sim::FibreLayout::None, "fibres", "meridian, hoop, braid or single", sim::Name(fibres));
     // Angles by band or sector replace a braid's or a single family's one angle.
     if (key == "fibre_bands" || key == "fibre_sectors_deg")
@@ -280,7 +291,8 @@ inline std::string ShellFieldsWithoutEffect(const sim::ShellDef& def) {
     const sim::MaterialDef preset = def.material.preset == sim::MaterialPreset::Custom ? sim::MaterialDef{} : sim::MaterialPresetDef(def.material.preset);
     std::vector<std::string> keys;
     for (const auto& part : {ChangedKeys(def.geometry, defaults.geometry), ChangedKeys(def.material, preset), ChangedKeys(def.load, defaults.load), ChangedKeys(def.ends, defaults.ends),
-                             ChangedKeys(def.solver, defaults.solver), ChangedKeys(def.fibres, defaults.fibres), ChangedKeys(def.envelope, defaults.envelope)})
+                             ChangedKeys(def.solver, defaults.solver), ChangedKeys(def.fibres, defaults.fibres), ChangedKeys(def.envelope, defaults.envelope),
+                             ChangedKeys(def.contact, defaults.contact)})
         keys.insert(keys.end(), part.begin(), part.end());
     for (const auto& key : keys)
         if (const FieldUse use = ShellFieldUse(def, key); !use.Applies())
@@ -329,6 +341,7 @@ void VisitDefFields(const ShellDef& def, V& v) {
     VisitFields(def.solver, v);
     VisitFields(def.fibres, v);
     VisitFields(def.envelope, v);
+    VisitFields(def.contact, v);
 }
 
 // Empty when every field of the job's model lies in the range the command line and experiment files

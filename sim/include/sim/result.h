@@ -45,6 +45,9 @@ struct ShellOutputs {
     double tipMomentNMm = NAN;                     // tip held: the bending moment that keeps it square to the axis
     double maxFibreStrain = NAN, meanFibreStrain = NAN;  // fibre stretch - 1 at the target (fibres only)
     double fibreAngleDeg = NAN;                    // the fibres' mean angle to the axis in the middle third
+    int contactPairs = 0;                          // contact on: point-triangle and edge-edge pairs within the barrier's reach at the target
+    double minGapMm = NAN;                         // contact on: the walls' smallest gap, mid-surface distance - h (inf: no wall near another)
+    double contactForceN = NAN;                    // contact on: the sum of the active pairs' normal forces
     int newtonIterations = 0;
     int factorizations = 0;
     std::vector<Positions> steps;                  // positions at each load step (for pictures)

@@ -197,6 +197,18 @@ struct EnvelopeDef {
     bool Any() const { return maxRadiusRatio > 0 || maxRadiusMm > 0 || maxSiliconeG > 0; }
 };
 
+// Self-contact (docs/models/shell.md section 8).
+enum class ContactMode {
+    Off,  // a converged state that passes through itself ends self-intersection (the design is discarded)
+    On,   // walls touch: a barrier keeps the mid-surfaces at least a wall thickness apart
+};
+struct ContactDef {
+    ContactMode mode = ContactMode::Off;
+    double gapFraction = 0.1;   // s_hat / h: walls closer than h (1 + this) push each other apart; in
+                                // contact they rest between h and that apart
+    double stiffness = 1;       // kappa / (mu h): the barrier's strength against the wall's (IPC's kappa)
+};
+
 struct ShellDef {
     GeometryDef geometry;
     MaterialDef material = MaterialPresetDef(MaterialPreset::Ecoflex0030);
@@ -205,6 +217,7 @@ struct ShellDef {
     SolverDef solver;
     FibreDef fibres;
     EnvelopeDef envelope;
+    ContactDef contact;
 };
 ShellDef DefaultShellDef();
 
@@ -356,6 +369,10 @@ template <>
 struct sim::EnumNames<sim::TwistEnd> {
     static constexpr std::array<std::pair<sim::TwistEnd, const char*>, 3> table{
         {{sim::TwistEnd::Free, "free"}, {sim::TwistEnd::Held, "held"}, {sim::TwistEnd::Loaded, "loaded"}}};
+};
+template <>
+struct sim::EnumNames<sim::ContactMode> {
+    static constexpr std::array<std::pair<sim::ContactMode, const char*>, 2> table{{{sim::ContactMode::Off, "off"}, {sim::ContactMode::On, "on"}}};
 };
 template <>
 struct sim::EnumNames<sim::TipEnd> {

@@ -96,4 +96,27 @@ double PairBarrierEnergy(PairKind kind, const Vector12& x, double mollifierThres
     return energy;
 }
 
+ContactSummary SummariseContact(const ContactSurface& surface, const BarrierDef& barrier, const Positions& x) {
+    ContactSummary summary;
+    summary.minGapMm = std::numeric_limits<double>::infinity();
+    const double reach = ContactReachMm(barrier);
+    for (const ContactPair& pair : ContactCandidates(surface, x, nullptr, 2 * reach)) {
+        const Vector12 c = PairCoordinates(pair, x);
+        const double d = std::sqrt(SquaredDistance(pair.kind, c, nullptr, nullptr));
+        summary.minGapMm = std::min(summary.minGapMm, d - barrier.thicknessMm);
+        if (d >= reach) continue;
+        ++summary.activePairs;
+        double first = 0;
+        Barrier(d - barrier.thicknessMm, barrier.activationMm, &first, nullptr);
+        double m = 1;
+        if (pair.kind == PairKind::EdgeEdge) {
+            const double threshold = EdgeEdgeMollifierThreshold(PairCoordinates(pair, surface.rest));
+            const double crossSquared = (c.segment<3>(3) - c.segment<3>(0)).cross(c.segment<3>(9) - c.segment<3>(6)).squaredNorm();
+            if (crossSquared < threshold) m = (2 - crossSquared / threshold) * crossSquared / threshold;
+        }
+        summary.forceN += barrier.stiffness * m * std::abs(first);
+    }
+    return summary;
+}
+
 }  // namespace sim

@@ -6,17 +6,18 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <queue>
 
 #include "contact/contact.h"
 
 namespace sim {
 
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
-                                  const std::vector<char>& moves, double neighbourMm) {
+                                  const std::vector<int>& body, double neighbourMm) {
     ContactSurface s;
     s.triangles = triangles;
     s.rest = rest;
-    s.moves = moves;
+    s.body = body;
     s.neighbourMm = neighbourMm;
     for (const auto& t : triangles)
         for (int k = 0; k < 3; ++k) {
@@ -28,7 +29,93 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     s.edges.erase(std::unique(s.edges.begin(), s.edges.end()), s.edges.end());
     std::sort(s.points.begin(), s.points.end());
     s.points.erase(std::unique(s.points.begin(), s.points.end()), s.points.end());
+    if (neighbourMm <= 0) return s;
+
+    // Distances along the edges, by Dijkstra from each vertex out to the radius.
+    const int n = rest.Size();
+    const auto at = [&](int v) { return Eigen::Vector3d(rest.x[v], rest.y[v], rest.z[v]); };
+    std::vector<std::vector<std::pair<int, double>>> adjacent(n);
+    double longest = 0;
+    for (const auto& e : s.edges) {
+        const double length = (at(e[0]) - at(e[1])).norm();
+        adjacent[e[0]].push_back({e[1], length});
+        adjacent[e[1]].push_back({e[0], length});
+        longest = std::max(longest, length);
+    }
+    const double radius = neighbourMm + longest;
+    s.nearAlongWall.resize(n);
+    std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+    std::vector<int> touched;
+    for (int source : s.points) {
+        using Item = std::pair<double, int>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+        distance[source] = 0;
+        touched.push_back(source);
+        queue.push({0, source});
+        while (!queue.empty()) {
+            const auto [d, v] = queue.top();
+            queue.pop();
+            if (d > distance[v]) continue;
+            s.nearAlongWall[source].push_back(v);
+            for (const auto& [w, length] : adjacent[v])
+                if (d + length <= radius && d + length < distance[w]) {
+                    if (distance[w] == std::numeric_limits<double>::infinity()) touched.push_back(w);
+                    distance[w] = d + length;
+                    queue.push({distance[w], w});
+                }
+        }
+        std::sort(s.nearAlongWall[source].begin(), s.nearAlongWall[source].end());
+        for (int v : touched) distance[v] = std::numeric_limits<double>::infinity();
+        touched.clear();
+    }
+
+    // Neighbour pairs, once: near along the wall (a vertex of one near a vertex of the other) and
+    // closer than neighbourMm at rest.
+    std::vector<std::vector<int>> trianglesAt(n), edgesAt(n);
+    for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+        for (int v : triangles[t]) trianglesAt[v].push_back(t);
+    for (int e = 0; e < static_cast<int>(s.edges.size()); ++e)
+        for (int v : s.edges[e]) edgesAt[v].push_back(e);
+    const double limit = neighbourMm * neighbourMm;
+    const auto close = [&](const ContactPair& pair) { return SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr) < limit; };
+    s.neighbourTriangles.resize(n);
+    for (int p : s.points) {
+        std::vector<int>& found = s.neighbourTriangles[p];
+        for (int v : s.nearAlongWall[p]) found.insert(found.end(), trianglesAt[v].begin(), trianglesAt[v].end());
+        std::sort(found.begin(), found.end());
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        std::erase_if(found, [&](int t) {
+            const auto& tri = triangles[t];
+            return p == tri[0] || p == tri[1] || p == tri[2] || !close({PairKind::PointTriangle, {p, tri[0], tri[1], tri[2]}});
+        });
+    }
+    s.neighbourEdges.resize(s.edges.size());
+    for (int e = 0; e < static_cast<int>(s.edges.size()); ++e) {
+        std::vector<int>& found = s.neighbourEdges[e];
+        for (int end : s.edges[e])
+            for (int v : s.nearAlongWall[end]) found.insert(found.end(), edgesAt[v].begin(), edgesAt[v].end());
+        std::sort(found.begin(), found.end());
+        found.erase(std::unique(found.begin(), found.end()), found.end());
+        const auto& a = s.edges[e];
+        std::erase_if(found, [&](int f) {
+            const auto& b = s.edges[f];
+            return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1] || !close({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
+        });
+    }
     return s;
+}
+
+// The rule as stated (the surface keeps its result per vertex and edge for the search).
+bool Neighbours(const ContactSurface& surface, const ContactPair& pair) {
+    if (surface.neighbourMm <= 0) return false;
+    const int split = pair.kind == PairKind::PointTriangle ? 1 : 2;
+    bool alongWall = false;
+    for (int a = 0; a < split && !alongWall; ++a) {
+        const std::vector<int>& near = surface.nearAlongWall[pair.vertices[a]];
+        for (int b = split; b < 4 && !alongWall; ++b) alongWall = std::binary_search(near.begin(), near.end(), pair.vertices[b]);
+    }
+    return alongWall && SquaredDistance(pair.kind, PairCoordinates(pair, surface.rest), nullptr, nullptr) <
+                            surface.neighbourMm * surface.neighbourMm;
 }
 
 namespace {
@@ -65,6 +152,7 @@ struct Entry {
     std::uint64_t cell;
     Primitive kind;
     int index;
+    std::array<long, 3> at;  // the cell's coordinates
     bool operator<(const Entry& o) const {
         return cell != o.cell ? cell < o.cell : kind != o.kind ? kind < o.kind : index < o.index;
     }
@@ -119,7 +207,7 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
             for (double i = lo[0]; i <= hi[0]; ++i)
                 for (double j = lo[1]; j <= hi[1]; ++j)
                     for (double k = lo[2]; k <= hi[2]; ++k)
-                        entries.push_back({CellKey(long(i), long(j), long(k)), kind, n});
+                        entries.push_back({CellKey(long(i), long(j), long(k)), kind, n, {long(i), long(j), long(k)}});
         }
     };
     insert(pointBoxes, kPoint);
@@ -127,48 +215,107 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
     insert(triangleBoxes, kTriangle);
     std::sort(entries.begin(), entries.end());
 
+    // A pair of boxes shares several cells; it is taken in one, the lowest cell of their overlap,
+    // so that no pair is found twice.
+    const auto lowestShared = [&](const Box& a, const Box& b, const Entry& e) {
+        for (int axis = 0; axis < 3; ++axis)
+            if (long(std::floor(std::max(a.lo[axis], b.lo[axis]) / cell)) != e.at[axis]) return false;
+        return true;
+    };
+    // Without a move, pairs farther apart than the reach are left out by their true distance.
+    const double reachSquared = reachMm * reachMm;
+    const auto within = [&](const ContactPair& pair) {
+        return dx || SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr) < reachSquared;
+    };
     const auto movable = [&](const std::array<int, 4>& v) {
-        return surface.moves.empty() || surface.moves[v[0]] || surface.moves[v[1]] || surface.moves[v[2]] || surface.moves[v[3]];
+        if (surface.body.empty()) return true;
+        const int b = surface.body[v[0]];
+        return b < 0 || surface.body[v[1]] != b || surface.body[v[2]] != b || surface.body[v[3]] != b;
     };
     std::vector<ContactPair> pairs;
     for (std::size_t begin = 0; begin < entries.size();) {
+        // A cell's entries: its points, then its edges, then its triangles (the entries' order).
         std::size_t end = begin;
         while (end < entries.size() && entries[end].cell == entries[begin].cell) ++end;
-        for (std::size_t a = begin; a < end; ++a) {
+        const auto firstOf = [&](Primitive kind) {
+            std::size_t k = begin;
+            while (k < end && entries[k].kind < kind) ++k;
+            return k;
+        };
+        const std::size_t edgesBegin = firstOf(kEdge), trianglesBegin = firstOf(kTriangle);
+        for (std::size_t a = begin; a < edgesBegin; ++a) {
             const Entry& ea = entries[a];
-            for (std::size_t b = a + 1; b < end; ++b) {
+            const int p = surface.points[ea.index];
+            const Box& pa = pointBoxes[ea.index];
+            for (std::size_t b = trianglesBegin; b < end; ++b) {
                 const Entry& eb = entries[b];
-                if (ea.kind == kPoint && eb.kind == kTriangle) {
-                    const int p = surface.points[ea.index];
-                    const auto& t = surface.triangles[eb.index];
-                    if (p == t[0] || p == t[1] || p == t[2]) continue;
-                    if (!Overlap(pointBoxes[ea.index], triangleBoxes[eb.index])) continue;
-                    const ContactPair pair{PairKind::PointTriangle, {p, t[0], t[1], t[2]}};
-                    if (movable(pair.vertices)) pairs.push_back(pair);
-                } else if (ea.kind == kEdge && eb.kind == kEdge) {
-                    const auto &ei = surface.edges[ea.index], &ej = surface.edges[eb.index];
-                    if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1]) continue;
-                    if (!Overlap(edgeBoxes[ea.index], edgeBoxes[eb.index])) continue;
-                    // The lower edge first, so that a pair found in two cells is the same pair.
-                    const auto& [lo, hi] = ea.index < eb.index ? std::pair(ei, ej) : std::pair(ej, ei);
-                    const ContactPair pair{PairKind::EdgeEdge, {lo[0], lo[1], hi[0], hi[1]}};
-                    if (movable(pair.vertices)) pairs.push_back(pair);
-                }
+                const auto& t = surface.triangles[eb.index];
+                const Box& tb = triangleBoxes[eb.index];
+                if (p == t[0] || p == t[1] || p == t[2] || !Overlap(pa, tb) || !lowestShared(pa, tb, ea)) continue;
+                if (!surface.neighbourTriangles.empty() &&
+                    std::binary_search(surface.neighbourTriangles[p].begin(), surface.neighbourTriangles[p].end(), eb.index))
+                    continue;
+                const ContactPair pair{PairKind::PointTriangle, {p, t[0], t[1], t[2]}};
+                if (movable(pair.vertices) && within(pair)) pairs.push_back(pair);
+            }
+        }
+        for (std::size_t a = edgesBegin; a < trianglesBegin; ++a) {
+            const Entry& ea = entries[a];
+            const auto& ei = surface.edges[ea.index];
+            const Box& ba = edgeBoxes[ea.index];
+            for (std::size_t b = a + 1; b < trianglesBegin; ++b) {
+                const Entry& eb = entries[b];
+                const auto& ej = surface.edges[eb.index];
+                const Box& bb = edgeBoxes[eb.index];
+                if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1] || !Overlap(ba, bb) || !lowestShared(ba, bb, ea)) continue;
+                if (!surface.neighbourEdges.empty() &&
+                    std::binary_search(surface.neighbourEdges[ea.index].begin(), surface.neighbourEdges[ea.index].end(), eb.index))
+                    continue;
+                // The lower edge first (entries are in index order within a cell): one name per pair.
+                const ContactPair pair{PairKind::EdgeEdge, {ei[0], ei[1], ej[0], ej[1]}};
+                if (movable(pair.vertices) && within(pair)) pairs.push_back(pair);
             }
         }
         begin = end;
     }
     std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-
-    // Neighbours within one wall: primitives already this close at rest.
-    if (surface.neighbourMm > 0) {
-        const double limit = surface.neighbourMm * surface.neighbourMm;
-        std::erase_if(pairs, [&](const ContactPair& pair) {
-            return SquaredDistance(pair.kind, PairCoordinates(pair, surface.rest), nullptr, nullptr) < limit;
-        });
-    }
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());  // cells beyond the grid's border share keys
     return pairs;
+}
+
+double ContactList::Drift(const Positions& x) const {
+    if (built.Size() != x.Size()) return std::numeric_limits<double>::infinity();
+    double largest = 0;
+    for (int v = 0; v < x.Size(); ++v) {
+        const double dx = x.x[v] - built.x[v], dy = x.y[v] - built.y[v], dz = x.z[v] - built.z[v];
+        largest = std::max(largest, dx * dx + dy * dy + dz * dz);
+    }
+    return std::isfinite(largest) ? std::sqrt(largest) : std::numeric_limits<double>::infinity();
+}
+
+bool ContactList::Covers(const Positions& x) const { return Drift(x) <= marginMm; }
+
+bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x) {
+    if (list.Covers(x)) return false;
+    // The pairs within 1.4 reaches: a wider list is rebuilt less often but puts every pair in it into
+    // the Hessian's pattern (a collapsed tube: 36,000 pairs at twice the reach, where 2,000 touch).
+    // The pairs left out are searched to 2 reaches (a wall's neighbours are left out to there at
+    // rest, so on a wall far from contact none is found): the nearest of them sets how far the
+    // walls may move before one of them could come within the reach (0.2 to 0.5 reaches).
+    const double reach = ContactReachMm(barrier), search = 2 * reach;
+    const std::vector<ContactPair> near = ContactCandidates(surface, x, nullptr, search);
+    list.built = x;
+    list.clearanceMm = search;
+    std::vector<ContactPair> pairs;
+    for (const ContactPair& pair : near) {
+        const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr));
+        if (d < 1.4 * reach) pairs.push_back(pair);
+        else list.clearanceMm = std::min(list.clearanceMm, d);
+    }
+    list.marginMm = 0.5 * (list.clearanceMm - reach);
+    if (pairs == list.pairs) return false;
+    list.pairs = std::move(pairs);
+    return true;
 }
 
 }  // namespace sim

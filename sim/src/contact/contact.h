@@ -89,25 +89,70 @@ double PairBarrierEnergy(PairKind kind, const Vector12& x, double mollifierThres
 // ---------------------------------------------------------------------------------------------
 
 // The surface that may touch itself: triangles (the wall and the end caps), their unique edges, and
-// which vertices move (a pair whose four vertices are all held has constant energy and is skipped).
+// which vertices ride on a rigid body (a clamp): a pair whose four vertices ride on one keeps its
+// distance and is skipped.
+//
+// Neighbours within one wall are not contact: a pair closer than neighbourMm at rest whose vertices
+// are also near each other along the mesh's edges (within neighbourMm plus the longest edge) is never
+// a candidate. The second condition keeps the two sides of a narrow neck, close at rest but half a
+// circumference apart along the wall, as walls that may touch.
 struct ContactSurface {
     std::vector<std::array<int, 3>> triangles;
     std::vector<std::array<int, 2>> edges;   // each once, lower vertex first
     std::vector<int> points;                 // vertices of the triangles, ascending
-    std::vector<char> moves;                 // per vertex of the mesh
+    std::vector<int> body;                   // per vertex of the mesh: its rigid body (0, 1, ...) or -1 (empty: none)
     Positions rest;
-    // Pairs whose primitives are closer than this at rest are neighbours within one wall, not walls
-    // that touch: they are never candidates (mm).
     double neighbourMm = 0;
+    // Per vertex, the vertices within neighbourMm + the longest edge along the edges at rest, ascending.
+    std::vector<std::vector<int>> nearAlongWall;
+    // The neighbours, found once: per vertex the triangles (indices into `triangles`), per edge the
+    // edges (indices into `edges`), ascending.
+    std::vector<std::vector<int>> neighbourTriangles, neighbourEdges;
 };
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
-                                  const std::vector<char>& moves, double neighbourMm);
+                                  const std::vector<int>& body, double neighbourMm);
+// Whether a pair is two neighbours within one wall (see ContactSurface).
+bool Neighbours(const ContactSurface& surface, const ContactPair& pair);
 
 // The pairs whose primitives may be within reachMm of each other (a uniform spatial hash on their
 // bounding boxes), or, with dx, at any point while x moves to x + dx. Pairs that share a vertex,
-// neighbours and pairs that cannot move are left out. Sorted, each once: the same list on every run.
+// neighbours and pairs on one rigid body are left out. Sorted, each once: the same list on every run.
 std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const Positions& x, const Positions* dx,
                                            double reachMm);
+
+// The distance at which pairs act: a wall thickness and the barrier's reach beyond it.
+inline double ContactReachMm(const BarrierDef& barrier) { return barrier.thicknessMm + barrier.activationMm; }
+
+// The pairs an assembly sums over (a Verlet list): the candidates within the reach plus twice a
+// margin of the positions it was built at. It holds every pair within the reach for as long as no
+// vertex has moved more than the margin from there, so a Newton solve rebuilds it (and its Hessian's
+// pattern) only when the walls have moved that far.
+//
+// The distance of the nearest pair left out (clearanceMm, searched out to a few reaches) sets the
+// margin, and lets continuous collision detection look at the list's pairs alone while the walls
+// cannot have come nearer: a tube inflating far from contact pays for a search now and then, not at
+// every step.
+struct ContactList {
+    std::vector<ContactPair> pairs;
+    Positions built;
+    double marginMm = 0;     // the list holds while no vertex has moved farther than this from `built`
+    double clearanceMm = 0;  // every pair not in the list was at least this far apart at `built`
+    bool Covers(const Positions& x) const;
+    // The largest distance a vertex has moved from `built`.
+    double Drift(const Positions& x) const;
+};
+// Rebuilds the list at x when it does not cover x. True when its pairs changed.
+bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x);
+
+// What contact does at positions x: the pairs within the barrier's reach, the smallest gap between
+// the walls (d - h over the pairs within the list's reach; infinite when none is), and the walls'
+// contact force, the sum of the active pairs' normal forces kappa m |b'(s)| (N).
+struct ContactSummary {
+    int activePairs = 0;
+    double minGapMm = 0;
+    double forceN = 0;
+};
+ContactSummary SummariseContact(const ContactSurface& surface, const BarrierDef& barrier, const Positions& x);
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Continuous collision detection

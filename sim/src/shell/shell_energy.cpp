@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <limits>
 #include <unordered_map>
 
 #include "shell/shell_problem.h"
@@ -52,7 +53,7 @@ struct CompensatedSum {
 // [SECTION] Pattern
 // ---------------------------------------------------------------------------------------------
 
-HessianPattern::HessianPattern(const ShellProblem& p) {
+HessianPattern::HessianPattern(const ShellProblem& p, const std::vector<ContactPair>& contact) : contactPairs(contact) {
     std::vector<Eigen::Triplet<double>> entries;
     auto addBlock = [&](const int* u, int count) {
         for (int i = 0; i < count; ++i)
@@ -62,6 +63,7 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& t : p.wall) addBlock(UnknownsOfVertices(p, t).data(), 9);
     for (const auto& t : p.caps) addBlock(UnknownsOfVertices(p, t).data(), 9);
     for (const auto& h : p.hinges) addBlock(UnknownsOfVertices(p, h).data(), 12);
+    for (const auto& c : contactPairs) addBlock(UnknownsOfVertices(p, c.vertices).data(), 12);
     std::vector<int> anchored;
     for (int v : p.anchor.vertices)
         for (int c = 0; c < 3; ++c) anchored.push_back(Unknown(p, v, c));
@@ -91,6 +93,7 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& t : p.wall) addTop(t.data(), 3);
     for (const auto& t : p.caps) addTop(t.data(), 3);
     for (const auto& h : p.hinges) addTop(h.data(), 4);
+    for (const auto& c : contactPairs) addTop(c.vertices.data(), 4);
     for (int a : top)
         for (int b : top) entries.emplace_back(a, b, 0.0);
     for (int d = 0; d < p.unknowns; ++d) entries.emplace_back(d, d, 0.0);  // a full diagonal for shifts
@@ -111,6 +114,7 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& t : p.wall) slots(UnknownsOfVertices(p, t).data(), 9, wallSlots);
     for (const auto& t : p.caps) slots(UnknownsOfVertices(p, t).data(), 9, capSlots);
     for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
+    for (const auto& c : contactPairs) slots(UnknownsOfVertices(p, c.vertices).data(), 12, contactSlots);
     slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
     twistSlot = p.rigidTop ? -1 : slot(p.twist, p.twist);
     const std::array<int, kTopParameters> topUnknown = TopUnknowns(p);
@@ -126,6 +130,7 @@ HessianPattern::HessianPattern(const ShellProblem& p) {
     for (const auto& t : p.wall) wallTurned.push_back(turned(t.data(), 3));
     for (const auto& t : p.caps) capTurned.push_back(turned(t.data(), 3));
     for (const auto& h : p.hinges) hingeTurned.push_back(turned(h.data(), 4));
+    for (const auto& c : contactPairs) contactTurned.push_back(turned(c.vertices.data(), 4));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -369,6 +374,43 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             }
         }
     }
+    // Self-contact: kappa m b(d - h) over the pairs within reach (docs/models/shell.md section 8).
+    if (terms.contact && p.contact) {
+        std::vector<ContactPair> found;
+        const std::vector<ContactPair>* pairs = &found;
+        if (terms.contactList && terms.contactList->Covers(x)) pairs = &terms.contactList->pairs;
+        else found = ContactCandidates(*p.contact, x, nullptr, ContactReachMm(p.barrier));
+        const double reachSquared = ContactReachMm(p.barrier) * ContactReachMm(p.barrier);
+        CompensatedSum contact;
+        for (const ContactPair& pair : *pairs) {
+            const Vector12 c = PairCoordinates(pair, x);
+            if (!(SquaredDistance(pair.kind, c, nullptr, nullptr) < reachSquared)) continue;
+            const double threshold = pair.kind == PairKind::EdgeEdge ? EdgeEdgeMollifierThreshold(PairCoordinates(pair, p.rest)) : 0;
+            Vector12 g;
+            Matrix12 H;
+            const double e = PairBarrierEnergy(pair.kind, c, threshold, p.barrier, wantGradient ? &g : nullptr, hessian ? &H : nullptr,
+                                               kind != HessianKind::Exact);
+            if (!std::isfinite(e)) {  // a wall at or through another: no state the solver may accept
+                r.contactEnergy = std::numeric_limits<double>::infinity();
+                continue;
+            }
+            contact.Add(e);
+            if (wantGradient)
+                for (int k = 0; k < 12; ++k) addGradient(r.gradient, pair.vertices[k / 3], k % 3, g[k], &axialForce);
+            if (hessian) {
+                const auto& held = hessian->contactPairs;
+                const auto at = std::lower_bound(held.begin(), held.end(), pair);
+                if (at == held.end() || !(*at == pair)) continue;  // not in the pattern: the solver keeps them matched
+                const size_t index = static_cast<size_t>(at - held.begin());
+                const Eigen::Matrix<double, 12, 12, Eigen::RowMajor> local = H;
+                addHessian(&hessian->contactSlots[144 * index], local.data(), 12, pair.vertices.data(), hessian->contactTurned[index]);
+            }
+        }
+        if (std::isfinite(r.contactEnergy)) {
+            r.contactEnergy = contact.Value();
+            energy.Add(r.contactEnergy);
+        }
+    }
     // Axial force on the top clamp: -F u.
     const double u = p.axial >= 0 ? q[p.axial] : p.heldAxial;
     if (terms.force && load.force != 0) {
@@ -478,7 +520,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             }
         }
     }
-    r.energy = energy.Value();
+    r.energy = std::isfinite(r.contactEnergy) ? energy.Value() : r.contactEnergy;
     r.axialForce = axialForce;
     r.twistTorque = twistTorque;
     r.topLoads = topLoads;

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 
@@ -318,8 +319,44 @@ ShellProblem BuildTubeProblem(const ShellDef& def, const Shape& shape, bool bend
     std::string fibreError;
     SetFibres(p, def.fibres, g.lengthMm, &fibreError);
     if (!fibreError.empty()) return fail(fibreError);
+    if (def.contact.mode == ContactMode::On) {
+        std::string contactError;
+        SetContact(p, def.contact, &contactError);
+        if (!contactError.empty()) return fail(contactError);
+    }
     if (error) error->clear();
     return p;
+}
+
+void SetContact(ShellProblem& p, const ContactDef& def, std::string* error) {
+    const double h = p.material.thicknessMm;
+    p.barrier.thicknessMm = h;
+    p.barrier.activationMm = def.gapFraction * h;
+    p.barrier.stiffness = def.stiffness * MembraneMaterialShearModulus(p.material) * h;
+    // Rigid bodies: what is held in place (the bottom clamp), and the top clamp.
+    std::vector<int> body(p.rest.Size(), -1);
+    for (int v = 0; v < p.rest.Size(); ++v) {
+        if (p.dofOf[3 * v] == kFixed && p.dofOf[3 * v + 1] == kFixed && p.dofOf[3 * v + 2] == kFixed) body[v] = 0;
+        else if (!p.onTop.empty() && p.onTop[v]) body[v] = 1;
+    }
+    std::vector<std::array<int, 3>> triangles = p.wall;
+    triangles.insert(triangles.end(), p.caps.begin(), p.caps.end());
+    // Neighbours: closer than twice the reach at rest, and near along the wall. Two points of one
+    // wall that far apart come within the barrier's reach only if the wall between them is squeezed
+    // to half its length, which a wall does by wrinkling, not by compressing.
+    p.contact = std::make_shared<const ContactSurface>(MakeContactSurface(p.rest, triangles, body, 2 * ContactReachMm(p.barrier)));
+    // Walls that already touch at rest cannot be pushed apart by a barrier that starts at contact.
+    for (const ContactPair& pair : ContactCandidates(*p.contact, p.rest, nullptr, h)) {
+        const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, p.rest), nullptr, nullptr));
+        if (d <= h) {
+            char text[160];
+            std::snprintf(text, sizeof text, "the rest shape's walls are %.3g mm apart near z = %.1f mm, closer than the wall's thickness (%g mm)", d,
+                          p.rest.z[pair.vertices[0]], h);
+            if (error) *error = text;
+            return;
+        }
+    }
+    if (error) error->clear();
 }
 
 ShellProblem BuildSphereProblem(const MembraneMaterial& material, double radius, int subdivisions, bool bending) {

@@ -14,9 +14,11 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "contact/contact.h"
 #include "sim/mesh.h"
 #include "sim/shell.h"
 
@@ -133,6 +135,10 @@ struct ShellProblem {
     std::vector<std::array<double, 4>> fibreDirections;
     std::vector<int> fibreFamilies;                // per wall triangle: 0, 1 or 2
     double fibreStiffness = 0;                     // N/mm per family
+    // Self-contact on (docs/models/shell.md section 8): the surface that may touch (wall and caps) and
+    // the barrier that keeps it a wall thickness apart; null when contact is off.
+    std::shared_ptr<const ContactSurface> contact;
+    BarrierDef barrier;
     int vertexCount() const { return rest.Size(); }
 };
 
@@ -195,16 +201,24 @@ enum class HessianKind {
 // Which terms to include (verification checks them one by one).
 struct EnergyTerms {
     bool membrane = true, bending = true, pressure = true, force = true, anchor = true, fibres = true;
+    bool contact = true;
+    // The contact pairs to sum (a Newton solve's list); null, or a list that does not cover the
+    // state, and they are found afresh. A Hessian's pattern must hold every pair summed.
+    const ContactList* contactList = nullptr;
 };
 
 // The sparse pattern of a problem's Hessian over its unknowns, and where each element's entries go.
 class HessianPattern {
 public:
-    explicit HessianPattern(const ShellProblem& problem);
+    // With the contact pairs whose Hessians it is to hold (sorted, as ContactCandidates gives them).
+    explicit HessianPattern(const ShellProblem& problem, const std::vector<ContactPair>& contactPairs = {});
     Eigen::SparseMatrix<double> matrix;  // full symmetric pattern, values overwritten by Assemble
     std::vector<int> wallSlots, hingeSlots, capSlots;  // per element: 81, 144 or 81 value indices (-1: none)
     std::vector<int> anchorSlots;                      // the anchor's dense block
     int twistSlot = -1;                                // (theta, theta): the clamp's turn's own curvature
+    std::vector<ContactPair> contactPairs;             // the contact pairs it holds, sorted
+    std::vector<int> contactSlots;                     // per contact pair: 144 value indices
+    std::vector<char> contactTurned;
     std::vector<char> wallTurned, capTurned, hingeTurned;  // per element: a corner rides on the clamp's turn (1)
                                                            // or on the rigid top (2, tip free)
     // Tip free: the top parameters' couplings. Per parameter with an unknown, the (row, slot of
@@ -223,6 +237,7 @@ struct EnergyResult {
     std::array<double, kTopParameters> topLoads{};
     Eigen::VectorXd gradient;    // over the unknowns
     Eigen::VectorXd volumeGradient;
+    double contactEnergy = 0;    // the barrier's part of energy, N mm (infinite: a wall passed through)
 };
 
 // The total energy at unknowns q. With `gradient`, its gradient (and the volume's); with `hessian`,
@@ -247,6 +262,11 @@ double EnclosedVolume(const ShellProblem& problem, const Positions& x);
 // directions at its angle (by band or sector of its rest centroid) to the rest meridian, the tangent
 // of the surface along the axis. Empty error when the def is usable.
 void SetFibres(ShellProblem& problem, const FibreDef& fibres, double lengthMm, std::string* error);
+
+// Turns self-contact on (docs/models/shell.md section 8): the wall and caps as the surface that may
+// touch, neighbours within one wall left out, and the barrier from the def (kappa = stiffness mu h).
+// An error when walls that are not neighbours are already closer than a wall thickness at rest.
+void SetContact(ShellProblem& problem, const ContactDef& def, std::string* error);
 
 // Per wall triangle and family: the fibre's stretch (|F a|) and its angle to the axis (degrees) at
 // positions x.

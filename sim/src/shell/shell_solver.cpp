@@ -93,7 +93,7 @@ struct Workspace {
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
           places(VertexBlockPlaces(p)), pattern(p), exactPattern(pattern) {}
     bool Fits(const ShellProblem& p) const {
-        return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
+        return pattern.contactPairs.empty() && unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
                caps == p.caps && hinges == p.hinges;
     }
 };
@@ -137,6 +137,54 @@ struct Solver {
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
           exactPattern(workspace->exactPattern), exactFactor(&workspace->exactFactor) {
         forceTolerance = d.tolerance * MembraneMaterialShearModulus(p.material) * p.material.thicknessMm * p.meanEdgeMm;
+        if (p.contact) terms.contactList = &contactList;
+    }
+
+    // Self-contact (docs/models/shell.md section 8). The pairs every assembly sums come from one
+    // list, rebuilt when the walls have moved too far for it; the Hessian's pattern holds the list's
+    // pairs, so a new list means a new pattern and fresh factors (with no wall near another, the
+    // list stays empty and the pattern as it is).
+    ContactList contactList;
+    void RefreshContact(const Eigen::VectorXd& q) {
+        if (!problem.contact) return;
+        Positions x;
+        PositionsOf(problem, q, x);
+        UpdateContactList(contactList, *problem.contact, problem.barrier, x);
+        if (pattern.contactPairs == contactList.pairs) return;
+        workspace->pattern = HessianPattern(problem, contactList.pairs);
+        workspace->exactPattern = workspace->pattern;
+        workspace->factor = Factor();
+        workspace->exactFactor = Factor();
+        preconditioner = false;
+        refresh = false;
+        direct = false;
+        factorAge = 0;
+    }
+    // The largest fraction of the step from q that no wall crosses (1 with contact off): continuous
+    // collision detection on the straight move of every vertex.
+    double ImpactFree(const Eigen::VectorXd& q, const Eigen::VectorXd& step) const {
+        if (!problem.contact) return 1;
+        Positions from, to;
+        PositionsOf(problem, q, from);
+        PositionsOf(problem, q + step, to);
+        double largestMove = 0;
+        for (int v = 0; v < to.Size(); ++v) {
+            to.x[v] -= from.x[v];
+            to.y[v] -= from.y[v];
+            to.z[v] -= from.z[v];
+            largestMove = std::max(largestMove, std::sqrt(to.x[v] * to.x[v] + to.y[v] * to.y[v] + to.z[v] * to.z[v]));
+        }
+        const double h = problem.barrier.thicknessMm;
+        // Pairs left out of the list were clearanceMm apart at its state: two vertices' moves since
+        // and in this step cannot bring them within a wall's thickness when they are short enough.
+        const double drift = contactList.Drift(from);
+        if (std::isfinite(largestMove) && contactList.clearanceMm - 2 * (drift + largestMove) > h) {
+            double free = 1;
+            for (const ContactPair& pair : contactList.pairs)
+                free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, to), h, free));
+            return free;
+        }
+        return ImpactFreeStep(*problem.contact, from, to, h, h);
     }
     ~Solver() { tLastWorkspace = std::move(workspace); }
     // Counts one Newton iteration; true (and overBudget) when the evaluation's budget is already spent.
@@ -282,6 +330,11 @@ struct Solver {
             double predicted = 0;
             Eigen::VectorXd s = TruncatedStep(H, c, w, r.gradient, trustRadiusMm, &predicted);
             if (!s.allFinite() || !(predicted > 0)) return false;
+            if (const double free = ImpactFree(q, s); free < 1) {  // a wall in the way: as far as it allows
+                s *= free;
+                predicted = -(r.gradient.dot(s) + 0.5 * s.dot(WithRankOne(H, c, w, s)));
+                if (!(predicted > 0)) return false;
+            }
             EnergyResult trial = AssembleEnergy(problem, q + s, load, terms, true, nullptr, HessianKind::Projected);
             const double agreement = (r.energy - trial.energy) / predicted;  // actual decrease / predicted
             const bool onBoundary = s.norm() > 0.99 * trustRadiusMm;
@@ -333,6 +386,7 @@ struct Solver {
             if (r.volume > volumeLimit) return NewtonEnd::Runaway;
             HoldGradient(r.gradient);
             if (LargestForce(r.gradient) < forceTolerance) return NewtonEnd::Converged;
+            RefreshContact(q);
             const double gasTerm = load.gasConstant > 0 ? load.gasConstant / (r.volume * r.volume) : 0;
             Eigen::VectorXd w = r.volumeGradient;
             HoldGradient(w);
@@ -423,7 +477,8 @@ struct Solver {
             const double lastGradientNorm = r.gradient.norm();  // held
             const double slope = step.dot(r.gradient);
             const bool roundOff = std::fabs(slope) < 1e-13 * std::max(1.0, std::fabs(r.energy));
-            double alpha = 1;
+            // No step passes a wall through another: it starts no farther than the first contact.
+            double alpha = trustStep ? 1 : ImpactFree(q, step);
             Eigen::VectorXd next;
             bool accepted = trustStep;
             if (trustStep) {
@@ -453,6 +508,12 @@ struct Solver {
             const double largest = (next - UnknownsOf(problem, problem.rest)).lpNorm<Eigen::Infinity>();
             q = std::move(next);
             if (moved < 1e-12 * std::max(largest, problem.meanEdgeMm)) return NewtonEnd::Converged;
+            // Walls in contact: a pair's distance changes formula where its closest points pass from
+            // a triangle's inside to an edge, and its Hessian jumps there, so Newton can cycle about
+            // such a state with a force left above the tolerance (steps of 2e-7 mm, 3e-8 N on a
+            // collapsed tube). Converged, as IPC judges it, by the step: one that energy can no
+            // longer judge and that moves no vertex a millionth of an edge.
+            if (roundOff && r.contactEnergy > 0 && moved < 1e-6 * problem.meanEdgeMm) return NewtonEnd::Converged;
         }
         return NewtonEnd::NotConverged;
     }
@@ -463,6 +524,7 @@ struct Solver {
             LoadTerms l = ends;  // the force and torque on the top clamp
             l.pressure = p;
             if (SpendIteration()) return NewtonEnd::OverBudget;
+            RefreshContact(q);
             EnergyResult r = AssembleEnergy(problem, q, l, terms, true, &exactPattern, HessianKind::Exact);
             if (!r.gradient.allFinite() || !std::isfinite(r.volume)) return NewtonEnd::NonFinite;
             HoldGradient(r.gradient);
@@ -478,8 +540,9 @@ struct Solver {
             const double dp = (w.dot(a) - volumeError) / w.dot(b);
             const Eigen::VectorXd dq = -a + dp * b;
             if (!dq.allFinite() || !std::isfinite(dp)) return NewtonEnd::NonFinite;
-            q += dq;
-            p += dp;
+            const double free = ImpactFree(q, dq);
+            q += free * dq;
+            p += free * dp;
         }
         return NewtonEnd::NotConverged;
     }
@@ -497,6 +560,7 @@ struct Solver {
 
     // The exact Hessian at q, factorised (indefinite allowed); its negative pivots.
     int ExactInertia(const Eigen::VectorXd& q, const LoadTerms& load, EnergyResult* r) {
+        RefreshContact(q);
         *r = AssembleEnergy(problem, q, load, terms, true, &exactPattern, HessianKind::Exact);
         HoldGradient(r->gradient);
         HoldMatrix(exactPattern.matrix);
@@ -551,8 +615,8 @@ struct Solver {
             // other way: Newton can come down to a stable state from there too (a fibre design of
             // reproduce's part 2, +2.2 %, is found only so; not with the energy required to fall).
             down *= 0.1 * problem.meanEdgeMm;
-            Eigen::VectorXd trial = from + down;
-            if (!(AssembleEnergy(problem, trial, load, terms, false, nullptr, HessianKind::Projected).energy < fromExact.energy)) trial = from - down;
+            if (!(AssembleEnergy(problem, from + down, load, terms, false, nullptr, HessianKind::Projected).energy < fromExact.energy)) down = -down;
+            Eigen::VectorXd trial = from + ImpactFree(from, down) * down;
             const NewtonEnd end = Minimise(trial, load, volumeLimit);
             Positions x;
             PositionsOf(problem, trial, x);
@@ -762,7 +826,10 @@ Status FollowLoadPath(TubeEvaluation& t) {
         while (reached < goal - 1e-15 && status == Status::Ok) {
             const double next = std::min(goal, reached + increment);
             Eigen::VectorXd trial = t.q;
-            if (predict && tangent.size() == t.q.size()) trial += (next - reached) * load.pressureKpa * 1e-3 * tangent;
+            if (predict && tangent.size() == t.q.size()) {
+                const Eigen::VectorXd predicted = (next - reached) * load.pressureKpa * 1e-3 * tangent;
+                trial += t.solver.ImpactFree(t.q, predicted) * predicted;
+            }
             if (load.kind == ShellLoad::Blocked) trial[t.problem.axial] = t.HeldAxialAt(next);
             const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume));
             if (end == NewtonEnd::OverBudget) {  // halving the step would only spend more
@@ -854,6 +921,12 @@ void Measure(TubeEvaluation& t, SimResult& result) {
     MaxStretchAndStress(t.problem, t.x, &out.maxStretch, &out.maxStressKpa);
     out.maxStressKpa *= 1e3;
     FibreOutputs(t.problem, t.x, t.length, out);
+    if (t.problem.contact) {
+        const ContactSummary contact = SummariseContact(*t.problem.contact, t.problem.barrier, t.x);
+        out.contactPairs = contact.activePairs;
+        out.minGapMm = contact.minGapMm;
+        out.contactForceN = contact.forceN;
+    }
     result.contractionPercent = Contraction(t.problem, t.q, t.length);
     // The top clamp's turn (sliding ends have none: the anchor holds their rotation), and the torque
     // on it: the one that holds it, or the one that turns it.
