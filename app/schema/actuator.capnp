@@ -120,6 +120,9 @@ struct ShellDef {
   newtonBudget @43 :UInt32;         # Newton iterations for the whole evaluation; 0: none (records before it had none)
   clampMm @44 :Float64;             # length each end clamp holds, mm; 0 in records before it (read clampRings)
   edgeSpacingMm @45 :Float64;       # graded rings' spacing at each clamp's edge, mm; 0: evenly spaced (every record before it)
+  contact @46 :Text;                # self-contact: "on" or "off"; "" (records before it) is off, with the defaults below
+  contactGapFraction @47 :Float64;  # the barrier's reach beyond a wall thickness, over it
+  contactStiffness @48 :Float64;    # the barrier's kappa over mu h
 }
 
 struct FibreBand {
@@ -166,6 +169,9 @@ struct ShellOutputs {
   tipMomentNMm @32 :Float64 = nan;
   siliconeG @33 :Float64 = nan;
   restMaxRadiusMm @34 :Float64 = nan;
+  contactPairs @35 :UInt32;         # contact on: pairs within the barrier's reach at the target
+  minGapMm @36 :Float64 = nan;      # contact on: the walls' smallest gap beyond a wall thickness
+  contactForceN @37 :Float64 = nan; # contact on: the active pairs' normal forces summed
 }
 
 struct EvalResult {

@@ -397,7 +397,7 @@ void RefuseKeysWithoutEffect(const ObjectReader& block, const sim::ShellDef& she
 // Each def reads the rest of the block (a new def adds its overload).
 void ParseModelBlock(ObjectReader& model, sim::ThesisDef&) {
     for (const char* key : {"geometry", "material", "load", "ends", "envelope", "solver", "fibres", "fibre_angle_deg", "fibre_stiffness_n_per_mm", "fibre_bands",
-                            "fibre_sectors_deg"})
+                            "fibre_sectors_deg", "contact", "contact_gap_fraction", "contact_stiffness"})
         if (model.Has(key)) model.Fail("does not apply to the thesis model (its settings are the 'sim' and 'mesh' blocks)", key);
     model.Finish();
 }
@@ -442,7 +442,9 @@ void ParseModelBlock(ObjectReader& model, sim::ShellDef& shell) {
         RefuseKeysWithoutEffect(solver, shell);
         solver.Finish();
     }
-    // Fibres: the command line's keys, plus angles by band along the length or by sector.
+    // Self-contact and fibres: the command line's keys in the model block ("contact": "on"); fibres
+    // also take angles by band along the length or by sector.
+    model.Fields(shell.contact);
     model.Fields(shell.fibres);
     if (model.Has("fibre_bands")) {
         const Json& bands = model.Array("fibre_bands", 1, 1000, "a list of bands {\"from\": 0, \"to\": 0.5, \"angle_deg\": 30}");

@@ -214,6 +214,9 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setMaxRadiusRatio(def.envelope.maxRadiusRatio);
     s.setMaxRadiusMm(def.envelope.maxRadiusMm);
     s.setMaxSiliconeG(def.envelope.maxSiliconeG);
+    s.setContact(sim::Name(def.contact.mode));
+    s.setContactGapFraction(def.contact.gapFraction);
+    s.setContactStiffness(def.contact.stiffness);
     s.setStrokePercent(l.strokePercent);
     s.setStrokeMm(l.strokeMm);
     s.setIsobaricPoints(Count(l.isobaricPoints));
@@ -275,6 +278,8 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     const std::string tip = s.getTip();
     def.ends.tip = tip.empty() ? sim::TipEnd::Held : NamedEnum<sim::TipEnd>(tip, "tip");
     def.envelope = {s.getMaxRadiusRatio(), s.getMaxRadiusMm(), s.getMaxSiliconeG()};
+    if (const std::string contact = s.getContact(); !contact.empty())  // else off, as such records were evaluated
+        def.contact = {NamedEnum<sim::ContactMode>(contact, "contact"), s.getContactGapFraction(), s.getContactStiffness()};
     l.strokePercent = s.getStrokePercent();
     l.strokeMm = s.getStrokeMm();
     l.isobaricPoints = Count(s.getIsobaricPoints());
@@ -342,6 +347,9 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setTipMomentNMm(o.tipMomentNMm);
     s.setSiliconeG(o.siliconeG);
     s.setRestMaxRadiusMm(o.restMaxRadiusMm);
+    s.setContactPairs(static_cast<unsigned>(o.contactPairs));
+    s.setMinGapMm(o.minGapMm);
+    s.setContactForceN(o.contactForceN);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -388,6 +396,9 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.tipMomentNMm = s.getTipMomentNMm();
     o.siliconeG = s.getSiliconeG();
     o.restMaxRadiusMm = s.getRestMaxRadiusMm();
+    o.contactPairs = static_cast<int>(s.getContactPairs());
+    o.minGapMm = s.getMinGapMm();
+    o.contactForceN = s.getContactForceN();
 }
 
 void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {

@@ -67,6 +67,8 @@ void AddModelOptions(Cli& cli, ModelOptions& o, bool withThesis) {
     cli.Fields(o.shell.fibres);
     cli.Group("Membrane and shell models: the envelope a design must stay in (else outside-envelope)");
     cli.Fields(o.shell.envelope);
+    cli.Group("Membrane and shell models: self-contact");
+    cli.Fields(o.shell.contact);
 }
 
 namespace {
@@ -105,7 +107,7 @@ std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::Thesis
 std::vector<std::string> DefOptionNames(const ModelOptions& o, const sim::ShellDef&) {
     std::vector<std::string> names{"--material"};
     for (const auto& part : {OptionNames(o.shell.geometry), OptionNames(o.materialFields), OptionNames(o.shell.load), OptionNames(o.shell.ends), OptionNames(o.shell.solver),
-                             OptionNames(o.shell.fibres), OptionNames(o.shell.envelope)})
+                             OptionNames(o.shell.fibres), OptionNames(o.shell.envelope), OptionNames(o.shell.contact)})
         names.insert(names.end(), part.begin(), part.end());
     return names;
 }
@@ -160,6 +162,7 @@ void OverrideDef(const Cli& cli, const ModelOptions& o, sim::ShellDef& def, Mode
         cli.CopyGivenFields(o.materialFields, def.material);
     cli.CopyGivenFields(o.shell.fibres, def.fibres);
     cli.CopyGivenFields(o.shell.envelope, def.envelope);
+    cli.CopyGivenFields(o.shell.contact, def.contact);
     if (cli.Given("--load")) def.load.kind = ShellLoadOf(o.load, "--load");
 }
 
@@ -177,7 +180,8 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Thesi
 void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::ShellDef& def, ModelUse use) {
     const std::string nothing = "does not apply here: nothing is simulated (the part is the rest shape, its geometry and silicone)";
     if (use == ModelUse::RestShape || use == ModelUse::CastPart) {
-        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.envelope)})
+        for (const auto& keys : {GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver), GivenKeys(cli, o.shell.envelope),
+                                GivenKeys(cli, o.shell.contact)})
             for (const auto& key : keys) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
         if (use == ModelUse::RestShape)  // export winds the fibres; a drawn solid has none
             for (const auto& key : GivenKeys(cli, o.shell.fibres)) cli.RefuseIfGiven(OptionName(key.c_str()), nothing);
@@ -188,7 +192,7 @@ void RefuseWithoutEffect(const Cli& cli, const ModelOptions& o, const sim::Shell
             if (key != "density_kg_per_m3") cli.RefuseIfGiven(OptionName(key.c_str()), "does not apply here: nothing is simulated (of the material, the part uses its density)");
     }
     for (const auto& part : {GivenKeys(cli, o.shell.geometry), GivenKeys(cli, o.materialFields), GivenKeys(cli, o.shell.load), GivenKeys(cli, o.shell.ends), GivenKeys(cli, o.shell.solver),
-                             GivenKeys(cli, o.shell.fibres), GivenKeys(cli, o.shell.envelope)})
+                             GivenKeys(cli, o.shell.fibres), GivenKeys(cli, o.shell.envelope), GivenKeys(cli, o.shell.contact)})
         for (const auto& key : part) RefuseWhereWithoutEffect(key, sim::ShellFieldUse(def, key));
 }
 
