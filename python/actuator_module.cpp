@@ -77,18 +77,19 @@ struct DefArguments {
     std::optional<sim::SolverDef> solver;
     std::optional<sim::FibreDef> fibres;
     std::optional<sim::EnvelopeDef> envelope;
+    std::optional<sim::ContactDef> contact;
 };
 
 // [SECTION] Each def from the keyword arguments (a new def adds its overload).
 void FillDef(const DefArguments& a, sim::ModelKind, sim::ThesisDef& def) {
-    if (a.geometry || a.material || a.load || a.ends || a.solver || a.fibres || a.envelope)
-        throw py::value_error("geometry, material, load, ends, solver, fibres and envelope are the membrane and shell models'; the thesis model takes params and mesh");
+    if (a.geometry || a.material || a.load || a.ends || a.solver || a.fibres || a.envelope || a.contact)
+        throw py::value_error("geometry, material, load, ends, solver, fibres, envelope and contact are the membrane and shell models'; the thesis model takes params and mesh");
     def.params = a.params.value_or(sim::DefaultSimParams());
     def.mesh = a.mesh.value_or(sim::DefaultMeshDef());
 }
 void FillDef(const DefArguments& a, sim::ModelKind model, sim::ShellDef& def) {
     if (a.params || a.mesh)
-        throw py::value_error(std::string("params and mesh are the thesis model's; the ") + sim::Name(model) + " model takes geometry, material, load, ends, solver, fibres and envelope");
+        throw py::value_error(std::string("params and mesh are the thesis model's; the ") + sim::Name(model) + " model takes geometry, material, load, ends, solver, fibres, envelope and contact");
     if (a.geometry) def.geometry = *a.geometry;
     if (a.material) def.material = *a.material;
     if (a.load) def.load = *a.load;
@@ -96,6 +97,7 @@ void FillDef(const DefArguments& a, sim::ModelKind model, sim::ShellDef& def) {
     if (a.solver) def.solver = *a.solver;
     if (a.fibres) def.fibres = *a.fibres;
     if (a.envelope) def.envelope = *a.envelope;
+    if (a.contact) def.contact = *a.contact;
     if (const std::string error = sim::ShellFieldsWithoutEffect(def); !error.empty()) throw py::value_error(error);
 }
 
@@ -487,6 +489,8 @@ PYBIND11_MODULE(actuator, m) {
     BindDef<sim::FibreDef>(m, "Fibres", "Fibres on the membrane or shell wall (docs/models/shell.md section 7).", shell.fibres);
     BindDef<sim::EnvelopeDef>(m, "Envelope", "The bounds a bench puts on a design (docs/models/shell.md section 12, envelope): beyond one, the status is outside-envelope.",
                               shell.envelope);
+    BindDef<sim::ContactDef>(m, "Contact", "Self-contact (docs/models/shell.md section 8): contact='on' makes the walls touch (vacuum actuators need it).",
+                             shell.contact);
 
     py::class_<Evaluated>(m, "Result", "One evaluation: numbers, status, the meshes before and after, and the job that made it.")
         .def_property_readonly("status", [](const Evaluated& e) { return std::string(sim::Name(e.result.status)); },
@@ -577,24 +581,26 @@ PYBIND11_MODULE(actuator, m) {
         [](const Design& design, const std::string& model, std::optional<sim::SimParams> params, std::optional<sim::MeshDef> mesh,
            std::optional<sim::GeometryDef> geometry, std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load,
            std::optional<sim::SolverDef> solver, std::optional<sim::FibreDef> fibres, std::optional<sim::EndsDef> ends,
-           std::optional<sim::EnvelopeDef> envelope) {
-            Evaluated e{JobOf(design.shape, model, {params, mesh, geometry, material, load, ends, solver, fibres, envelope}), {}};
+           std::optional<sim::EnvelopeDef> envelope, std::optional<sim::ContactDef> contact) {
+            Evaluated e{JobOf(design.shape, model, {params, mesh, geometry, material, load, ends, solver, fibres, envelope, contact}), {}};
             py::gil_scoped_release release;
             e.result = sim::Evaluate(e.job);
             return e;
         },
         py::arg("shape"), py::arg("model") = std::string(sim::Name(sim::kDefaultModel)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
         py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(), py::arg("solver") = py::none(),
-        py::arg("fibres") = py::none(), py::arg("ends") = py::none(), py::arg("envelope") = py::none(),
-        "Evaluates one design under a model: 'shell' (the default) or 'membrane' (geometry, material, load, ends, solver, fibres, envelope), or 'thesis' (params, mesh).");
+        py::arg("fibres") = py::none(), py::arg("ends") = py::none(), py::arg("envelope") = py::none(), py::arg("contact") = py::none(),
+        "Evaluates one design under a model: 'shell' (the default) or 'membrane' (geometry, material, load, ends, solver, fibres, envelope, contact), or 'thesis' (params, mesh).");
     m.def(
         "evaluate_many",
         [](const std::vector<Design>& designs, int threads, const py::object& map, const py::object& workers, size_t batch, const std::string& model,
            std::optional<sim::SimParams> params, std::optional<sim::MeshDef> mesh, std::optional<sim::GeometryDef> geometry,
            std::optional<sim::MaterialDef> material, std::optional<sim::LoadDef> load, std::optional<sim::SolverDef> solver,
-           std::optional<sim::FibreDef> fibres, std::optional<sim::EndsDef> ends, std::optional<sim::EnvelopeDef> envelope) {
+           std::optional<sim::FibreDef> fibres, std::optional<sim::EndsDef> ends, std::optional<sim::EnvelopeDef> envelope,
+           std::optional<sim::ContactDef> contact) {
             std::vector<sim::EvalJob> jobs;
-            for (const auto& design : designs) jobs.push_back(JobOf(design.shape, model, {params, mesh, geometry, material, load, ends, solver, fibres, envelope}));
+            for (const auto& design : designs)
+                jobs.push_back(JobOf(design.shape, model, {params, mesh, geometry, material, load, ends, solver, fibres, envelope, contact}));
             const std::unique_ptr<app::Evaluator> evaluator = pybinding::MakePythonEvaluator(threads, map, workers, batch);
             std::vector<Evaluated> out(jobs.size());
             {
@@ -606,7 +612,7 @@ PYBIND11_MODULE(actuator, m) {
         py::arg("shapes"), py::arg("threads") = 0, py::arg("map") = py::none(), py::arg("workers") = py::none(), py::arg("batch") = pybinding::kDefaultMapBatch,
         py::arg("model") = std::string(sim::Name(sim::kDefaultModel)), py::arg("params") = py::none(), py::arg("mesh") = py::none(),
         py::arg("geometry") = py::none(), py::arg("material") = py::none(), py::arg("load") = py::none(), py::arg("solver") = py::none(),
-        py::arg("fibres") = py::none(), py::arg("ends") = py::none(), py::arg("envelope") = py::none(),
+        py::arg("fibres") = py::none(), py::arg("ends") = py::none(), py::arg("envelope") = py::none(), py::arg("contact") = py::none(),
         "Evaluates many designs, results in the order given, identical wherever they run: on this machine's threads (0: one per core; "
         "the GIL is released), on evaluation servers (workers=['host:port', 'local', ...]), or through any map-like callable "
         "(map=builtins.map, an executor's map, a pool's map, or a Dask client), `batch` jobs at a time.");

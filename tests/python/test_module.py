@@ -609,3 +609,17 @@ def test_any_command_runs_in_process_as_on_the_command_line(tmp_path):
     # The command's output went to the result, not to this process's stdout: std::cout is restored.
     again = actuator.cli(*args)
     assert json.loads(again["stdout"])["fitness"] == r.fitness
+
+
+def test_vacuum_with_contact_equals_the_command_line():
+    args = ["--model", "shell", "--shape", "cylinder", "--length-mm", "60", "--ring-vertices", "20", "--rings", "16",
+            "--pressure-kpa", "-0.5", "--contact", "on"]
+    cli = simulate(*args)
+    ours = actuator.evaluate(actuator.cylinder(), model="shell", geometry=actuator.Geometry(length_mm=60, ring_vertices=20, rings=16),
+                             load=actuator.Load(pressure_kpa=-0.5), contact=actuator.Contact(contact="on"))
+    assert ours.status == cli["status"] == "ok"
+    assert ours.contraction_percent.hex() == float(cli["contraction_percent"]).hex()
+    assert ours.shell["contact_pairs"] == cli["contact_pairs"] > 0
+    assert 0 < ours.shell["min_gap_mm"] == cli["min_gap_mm"] < 0.1
+    with pytest.raises(ValueError, match="contact_gap_fraction: has no effect: it applies when contact is on, not off"):
+        actuator.evaluate(actuator.cylinder(), model="shell", contact=actuator.Contact(contact_gap_fraction=0.05))
