@@ -1,0 +1,81 @@
+// Self-contact in the shell solver (docs/models/shell.md section 8): a clamped tube under vacuum
+// collapses until its walls touch, and then rests with its mid-surfaces a wall thickness apart; the
+// barrier's reach sets how close to that they come; and a design whose walls never come near another
+// gives the same result with contact on as off. Label `verification`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim/batch.h"
+#include "shell/shell_problem.h"
+
+namespace {
+
+// The shell model's tube, R 5 mm, L 60 mm, 1 mm of Ecoflex 00-30, 20 vertices per ring, 16 rings:
+// short enough that it collapses under half a kilopascal of vacuum in 4 load steps.
+sim::EvalJob VacuumTube(sim::ContactMode contact, double gapFraction = 0.1) {
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Shell);
+    job.shape = sim::CylinderShape{};
+    sim::ShellDef& d = job.Shell();
+    d.geometry.lengthMm = 60;
+    d.geometry.ringVertices = 20;
+    d.geometry.rings = 16;
+    d.load.pressureKpa = -0.5;
+    d.contact.mode = contact;
+    d.contact.gapFraction = gapFraction;
+    return job;
+}
+
+const char* kReproduce =
+    "reproduce: actuator simulate --model shell --shape cylinder --length-mm 60 --ring-vertices 20 --rings 16 --pressure-kpa -0.5 --contact on";
+
+TEST(VacuumContact, CollapsedTubeRestsAWallApart) {
+    const sim::SimResult on = sim::Evaluate(VacuumTube(sim::ContactMode::On));
+    ASSERT_EQ(on.status, sim::Status::Ok) << kReproduce;
+    const sim::ShellOutputs& s = on.shell;
+    // Collapsed: the enclosed volume has fallen by more than 40 % and the walls touch.
+    EXPECT_LT(s.volumeMm3, 0.6 * s.restVolumeMm3) << kReproduce;
+    EXPECT_GT(s.contactPairs, 50) << kReproduce;
+    EXPECT_GT(s.contactForceN, 0) << kReproduce;
+    // Touching walls rest between h and h + s_hat apart (s_hat = 0.1 h = 0.1 mm): never closer.
+    EXPECT_GT(s.minGapMm, 0) << kReproduce;
+    EXPECT_LT(s.minGapMm, 0.1) << kReproduce;
+    // It shortens: a vacuum actuator's stroke.
+    EXPECT_GT(on.contractionPercent, 1) << kReproduce;
+    // Without contact the same tube passes through itself.
+    EXPECT_EQ(sim::Evaluate(VacuumTube(sim::ContactMode::Off)).status, sim::Status::SelfIntersection);
+}
+
+TEST(VacuumContact, GapFollowsTheBarriersReach) {
+    // Three times shorter a reach: the walls come three times closer to touching (the gap is within
+    // the reach each time), and the collapsed tube's stroke hardly moves.
+    const sim::SimResult wide = sim::Evaluate(VacuumTube(sim::ContactMode::On, 0.1));
+    const sim::SimResult narrow = sim::Evaluate(VacuumTube(sim::ContactMode::On, 0.03));
+    ASSERT_EQ(wide.status, sim::Status::Ok);
+    ASSERT_EQ(narrow.status, sim::Status::Ok);
+    EXPECT_LT(narrow.shell.minGapMm, 0.03);
+    EXPECT_GT(narrow.shell.minGapMm, 0);
+    EXPECT_LT(narrow.shell.minGapMm, 0.6 * wide.shell.minGapMm);
+    EXPECT_NEAR(narrow.contractionPercent, wide.contractionPercent, 0.1 * wide.contractionPercent);
+}
+
+TEST(VacuumContact, NoEffectWhereNoWallComesNear) {
+    // The A = 1.3 sine inflated to 1 kPa: its walls stay far apart, so the barrier adds nothing and
+    // no step is clipped; the same Newton path, to the last bit.
+    sim::EvalJob off = VacuumTube(sim::ContactMode::Off);
+    sim::SineShape sine;
+    sine.amplitude = 1.3;
+    off.shape = sine;
+    off.Shell().load.pressureKpa = 1;
+    sim::EvalJob on = off;
+    on.Shell().contact.mode = sim::ContactMode::On;
+    const sim::SimResult a = sim::Evaluate(off), b = sim::Evaluate(on);
+    ASSERT_EQ(a.status, sim::Status::Ok);
+    EXPECT_EQ(b.status, a.status);
+    EXPECT_EQ(b.contractionPercent, a.contractionPercent);
+    EXPECT_EQ(b.shell.newtonIterations, a.shell.newtonIterations);
+    EXPECT_EQ(b.shell.contactPairs, 0);
+}
+
+}  // namespace
