@@ -172,6 +172,7 @@ struct ShellOutputs {
   contactPairs @35 :UInt32;         # contact on: pairs within the barrier's reach at the target
   minGapMm @36 :Float64 = nan;      # contact on: the walls' smallest gap beyond a wall thickness
   contactForceN @37 :Float64 = nan; # contact on: the active pairs' normal forces summed
+  collapsePressureKpa @38 :Float64 = nan;  # vacuum: where the wall collapsed
 }
 
 struct EvalResult {

@@ -62,6 +62,7 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     const ShellOutputs& s = r.shell;
     v.Number("pressure_kpa", "kPa", s.targetPressureKpa);
     v.Number("limit_pressure_kpa", "kPa", s.limitPressureKpa);
+    if (job.Shell().load.pressureKpa < 0) v.Number("collapse_pressure_kpa", "kPa", s.collapsePressureKpa);
     v.Number("blocking_force_n", "N", s.blockingForceN);
     v.Number("stroke_force_n", "N", s.strokeForceN);
     v.Number("axial_stiffness_n_per_mm", "N/mm", s.axialStiffnessNPerMm);

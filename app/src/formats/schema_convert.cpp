@@ -350,6 +350,7 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setContactPairs(static_cast<unsigned>(o.contactPairs));
     s.setMinGapMm(o.minGapMm);
     s.setContactForceN(o.contactForceN);
+    s.setCollapsePressureKpa(o.collapsePressureKpa);
 }
 
 void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
@@ -399,6 +400,7 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.contactPairs = static_cast<int>(s.getContactPairs());
     o.minGapMm = s.getMinGapMm();
     o.contactForceN = s.getContactForceN();
+    o.collapsePressureKpa = s.getCollapsePressureKpa();
 }
 
 void SetResponse(schema::EvalResponse::Builder out, const sim::SimResult& result, sim::ModelKind model) {

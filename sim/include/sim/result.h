@@ -27,6 +27,7 @@ struct ShellOutputs {
     double restMaxRadiusMm = NAN;                  // the rest wall's largest distance from the axis, mm
     double targetPressureKpa = NAN;                // the pressure the contraction is reported at
     double limitPressureKpa = NAN;                 // the pressure maximum, when met
+    double collapsePressureKpa = NAN;              // vacuum: where the wall collapsed (snapped inward), bracketed within the smallest step
     double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
     double strokeForceN = NAN;                     // blocked: the top held at its stroke (the isobaric test's force), likewise
     double axialStiffnessNPerMm = NAN;             // dF/du at the free equilibrium

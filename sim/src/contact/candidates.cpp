@@ -152,7 +152,6 @@ struct Entry {
     std::uint64_t cell;
     Primitive kind;
     int index;
-    std::array<long, 3> at;  // the cell's coordinates
     bool operator<(const Entry& o) const {
         return cell != o.cell ? cell < o.cell : kind != o.kind ? kind < o.kind : index < o.index;
     }
@@ -160,11 +159,13 @@ struct Entry {
 
 // Cells are packed 21 bits an axis; boxes beyond about a million cells from the origin are clamped
 // onto the grid's border, which only makes the hash coarser there.
+constexpr long kHalfGrid = 1L << 20;
 std::uint64_t CellKey(long i, long j, long k) {
-    constexpr long kHalf = 1L << 20;
-    const auto pack = [](long c) { return static_cast<std::uint64_t>(std::clamp(c + kHalf, 0L, 2 * kHalf - 1)); };
+    const auto pack = [](long c) { return static_cast<std::uint64_t>(std::clamp(c, -kHalfGrid, kHalfGrid - 1) + kHalfGrid); };
     return pack(i) << 42 | pack(j) << 21 | pack(k);
 }
+// A key's coordinate along an axis (0: x), clamped onto the grid as the key was.
+long CellCoordinate(std::uint64_t key, int axis) { return static_cast<long>((key >> (42 - 21 * axis)) & ((1UL << 21) - 1)) - kHalfGrid; }
 
 }  // namespace
 
@@ -198,7 +199,9 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
         cell *= 2;
     }
 
-    std::vector<Entry> entries;
+    // The scratch of the last query on this thread: a search costs no allocation after the first.
+    thread_local std::vector<Entry> entries;
+    entries.clear();
     const auto insert = [&](const std::vector<Box>& boxes, Primitive kind) {
         for (int n = 0; n < static_cast<int>(boxes.size()); ++n) {
             const Box& b = boxes[n];
@@ -207,7 +210,7 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
             for (double i = lo[0]; i <= hi[0]; ++i)
                 for (double j = lo[1]; j <= hi[1]; ++j)
                     for (double k = lo[2]; k <= hi[2]; ++k)
-                        entries.push_back({CellKey(long(i), long(j), long(k)), kind, n, {long(i), long(j), long(k)}});
+                        entries.push_back({CellKey(long(i), long(j), long(k)), kind, n});
         }
     };
     insert(pointBoxes, kPoint);
@@ -219,7 +222,8 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
     // so that no pair is found twice.
     const auto lowestShared = [&](const Box& a, const Box& b, const Entry& e) {
         for (int axis = 0; axis < 3; ++axis)
-            if (long(std::floor(std::max(a.lo[axis], b.lo[axis]) / cell)) != e.at[axis]) return false;
+            if (CellCoordinate(e.cell, axis) != std::clamp(long(std::floor(std::max(a.lo[axis], b.lo[axis]) / cell)), -kHalfGrid, kHalfGrid - 1))
+                return false;
         return true;
     };
     // Without a move, pairs farther apart than the reach are left out by their true distance.

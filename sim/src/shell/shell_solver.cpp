@@ -376,14 +376,15 @@ struct Solver {
     }
 
     // Minimises the total energy at `load` from q (in place), in at most def.maxIterations
-    // iterations; Runaway once the volume passes `volumeLimit`.
-    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity()) {
+    // iterations; Runaway once the volume passes `volumeLimit` or falls below `volumeFloor`.
+    NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity(),
+                       double volumeFloor = -std::numeric_limits<double>::infinity()) {
         // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
         for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
             if (SpendIteration()) return NewtonEnd::OverBudget;
             if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
-            if (r.volume > volumeLimit) return NewtonEnd::Runaway;
+            if (r.volume > volumeLimit || r.volume < volumeFloor) return NewtonEnd::Runaway;
             HoldGradient(r.gradient);
             if (LargestForce(r.gradient) < forceTolerance) return NewtonEnd::Converged;
             RefreshContact(q);
@@ -681,6 +682,10 @@ void FibreOutputs(const ShellProblem& p, const Positions& x, double length, Shel
 // A state whose volume passes this multiple of the last converged one has left the load path: no
 // equilibrium nearby (past the pressure maximum), or a snap through to a distant branch.
 constexpr double kRunawayVolume = 3;
+// Under vacuum, a converged step that loses this fraction of the rest volume at once has collapsed:
+// a round tube loses about 1 % of its volume over the whole path to its collapse (0.02 % in the
+// smallest step), and the step onto the collapsed branch 3 % or more.
+constexpr double kCollapseDrop = 0.01;
 
 
 }  // namespace
@@ -819,6 +824,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
     // loads): Newton then starts close and needs fewer iterations.
     Eigen::VectorXd tangent;
     const bool predict = load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Blocked;
+    const bool collapsing = load.kind == ShellLoad::Inflate && load.pressureKpa < 0;
     for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
         const double goal = double(k) / load.steps;
         double increment = goal - reached;
@@ -831,7 +837,12 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 trial += t.solver.ImpactFree(t.q, predicted) * predicted;
             }
             if (load.kind == ShellLoad::Blocked) trial[t.problem.axial] = t.HeldAxialAt(next);
-            const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume));
+            // Vacuum: a collapse is bracketed by halving the step, so a trial that is collapsing is
+            // stopped as soon as it has lost that much (the smallest step may collapse in full).
+            const bool beforeCollapse = collapsing && std::isnan(out.collapsePressureKpa);
+            const double floor = beforeCollapse && increment > smallest ? lastVolume - kCollapseDrop * t.problem.restVolume
+                                                                    : -std::numeric_limits<double>::infinity();
+            const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor);
             if (end == NewtonEnd::OverBudget) {  // halving the step would only spend more
                 status = Status::BudgetExceeded;
                 break;
@@ -844,7 +855,31 @@ Status FollowLoadPath(TubeEvaluation& t) {
             }
             if (end == NewtonEnd::Converged) {
                 PositionsOf(t.problem, trial, t.x);
-                const double volume = EnclosedVolume(t.problem, t.x);
+                double volume = EnclosedVolume(t.problem, t.x);
+                // Vacuum: a state that holds far less than the last has collapsed (snapped onto the
+                // branch where the walls fold in). The step is halved until the snap is bracketed
+                // within the smallest increment, and the path goes on from the collapsed state.
+                // A tube is symmetric, and Newton follows its symmetric (round) state past the
+                // pressure where that state turns unstable; so each state is also checked for
+                // stability, and an unstable one is stepped down onto the collapsed state.
+                bool collapsed = false;
+                if (beforeCollapse) {
+                    EnergyResult exact;
+                    bool escaped = false;
+                    Eigen::VectorXd settled = trial;
+                    const int negative = t.solver.StableState(settled, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), &exact, &escaped);
+                    collapsed = negative != 0 || escaped || volume < lastVolume - kCollapseDrop * t.problem.restVolume;
+                    if (collapsed && increment > smallest) {
+                        increment *= 0.5;
+                        continue;
+                    }
+                    if (escaped) {
+                        trial = std::move(settled);
+                        PositionsOf(t.problem, trial, t.x);
+                        volume = EnclosedVolume(t.problem, t.x);
+                    }
+                    if (collapsed) out.collapsePressureKpa = 0.5 * (t.GaugeKpa(reached) + t.GaugeKpa(next));
+                }
                 // A converged state far beyond the last one has snapped through to a distant branch:
                 // past the pressure maximum. (An unstable state is caught at the end, by inertia.)
                 if (volume > t.VolumeLimitAfter(lastVolume)) {
@@ -855,6 +890,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 t.q = std::move(trial);
                 reached = next;
                 lastVolume = volume;
+                if (collapsed) increment = goal - reached;  // past the snap: the rest of the load step whole again
                 if (predict) {
                     Eigen::VectorXd w = AssembleEnergy(t.problem, t.q, t.LoadAt(reached), t.solver.terms, true, nullptr, HessianKind::Projected).volumeGradient;
                     t.solver.HoldGradient(w);

@@ -47,6 +47,23 @@ TEST(VacuumContact, CollapsedTubeRestsAWallApart) {
     EXPECT_EQ(sim::Evaluate(VacuumTube(sim::ContactMode::Off)).status, sim::Status::SelfIntersection);
 }
 
+TEST(VacuumContact, CollapsePressureIsWhereTheRoundTubeTurnsUnstable) {
+    // Newton follows the round tube's symmetric state past the pressure where it turns unstable;
+    // the stability check after each step finds that pressure, bracketed within a 64th of a load
+    // step, whatever the steps: 4 steps of 0.125 kPa and 7 of 0.071 agree within two brackets.
+    sim::EvalJob four = VacuumTube(sim::ContactMode::On);
+    sim::EvalJob seven = four;
+    seven.Shell().load.steps = 7;
+    const sim::SimResult a = sim::Evaluate(four), b = sim::Evaluate(seven);
+    ASSERT_EQ(a.status, sim::Status::Ok) << kReproduce;
+    ASSERT_EQ(b.status, sim::Status::Ok) << kReproduce << " --steps 7";
+    EXPECT_LT(a.shell.collapsePressureKpa, -0.05) << kReproduce;
+    EXPECT_GT(a.shell.collapsePressureKpa, -0.2) << kReproduce;
+    EXPECT_NEAR(a.shell.collapsePressureKpa, b.shell.collapsePressureKpa, 2 * 0.5 / 4 / 64);
+    // The same collapsed state at the target, found by either path.
+    EXPECT_NEAR(a.contractionPercent, b.contractionPercent, 1e-6);
+}
+
 TEST(VacuumContact, GapFollowsTheBarriersReach) {
     // Three times shorter a reach: the walls come three times closer to touching (the gap is within
     // the reach each time), and the collapsed tube's stroke hardly moves.
