@@ -3,7 +3,8 @@
 // 60 x 60 and 120 x 120, beside the thesis model's evaluation measured in the same run, on one core.
 // Fibres' cost (issue 11) on the same sine and on two of the GA's fibre designs, each beside the same
 // design without fibres; one assembly with and without the fibre terms. The counters give the
-// Newton iterations and factorisations per evaluation.
+// Newton iterations and factorisations per evaluation. Self-contact's cost with no wall near another
+// and on a collapsed tube.
 //   build/tests/shell_bench --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
@@ -111,7 +112,28 @@ void BM_Assembly(benchmark::State& state, bool hessian, bool fibres) {
 
 }  // namespace
 
+// Self-contact: the sine above with contact on, where no wall comes near another (what a search
+// pays for the barrier's bookkeeping), and the vacuum tube of the contact tests (R 5, L 60, 20 x 16,
+// 0.5 kPa of vacuum: collapsed, 531 pairs in contact), each with contact on; the sine also off.
+void BM_Contact(benchmark::State& state, bool vacuum, bool contact) {
+    sim::EvalJob job = Job(sim::ModelKind::Shell, 30, 30);
+    if (vacuum) {
+        job.Shell().material = sim::MaterialPresetDef(sim::MaterialPreset::Ecoflex0030);
+        job.shape = sim::CylinderShape{};
+        job.Shell().geometry.lengthMm = 60;
+        job.Shell().geometry.ringVertices = 20;
+        job.Shell().geometry.rings = 16;
+        job.Shell().load.pressureKpa = -0.5;
+    }
+    job.Shell().contact.mode = contact ? sim::ContactMode::On : sim::ContactMode::Off;
+    Measure(state, job);
+    state.counters["contact_pairs"] = sim::Evaluate(job).shell.contactPairs;
+}
+
 BENCHMARK(BM_Thesis30x30)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Contact, sine_contact_off, false, false)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_Contact, sine_contact_on, false, true)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_Contact, vacuum_collapse, true, true)->Unit(benchmark::kMillisecond)->MinTime(2);
 BENCHMARK_CAPTURE(BM_Shell, membrane, sim::ModelKind::Membrane, sim::FibreLayout::None)->Args({30, 1})->Args({30, 0})->Args({60, 1})->Unit(benchmark::kMillisecond)->MinTime(2);
 BENCHMARK_CAPTURE(BM_Shell, shell, sim::ModelKind::Shell, sim::FibreLayout::None)->Args({30, 1})->Args({30, 0})->Args({60, 1})->Unit(benchmark::kMillisecond)->MinTime(2);
 // What fibres cost (issue 11: at most 30 % more).
