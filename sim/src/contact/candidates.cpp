@@ -8,6 +8,8 @@
 #include <limits>
 #include <queue>
 
+#include <Eigen/Geometry>
+
 #include "contact/contact.h"
 
 namespace sim {
@@ -77,30 +79,50 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     for (int e = 0; e < static_cast<int>(s.edges.size()); ++e)
         for (int v : s.edges[e]) edgesAt[v].push_back(e);
     const double limit = neighbourMm * neighbourMm;
-    const auto close = [&](const ContactPair& pair) { return SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr) < limit; };
+    // Boxes first: most primitives near along the wall are already farther apart than neighbourMm.
+    const auto boxOf = [&](const auto& vertices) {
+        Eigen::AlignedBox3d box;
+        for (int v : vertices) box.extend(at(v));
+        return box;
+    };
+    std::vector<Eigen::AlignedBox3d> triangleBox, edgeBox;
+    for (const auto& t : triangles) triangleBox.push_back(boxOf(t));
+    for (const auto& e : s.edges) edgeBox.push_back(boxOf(e));
+    const auto close = [&](const ContactPair& pair, const Eigen::AlignedBox3d& a, const Eigen::AlignedBox3d& b) {
+        return a.squaredExteriorDistance(b) < limit && SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr) < limit;
+    };
+    // Each primitive is looked at once per source (a stamp, not a sort of the repeats).
+    std::vector<int> stamp(std::max(triangles.size(), s.edges.size()), -1);
     s.neighbourTriangles.resize(n);
     for (int p : s.points) {
         std::vector<int>& found = s.neighbourTriangles[p];
-        for (int v : s.nearAlongWall[p]) found.insert(found.end(), trianglesAt[v].begin(), trianglesAt[v].end());
+        const Eigen::AlignedBox3d point(at(p));
+        for (int v : s.nearAlongWall[p])
+            for (int t : trianglesAt[v]) {
+                if (stamp[t] == p) continue;
+                stamp[t] = p;
+                const auto& tri = triangles[t];
+                if (p != tri[0] && p != tri[1] && p != tri[2] && close({PairKind::PointTriangle, {p, tri[0], tri[1], tri[2]}}, point, triangleBox[t]))
+                    found.push_back(t);
+            }
         std::sort(found.begin(), found.end());
-        found.erase(std::unique(found.begin(), found.end()), found.end());
-        std::erase_if(found, [&](int t) {
-            const auto& tri = triangles[t];
-            return p == tri[0] || p == tri[1] || p == tri[2] || !close({PairKind::PointTriangle, {p, tri[0], tri[1], tri[2]}});
-        });
     }
+    std::fill(stamp.begin(), stamp.end(), -1);
     s.neighbourEdges.resize(s.edges.size());
     for (int e = 0; e < static_cast<int>(s.edges.size()); ++e) {
         std::vector<int>& found = s.neighbourEdges[e];
-        for (int end : s.edges[e])
-            for (int v : s.nearAlongWall[end]) found.insert(found.end(), edgesAt[v].begin(), edgesAt[v].end());
-        std::sort(found.begin(), found.end());
-        found.erase(std::unique(found.begin(), found.end()), found.end());
         const auto& a = s.edges[e];
-        std::erase_if(found, [&](int f) {
-            const auto& b = s.edges[f];
-            return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1] || !close({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
-        });
+        for (int end : a)
+            for (int v : s.nearAlongWall[end])
+                for (int f : edgesAt[v]) {
+                    if (stamp[f] == e) continue;
+                    stamp[f] = e;
+                    const auto& b = s.edges[f];
+                    if (a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1] &&
+                        close({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}}, edgeBox[e], edgeBox[f]))
+                        found.push_back(f);
+                }
+        std::sort(found.begin(), found.end());
     }
     return s;
 }
