@@ -155,7 +155,8 @@ static int RunRender(int argc, char** argv, int first) {
     cli.Enum("--background", p.def.background, "image background");
     cli.Enum("--color-by", colouring,
              "surface colour: auto (displacement for the thesis model, stretch for the others), displacement, spring or edge strain, "
-             "largest principal stretch or true stress (membrane and shell), or none");
+             "largest principal stretch or true stress (membrane and shell), gap: how near each wall is to another beyond a wall thickness "
+             "(--contact on: where walls touch), or none");
     cli.Flag("--wireframe", p.def.wireframe, "draw the edges (springs) over the surface");
     bool noOverlay = false;
     cli.Flag("--no-overlay", noOverlay, "leave out the title, numbers, captions and colour bar");

@@ -94,6 +94,8 @@ std::string FitnessCaption(const sim::SimResult& r) { return r.status == sim::St
 std::string ColouringError(Colouring colouring, const sim::EvalJob& job) {
     if (job.model == sim::ModelKind::Thesis && (colouring == Colouring::Stretch || colouring == Colouring::Stress))
         return std::string("colouring by ") + sim::Name(colouring) + " needs --model membrane or shell (the thesis model has no material)";
+    if (colouring == Colouring::Gap && (job.model == sim::ModelKind::Thesis || job.Shell().contact.mode != sim::ContactMode::On))
+        return "colouring by gap needs --contact on (a membrane or shell model's walls that touch)";
     return "";
 }
 
@@ -186,6 +188,19 @@ render::Panel ColouredPanel(render::Scene& scene, const sim::Positions& deformed
             break;
         case Colouring::Strain: scene.colorBy = render::ColorBy::Strain; break;
         case Colouring::None: scene.colorBy = render::ColorBy::Shading; break;
+        case Colouring::Gap: {
+            if (thesis) break;  // refused earlier (ColouringError)
+            // Vertices with no other wall within a wall thickness show at the top of the scale.
+            const double h = job.Shell().geometry.thicknessMm;
+            panel.values = sim::ContactGapValues(job.Shell(), job.shape, deformed);
+            for (double& g : panel.values) g = std::isfinite(g) ? std::min(g, h) : h;
+            scene.colorBy = render::ColorBy::Values;
+            scene.colorLabel = "gap to the\nnext wall (mm)";
+            scene.colorMin = 0.0;
+            scene.colorMax = h;
+            scene.scaleMarks = {{h * job.Shell().contact.gapFraction, "reach"}};  // the barrier's: walls nearer push apart
+            break;
+        }
         case Colouring::Stretch:
         case Colouring::Stress: {
             if (thesis) break;  // refused earlier (ColouringError)

@@ -34,8 +34,9 @@ std::string FitnessCaption(const sim::SimResult& result);  // "0.582" or the sta
 std::vector<std::string> ResultLines(const sim::SimResult& result, const sim::EvalJob& job);
 
 // What colours the deformed mesh. `Auto` is displacement under the thesis model and the largest
-// principal stretch under the membrane and shell models.
-enum class Colouring { Auto, Displacement, Strain, Stretch, Stress, None };
+// principal stretch under the membrane and shell models. `Gap` (contact on): how near each vertex's
+// wall is to another, beyond a wall thickness; where walls touch.
+enum class Colouring { Auto, Displacement, Strain, Stretch, Stress, Gap, None };
 // Empty when the colouring suits the job's model; otherwise why not.
 std::string ColouringError(Colouring colouring, const sim::EvalJob& job);
 
@@ -164,10 +165,11 @@ private:
 
 template <>
 struct sim::EnumNames<app::Colouring> {
-    static constexpr std::array<std::pair<app::Colouring, const char*>, 6> table{{{app::Colouring::Auto, "auto"},
+    static constexpr std::array<std::pair<app::Colouring, const char*>, 7> table{{{app::Colouring::Auto, "auto"},
                                                                                   {app::Colouring::Displacement, "displacement"},
                                                                                   {app::Colouring::Strain, "strain"},
                                                                                   {app::Colouring::Stretch, "stretch"},
                                                                                   {app::Colouring::Stress, "stress"},
+                                                                                  {app::Colouring::Gap, "gap"},
                                                                                   {app::Colouring::None, "none"}}};
 };

@@ -302,6 +302,10 @@ struct ShellFields {
     std::vector<FibreDash> fibres;  // one per wall triangle and fibre family
 };
 ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bending, const Positions& deformed);
+// Self-contact on: per vertex, the gap between its wall and the nearest other wall beyond a wall
+// thickness (mm; 0 where they touch), over the pairs it belongs to within a wall thickness of
+// touching; NaN where no other wall is that near. Empty when contact is off or the tube cannot be built.
+std::vector<double> ContactGapValues(const ShellDef& def, const Shape& shape, const Positions& deformed);
 
 // The wall's state cell by cell, for field files (VTU): one value per triangle of ShellSurface (the
 // wall's triangles, then the caps'). NaN where a field has no value: the caps (the fixture's, not

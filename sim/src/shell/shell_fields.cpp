@@ -113,4 +113,19 @@ WallCells WallCellValues(const ShellDef& def, const Shape& shape, bool bending, 
     return cells;
 }
 
+std::vector<double> ContactGapValues(const ShellDef& def, const Shape& shape, const Positions& deformed) {
+    if (def.contact.mode != ContactMode::On) return {};
+    std::string error;
+    const ShellProblem problem = BuildTubeProblem(def, shape, false, &error);
+    if (!error.empty() || !problem.contact || deformed.Size() != problem.vertexCount()) return {};
+    const double h = problem.barrier.thicknessMm;
+    std::vector<double> gap(problem.vertexCount(), NAN);
+    for (const ContactPair& pair : ContactCandidates(*problem.contact, deformed, nullptr, 2 * h)) {
+        const double g = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, deformed), nullptr, nullptr)) - h;
+        for (int v : pair.vertices)
+            if (!(gap[v] <= g)) gap[v] = std::max(0.0, g);
+    }
+    return gap;
+}
+
 }  // namespace sim

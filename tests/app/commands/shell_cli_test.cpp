@@ -70,6 +70,9 @@ TEST_F(ShellCli, BadInputIsRefusedWithOneLineAndNothingWritten) {
     ExpectRefused("simulate --model plastic" + save, "thesis, membrane or shell");
     ExpectRefused("render --model shell --shape cylinder --color-by stretch --timelapse 3 --steps 5 --out " + Path("pictures"), "--steps");
     ExpectRefused("render --model thesis --shape cylinder --color-by stress --out " + Path("pictures"), "membrane or shell");
+    ExpectRefused("render --model shell --shape cylinder --color-by gap --out " + Path("pictures"), "--contact on");
+    ExpectRefused("simulate --model shell --contact-gap-fraction 0.05" + save, "applies to --contact on, not --contact off");
+    ExpectRefused("simulate --model shell --contact sideways" + save, "off or on");
     // A mesh that is not the model's surface.
     Write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     ExpectRefused("simulate --model shell --mesh " + Path("quad.obj") + save, "triangles");
@@ -105,6 +108,17 @@ TEST_F(ShellCli, RenderDrawsStretchThePressureCurveAndAFramePerLoadStep) {
     EXPECT_FALSE(fs::exists(dir_ / "pictures" / "stretch.png")) << "the thesis's stretch test is not a shell model's figure";
     for (int k = 0; k < 3; ++k) testing_support::ExpectPicture(dir_ / "pictures" / "timelapse" / ("frame_000" + std::to_string(k) + ".png"));
     EXPECT_FALSE(fs::exists(dir_ / "pictures" / "timelapse" / "frame_0003.png")) << "one frame per load step: --timelapse 3 sets 3 steps";
+}
+
+TEST_F(ShellCli, RenderShowsWhereCollapsedWallsTouch) {
+    const Result r = Run("render --model shell --shape cylinder --length-mm 60 --ring-vertices 20 --rings 16 --pressure-kpa -0.5 --contact on "
+                         "--color-by gap --size 320x240 --out " + Path("pictures"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    EXPECT_EQ(json["inflation"]["status"], "ok");
+    EXPECT_GT(json["inflation"]["contact_pairs"].get<int>(), 0);
+    EXPECT_LT(json["inflation"]["collapse_pressure_kpa"].get<double>(), 0);
+    testing_support::ExpectPicture(dir_ / "pictures" / "inflation.png");
 }
 
 // A sweep over pressure is a design's contraction-pressure curve; its archive gives each point back.

@@ -43,6 +43,18 @@ TEST(VacuumContact, CollapsedTubeRestsAWallApart) {
     EXPECT_LT(s.minGapMm, 0.1) << kReproduce;
     // It shortens: a vacuum actuator's stroke.
     EXPECT_GT(on.contractionPercent, 1) << kReproduce;
+    // Where they touch: the gap field is 0 to s_hat on the flattened walls, none on the far ones.
+    const sim::EvalJob job = VacuumTube(sim::ContactMode::On);
+    const std::vector<double> gaps = sim::ContactGapValues(job.Shell(), job.shape, on.final);
+    ASSERT_EQ(static_cast<int>(gaps.size()), on.final.Size());
+    int touching = 0;
+    for (double g : gaps)
+        if (g < 0.1) {
+            EXPECT_GE(g, 0);
+            ++touching;
+        }
+    EXPECT_GT(touching, 20);
+    EXPECT_TRUE(sim::ContactGapValues(VacuumTube(sim::ContactMode::Off).Shell(), job.shape, on.final).empty());
     // Without contact the same tube passes through itself.
     EXPECT_EQ(sim::Evaluate(VacuumTube(sim::ContactMode::Off)).status, sim::Status::SelfIntersection);
 }
