@@ -89,6 +89,25 @@ TEST(VacuumContact, GapFollowsTheBarriersReach) {
     EXPECT_NEAR(narrow.contractionPercent, wide.contractionPercent, 0.1 * wide.contractionPercent);
 }
 
+TEST(VacuumContact, ResultsDoNotDependOnThreads) {
+    // Three vacuum designs (the tube, and at a 10 % and 30 % deeper vacuum) on one thread and on two,
+    // each worker reusing its workspace from the last design: the same bits.
+    std::vector<sim::EvalJob> jobs;
+    for (double scale : {1.0, 1.1, 1.3}) {
+        jobs.push_back(VacuumTube(sim::ContactMode::On));
+        jobs.back().Shell().load.pressureKpa *= scale;
+    }
+    const std::vector<sim::SimResult> one = sim::EvaluateBatch(jobs, 1), two = sim::EvaluateBatch(jobs, 2);
+    for (size_t k = 0; k < jobs.size(); ++k) {
+        ASSERT_EQ(one[k].status, sim::Status::Ok) << k;
+        EXPECT_EQ(two[k].status, one[k].status) << k;
+        EXPECT_EQ(two[k].contractionPercent, one[k].contractionPercent) << k;
+        EXPECT_EQ(two[k].shell.collapsePressureKpa, one[k].shell.collapsePressureKpa) << k;
+        EXPECT_EQ(two[k].shell.contactPairs, one[k].shell.contactPairs) << k;
+        EXPECT_EQ(two[k].final, one[k].final) << k;
+    }
+}
+
 TEST(VacuumContact, NoEffectWhereNoWallComesNear) {
     // The A = 1.3 sine inflated to 1 kPa: its walls stay far apart, so the barrier adds nothing and
     // no step is clipped; the same Newton path, to the last bit.
