@@ -24,6 +24,12 @@ double EdgeEdgeMollifierThreshold(const Vector12& rest) {
     return 1e-3 * (rest.segment<3>(3) - rest.segment<3>(0)).squaredNorm() * (rest.segment<3>(9) - rest.segment<3>(6)).squaredNorm();
 }
 
+double EdgeEdgeMollifier(double crossSquared, double threshold) {
+    if (!(crossSquared < threshold)) return 1;
+    const double r = crossSquared / threshold;
+    return (2 - r) * r;
+}
+
 namespace {
 
 // c = |e_a x e_b|^2 over the edge-edge pair's 12 coordinates.
@@ -70,7 +76,7 @@ double PairBarrierEnergy(PairKind kind, const Vector12& x, double mollifierThres
         const SecondOrder<12> c = CrossSquared(x);
         if (c.value < mollifierThreshold) {
             const double r = c.value / mollifierThreshold;
-            const double m = (2 - r) * r;
+            const double m = EdgeEdgeMollifier(c.value, mollifierThreshold);
             energy = m * b;
             if (derivatives) {
                 const double m1 = (2 - 2 * r) / mollifierThreshold;  // dm/dc
@@ -108,12 +114,10 @@ ContactSummary SummariseContact(const ContactSurface& surface, const BarrierDef&
         ++summary.activePairs;
         double first = 0;
         Barrier(d - barrier.thicknessMm, barrier.activationMm, &first, nullptr);
-        double m = 1;
-        if (pair.kind == PairKind::EdgeEdge) {
-            const double threshold = EdgeEdgeMollifierThreshold(PairCoordinates(pair, surface.rest));
-            const double crossSquared = (c.segment<3>(3) - c.segment<3>(0)).cross(c.segment<3>(9) - c.segment<3>(6)).squaredNorm();
-            if (crossSquared < threshold) m = (2 - crossSquared / threshold) * crossSquared / threshold;
-        }
+        const double m = pair.kind == PairKind::EdgeEdge
+                             ? EdgeEdgeMollifier((c.segment<3>(3) - c.segment<3>(0)).cross(c.segment<3>(9) - c.segment<3>(6)).squaredNorm(),
+                                                 EdgeEdgeMollifierThreshold(PairCoordinates(pair, surface.rest)))
+                             : 1.0;
         summary.forceN += barrier.stiffness * m * std::abs(first);
     }
     return summary;

@@ -127,19 +127,6 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     return s;
 }
 
-// The rule as stated (the surface keeps its result per vertex and edge for the search).
-bool Neighbours(const ContactSurface& surface, const ContactPair& pair) {
-    if (surface.neighbourMm <= 0) return false;
-    const int split = pair.kind == PairKind::PointTriangle ? 1 : 2;
-    bool alongWall = false;
-    for (int a = 0; a < split && !alongWall; ++a) {
-        const std::vector<int>& near = surface.nearAlongWall[pair.vertices[a]];
-        for (int b = split; b < 4 && !alongWall; ++b) alongWall = std::binary_search(near.begin(), near.end(), pair.vertices[b]);
-    }
-    return alongWall && SquaredDistance(pair.kind, PairCoordinates(pair, surface.rest), nullptr, nullptr) <
-                            surface.neighbourMm * surface.neighbourMm;
-}
-
 namespace {
 
 struct Box {

@@ -50,10 +50,9 @@ double PairImpactTime(PairKind kind, const Vector12& x, const Vector12& dx, doub
     return t;
 }
 
-double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm,
-                      double reachMm) {
+double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm) {
     double t = 1;
-    for (const ContactPair& pair : ContactCandidates(surface, x, &dx, reachMm))
+    for (const ContactPair& pair : ContactCandidates(surface, x, &dx, minDistanceMm))
         t = std::min(t, PairImpactTime(pair.kind, PairCoordinates(pair, x), PairCoordinates(pair, dx), minDistanceMm, t));
     return t;
 }

@@ -77,6 +77,8 @@ double Barrier(double s, double sHat, double* first, double* second);
 // their barrier fades with c = |e_a x e_b|^2 below threshold = 1e-3 |E_a|^2 |E_b|^2 (rest lengths):
 // m = (2 - c / threshold) c / threshold there, 1 above.
 double EdgeEdgeMollifierThreshold(const Vector12& rest);
+// m of c = |e_a x e_b|^2 at that threshold.
+double EdgeEdgeMollifier(double crossSquared, double threshold);
 
 // One pair's barrier energy kappa m b(d - h) at x (m = 1 for point-triangle pairs), with its gradient
 // and Hessian (exact, or with project, projected to positive semi-definite for Newton's matrix).
@@ -111,8 +113,6 @@ struct ContactSurface {
 };
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
                                   const std::vector<int>& body, double neighbourMm);
-// Whether a pair is two neighbours within one wall (see ContactSurface).
-bool Neighbours(const ContactSurface& surface, const ContactPair& pair);
 
 // The pairs whose primitives may be within reachMm of each other (a uniform spatial hash on their
 // bounding boxes), or, with dx, at any point while x moves to x + dx. Pairs that share a vertex,
@@ -164,9 +164,8 @@ ContactSummary SummariseContact(const ContactSurface& surface, const BarrierDef&
 // start farther apart than minDistanceMm.
 double PairImpactTime(PairKind kind, const Vector12& x, const Vector12& dx, double minDistanceMm, double tMax);
 
-// The largest fraction t in [0, 1] of the move x -> x + dx that no candidate pair crosses
-// (min over ContactCandidates of the swept move within reachMm).
-double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm,
-                      double reachMm);
+// The largest fraction t in [0, 1] of the move x -> x + dx that no pair of the surface crosses
+// (min over ContactCandidates of the swept move within minDistanceMm).
+double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm);
 
 }  // namespace sim

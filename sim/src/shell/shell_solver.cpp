@@ -184,7 +184,7 @@ struct Solver {
                 free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, to), h, free));
             return free;
         }
-        return ImpactFreeStep(*problem.contact, from, to, h, h);
+        return ImpactFreeStep(*problem.contact, from, to, h);
     }
     ~Solver() { tLastWorkspace = std::move(workspace); }
     // Counts one Newton iteration; true (and overBudget) when the evaluation's budget is already spent.
@@ -840,8 +840,8 @@ Status FollowLoadPath(TubeEvaluation& t) {
             // Vacuum: a collapse is bracketed by halving the step, so a trial that is collapsing is
             // stopped as soon as it has lost that much (the smallest step may collapse in full).
             const bool beforeCollapse = collapsing && std::isnan(out.collapsePressureKpa);
-            const double floor = beforeCollapse && increment > smallest ? lastVolume - kCollapseDrop * t.problem.restVolume
-                                                                    : -std::numeric_limits<double>::infinity();
+            const double collapsedBelow = lastVolume - kCollapseDrop * t.problem.restVolume;
+            const double floor = beforeCollapse && increment > smallest ? collapsedBelow : -std::numeric_limits<double>::infinity();
             const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor);
             if (end == NewtonEnd::OverBudget) {  // halving the step would only spend more
                 status = Status::BudgetExceeded;
@@ -856,19 +856,18 @@ Status FollowLoadPath(TubeEvaluation& t) {
             if (end == NewtonEnd::Converged) {
                 PositionsOf(t.problem, trial, t.x);
                 double volume = EnclosedVolume(t.problem, t.x);
-                // Vacuum: a state that holds far less than the last has collapsed (snapped onto the
-                // branch where the walls fold in). The step is halved until the snap is bracketed
-                // within the smallest increment, and the path goes on from the collapsed state.
-                // A tube is symmetric, and Newton follows its symmetric (round) state past the
-                // pressure where that state turns unstable; so each state is also checked for
-                // stability, and an unstable one is stepped down onto the collapsed state.
+                // Vacuum: a state that holds far less than the last has collapsed, and so has one
+                // that is unstable (Newton follows a tube's round state past the pressure where it
+                // turns unstable; StableState steps it down onto the folded one). The step is halved
+                // until the collapse is bracketed within the smallest increment, and the path goes
+                // on from the collapsed state.
                 bool collapsed = false;
                 if (beforeCollapse) {
                     EnergyResult exact;
                     bool escaped = false;
                     Eigen::VectorXd settled = trial;
                     const int negative = t.solver.StableState(settled, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), &exact, &escaped);
-                    collapsed = negative != 0 || escaped || volume < lastVolume - kCollapseDrop * t.problem.restVolume;
+                    collapsed = negative != 0 || escaped || volume < collapsedBelow;
                     if (collapsed && increment > smallest) {
                         increment *= 0.5;
                         continue;
