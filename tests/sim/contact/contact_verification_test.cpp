@@ -276,6 +276,46 @@ TEST(ContactCandidates, FindEveryPairWithinReach) {
         EXPECT_GE(std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, sheet.x), nullptr, nullptr)), reach);
 }
 
+TEST(ContactCandidates, FindEveryPairThatComesWithinReachOnAMove) {
+    // The swept query continuous collision detection relies on: every pair that comes within the
+    // reach anywhere along a move (sampled at 41 points) is a candidate.
+    std::mt19937 rng(5);
+    const Sheet sheet = FoldedSheet(10, 3.0, rng);
+    const double reach = 0.1;
+    const ContactSurface surface = MakeContactSurface(sheet.x, sheet.triangles, {}, 0);
+    Positions move;
+    move.Resize(sheet.x.Size());
+    std::normal_distribution<double> n(0, 0.08);
+    for (int v = 0; v < move.Size(); ++v) {
+        move.x[v] = n(rng);
+        move.y[v] = n(rng);
+        move.z[v] = n(rng);
+    }
+    const std::vector<ContactPair> candidates = ContactCandidates(surface, sheet.x, &move, reach);
+    EXPECT_TRUE(std::is_sorted(candidates.begin(), candidates.end()));
+    EXPECT_EQ(std::adjacent_find(candidates.begin(), candidates.end()), candidates.end());
+    int reached = 0;
+    const auto expectFound = [&](const ContactPair& pair) {
+        const Vector12 from = PairCoordinates(pair, sheet.x), step = PairCoordinates(pair, move);
+        for (int k = 0; k <= 40; ++k)
+            if (SquaredDistance(pair.kind, from + (k / 40.0) * step, nullptr, nullptr) < reach * reach) {
+                ++reached;
+                EXPECT_TRUE(std::binary_search(candidates.begin(), candidates.end(), pair));
+                return;
+            }
+    };
+    for (int p : surface.points)
+        for (const auto& t : surface.triangles)
+            if (p != t[0] && p != t[1] && p != t[2]) expectFound({PairKind::PointTriangle, {p, t[0], t[1], t[2]}});
+    for (std::size_t i = 0; i < surface.edges.size(); ++i)
+        for (std::size_t j = i + 1; j < surface.edges.size(); ++j) {
+            const auto &a = surface.edges[i], &b = surface.edges[j];
+            if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+            expectFound({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
+        }
+    EXPECT_GT(reached, 40);  // 68: the move does bring parts of the folds within reach
+}
+
 TEST(ContactCcd, NoRandomStepCrossesAWall) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(0, 1);
