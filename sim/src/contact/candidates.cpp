@@ -7,13 +7,18 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <queue>
 
 #include <Eigen/Geometry>
 
 #include "contact/contact.h"
 
 namespace sim {
+
+namespace {
+template <typename PointTriangle, typename EdgeEdge>
+void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
+                      PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge);
+}  // namespace
 
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
                                   const std::vector<int>& body, double neighbourMm) {
@@ -34,97 +39,81 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     s.points.erase(std::unique(s.points.begin(), s.points.end()), s.points.end());
     if (neighbourMm <= 0) return s;
 
-    // Distances along the edges, by Dijkstra from each vertex out to the radius.
+    // Distances along the edges, by Dijkstra from each vertex out to the radius: per vertex, the
+    // vertices near it along the wall (nearBegin[v] to nearBegin[v + 1] in `near`, ascending).
     const int n = rest.Size();
     const auto at = [&](int v) { return Eigen::Vector3d(rest.x[v], rest.y[v], rest.z[v]); };
-    std::vector<std::vector<std::pair<int, double>>> adjacent(n);
+    std::vector<int> adjacentBegin(n + 1, 0);
+    for (const auto& e : s.edges) {
+        ++adjacentBegin[e[0] + 1];
+        ++adjacentBegin[e[1] + 1];
+    }
+    for (int v = 0; v < n; ++v) adjacentBegin[v + 1] += adjacentBegin[v];
+    std::vector<std::pair<int, double>> adjacent(adjacentBegin[n]);
+    std::vector<int> fill(adjacentBegin.begin(), adjacentBegin.end() - 1);
     double longest = 0;
     for (const auto& e : s.edges) {
         const double length = (at(e[0]) - at(e[1])).norm();
-        adjacent[e[0]].push_back({e[1], length});
-        adjacent[e[1]].push_back({e[0], length});
+        adjacent[fill[e[0]]++] = {e[1], length};
+        adjacent[fill[e[1]]++] = {e[0], length};
         longest = std::max(longest, length);
     }
     const double radius = neighbourMm + longest;
-    s.nearAlongWall.resize(n);
+    std::vector<int> nearBegin(n + 1, 0), near;
     std::vector<double> distance(n, std::numeric_limits<double>::infinity());
     std::vector<int> touched;
-    for (int source : s.points) {
-        using Item = std::pair<double, int>;
-        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    using Item = std::pair<double, int>;
+    std::vector<Item> heap;  // a min-heap on distance, reused from source to source
+    for (int source = 0; source < n; ++source) {
+        nearBegin[source] = static_cast<int>(near.size());
+        if (!std::binary_search(s.points.begin(), s.points.end(), source)) continue;
         distance[source] = 0;
         touched.push_back(source);
-        queue.push({0, source});
-        while (!queue.empty()) {
-            const auto [d, v] = queue.top();
-            queue.pop();
+        heap.assign(1, {0, source});
+        while (!heap.empty()) {
+            std::pop_heap(heap.begin(), heap.end(), std::greater<Item>());
+            const auto [d, v] = heap.back();
+            heap.pop_back();
             if (d > distance[v]) continue;
-            s.nearAlongWall[source].push_back(v);
-            for (const auto& [w, length] : adjacent[v])
+            near.push_back(v);
+            for (int k = adjacentBegin[v]; k < adjacentBegin[v + 1]; ++k) {
+                const auto [w, length] = adjacent[k];
                 if (d + length <= radius && d + length < distance[w]) {
                     if (distance[w] == std::numeric_limits<double>::infinity()) touched.push_back(w);
                     distance[w] = d + length;
-                    queue.push({distance[w], w});
+                    heap.push_back({distance[w], w});
+                    std::push_heap(heap.begin(), heap.end(), std::greater<Item>());
                 }
+            }
         }
-        std::sort(s.nearAlongWall[source].begin(), s.nearAlongWall[source].end());
+        std::sort(near.begin() + nearBegin[source], near.end());
         for (int v : touched) distance[v] = std::numeric_limits<double>::infinity();
         touched.clear();
     }
+    nearBegin[n] = static_cast<int>(near.size());
 
-    // Neighbour pairs, once: near along the wall (a vertex of one near a vertex of the other) and
-    // closer than neighbourMm at rest.
-    std::vector<std::vector<int>> trianglesAt(n), edgesAt(n);
-    for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
-        for (int v : triangles[t]) trianglesAt[v].push_back(t);
-    for (int e = 0; e < static_cast<int>(s.edges.size()); ++e)
-        for (int v : s.edges[e]) edgesAt[v].push_back(e);
-    const double limit = neighbourMm * neighbourMm;
-    // Boxes first: most primitives near along the wall are already farther apart than neighbourMm.
-    const auto boxOf = [&](const auto& vertices) {
-        Eigen::AlignedBox3d box;
-        for (int v : vertices) box.extend(at(v));
-        return box;
-    };
-    std::vector<Eigen::AlignedBox3d> triangleBox, edgeBox;
-    for (const auto& t : triangles) triangleBox.push_back(boxOf(t));
-    for (const auto& e : s.edges) edgeBox.push_back(boxOf(e));
-    const auto close = [&](const ContactPair& pair, const Eigen::AlignedBox3d& a, const Eigen::AlignedBox3d& b) {
-        return a.squaredExteriorDistance(b) < limit && SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr) < limit;
-    };
-    // Each primitive is looked at once per source (a stamp, not a sort of the repeats).
-    std::vector<int> stamp(std::max(triangles.size(), s.edges.size()), -1);
-    s.neighbourTriangles.resize(n);
-    for (int p : s.points) {
-        std::vector<int>& found = s.neighbourTriangles[p];
-        const Eigen::AlignedBox3d point(at(p));
-        for (int v : s.nearAlongWall[p])
-            for (int t : trianglesAt[v]) {
-                if (stamp[t] == p) continue;
-                stamp[t] = p;
-                const auto& tri = triangles[t];
-                if (p != tri[0] && p != tri[1] && p != tri[2] && close({PairKind::PointTriangle, {p, tri[0], tri[1], tri[2]}}, point, triangleBox[t]))
-                    found.push_back(t);
-            }
-        std::sort(found.begin(), found.end());
-    }
-    std::fill(stamp.begin(), stamp.end(), -1);
-    s.neighbourEdges.resize(s.edges.size());
-    for (int e = 0; e < static_cast<int>(s.edges.size()); ++e) {
-        std::vector<int>& found = s.neighbourEdges[e];
-        const auto& a = s.edges[e];
-        for (int end : a)
-            for (int v : s.nearAlongWall[end])
-                for (int f : edgesAt[v]) {
-                    if (stamp[f] == e) continue;
-                    stamp[f] = e;
-                    const auto& b = s.edges[f];
-                    if (a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1] &&
-                        close({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}}, edgeBox[e], edgeBox[f]))
-                        found.push_back(f);
-                }
-        std::sort(found.begin(), found.end());
-    }
+    // Neighbour pairs: closer than neighbourMm at rest (the hash's query, with no pair left out
+    // yet) and near along the wall (a vertex of one near a vertex of the other).
+    const auto nearAlong = [&](int a, int b) { return std::binary_search(near.begin() + nearBegin[a], near.begin() + nearBegin[a + 1], b); };
+    std::vector<std::vector<int>> closeTriangles(n), closeEdges(s.edges.size());
+    ForEachCandidate(
+        s, rest, nullptr, neighbourMm,
+        [&](int p, int t) {
+            const auto& v = s.triangles[t];
+            if (nearAlong(p, v[0]) || nearAlong(p, v[1]) || nearAlong(p, v[2])) closeTriangles[p].push_back(t);
+        },
+        [&](int e, int f) {
+            bool nearEnds = false;
+            for (int a : s.edges[e])
+                for (int b : s.edges[f]) nearEnds = nearEnds || nearAlong(a, b);
+            if (!nearEnds) return;
+            closeEdges[e].push_back(f);
+            closeEdges[f].push_back(e);
+        });
+    for (auto* lists : {&closeTriangles, &closeEdges})
+        for (auto& list : *lists) std::sort(list.begin(), list.end());
+    s.neighbourTriangles = std::move(closeTriangles);
+    s.neighbourEdges = std::move(closeEdges);
     return s;
 }
 
@@ -259,8 +248,13 @@ private:
 
 }  // namespace
 
-std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const Positions& x, const Positions* dx,
-                                           double reachMm) {
+namespace {
+
+// Every candidate pair once: pointTriangle(p, t) with a point and a triangle's index, edgeEdge(e, f)
+// with two edges' indices (e < f); in no particular order.
+template <typename PointTriangle, typename EdgeEdge>
+void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
+                      PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge) {
     // Boxes inflated by half the reach each way: two overlap whenever their primitives may be
     // within the reach (of each other's swept boxes, with dx).
     const double margin = reachMm / 2;
@@ -278,7 +272,7 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
     double cell = 0;
     for (const Box& b : edgeBoxes) cell += (b.hi - b.lo).maxCoeff();
     cell = std::max(cell / std::max<std::size_t>(1, edgeBoxes.size()), reachMm);
-    if (!(cell > 0) || !std::isfinite(cell)) return {};
+    if (!(cell > 0) || !std::isfinite(cell)) return;
     // A wild step (a diverging Newton iterate) makes boxes that span huge numbers of cells: coarsen
     // the grid until the cells touched are a bounded multiple of the boxes, so the hash cannot blow up.
     const auto cellsOf = [&](const Box& b) {
@@ -312,7 +306,6 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
         const int b = surface.body[v[0]];
         return b < 0 || surface.body[v[1]] != b || surface.body[v[2]] != b || surface.body[v[3]] != b;
     };
-    std::vector<ContactPair> pairs;
     // Each point against the triangles near it; its neighbours are marked seen first.
     for (int a = 0; a < static_cast<int>(surface.points.size()); ++a) {
         const Box& box = pointBoxes[a];
@@ -326,7 +319,7 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
             const auto& t = surface.triangles[n];
             if (p == t[0] || p == t[1] || p == t[2] || !Overlap(box, triangleBoxes[n])) return;
             const ContactPair pair{PairKind::PointTriangle, {p, t[0], t[1], t[2]}};
-            if (movable(pair.vertices) && within(pair)) pairs.push_back(pair);
+            if (movable(pair.vertices) && within(pair)) pointTriangle(p, n);
         });
     }
     // Each edge against the edges after it (one name per pair: the lower edge first).
@@ -342,9 +335,26 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
             const auto& ej = surface.edges[f];
             if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1] || !Overlap(box, edgeBoxes[f])) return;
             const ContactPair pair{PairKind::EdgeEdge, {ei[0], ei[1], ej[0], ej[1]}};
-            if (movable(pair.vertices) && within(pair)) pairs.push_back(pair);
+            if (movable(pair.vertices) && within(pair)) edgeEdge(e, f);
         });
     }
+}
+
+}  // namespace
+
+std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const Positions& x, const Positions* dx,
+                                           double reachMm) {
+    std::vector<ContactPair> pairs;
+    ForEachCandidate(
+        surface, x, dx, reachMm,
+        [&](int p, int n) {
+            const auto& t = surface.triangles[n];
+            pairs.push_back({PairKind::PointTriangle, {p, t[0], t[1], t[2]}});
+        },
+        [&](int e, int f) {
+            const auto &a = surface.edges[e], &b = surface.edges[f];
+            pairs.push_back({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
+        });
     std::sort(pairs.begin(), pairs.end());
     return pairs;
 }

@@ -105,8 +105,6 @@ struct ContactSurface {
     std::vector<int> body;                   // per vertex of the mesh: its rigid body (0, 1, ...) or -1 (empty: none)
     Positions rest;
     double neighbourMm = 0;
-    // Per vertex, the vertices within neighbourMm + the longest edge along the edges at rest, ascending.
-    std::vector<std::vector<int>> nearAlongWall;
     // The neighbours, found once: per vertex the triangles (indices into `triangles`), per edge the
     // edges (indices into `edges`), ascending.
     std::vector<std::vector<int>> neighbourTriangles, neighbourEdges;
