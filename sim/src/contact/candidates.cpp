@@ -96,17 +96,26 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     // yet) and near along the wall (a vertex of one near a vertex of the other).
     const auto nearAlong = [&](int a, int b) { return std::binary_search(near.begin() + nearBegin[a], near.begin() + nearBegin[a + 1], b); };
     std::vector<std::vector<int>> closeTriangles(n), closeEdges(s.edges.size());
+    // The others are walls apart along the wall that are this close at rest: the nearest is kept.
+    const auto nearest = [&](const ContactPair& pair) {
+        const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr));
+        if (d < s.restClearanceMm || (d == s.restClearanceMm && pair < s.restNearest)) {
+            s.restClearanceMm = d;
+            s.restNearest = pair;
+        }
+    };
     ForEachCandidate(
         s, rest, nullptr, neighbourMm,
         [&](int p, int t) {
             const auto& v = s.triangles[t];
             if (nearAlong(p, v[0]) || nearAlong(p, v[1]) || nearAlong(p, v[2])) closeTriangles[p].push_back(t);
+            else nearest({PairKind::PointTriangle, {p, v[0], v[1], v[2]}});
         },
         [&](int e, int f) {
             bool nearEnds = false;
             for (int a : s.edges[e])
                 for (int b : s.edges[f]) nearEnds = nearEnds || nearAlong(a, b);
-            if (!nearEnds) return;
+            if (!nearEnds) return nearest({PairKind::EdgeEdge, {s.edges[e][0], s.edges[e][1], s.edges[f][0], s.edges[f][1]}});
             closeEdges[e].push_back(f);
             closeEdges[f].push_back(e);
         });

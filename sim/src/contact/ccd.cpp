@@ -50,11 +50,47 @@ double PairImpactTime(PairKind kind, const Vector12& x, const Vector12& dx, doub
     return t;
 }
 
-double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm) {
+double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm,
+                      ContactSweep* sweep, double sweepReachMm, double toleranceMm) {
+    std::vector<ContactPair> pairs = ContactCandidates(surface, x, &dx, sweep ? std::max(sweepReachMm, minDistanceMm) : minDistanceMm);
     double t = 1;
-    for (const ContactPair& pair : ContactCandidates(surface, x, &dx, minDistanceMm))
+    for (const ContactPair& pair : pairs)
         t = std::min(t, PairImpactTime(pair.kind, PairCoordinates(pair, x), PairCoordinates(pair, dx), minDistanceMm, t));
+    if (sweep) {
+        sweep->pairs = std::move(pairs);
+        sweep->from = x;
+        sweep->move = dx;
+        sweep->toleranceMm = toleranceMm;
+    }
     return t;
+}
+
+bool ContactSweep::Covers(const Positions& x) const {
+    const int n = x.Size();
+    if (from.Size() != n || n == 0) return false;
+    // How far along the move x is, from the vertex that moves most; then every vertex's distance
+    // from its place at that fraction.
+    int most = 0;
+    double longest = -1;
+    for (int v = 0; v < n; ++v) {
+        const double l = move.x[v] * move.x[v] + move.y[v] * move.y[v] + move.z[v] * move.z[v];
+        if (l > longest) {
+            longest = l;
+            most = v;
+        }
+    }
+    double along = 0;
+    if (longest > 0)
+        along = std::clamp(((x.x[most] - from.x[most]) * move.x[most] + (x.y[most] - from.y[most]) * move.y[most] +
+                            (x.z[most] - from.z[most]) * move.z[most]) / longest,
+                           0.0, 1.0);
+    const double limit = toleranceMm * toleranceMm;
+    for (int v = 0; v < n; ++v) {
+        const double dx = x.x[v] - from.x[v] - along * move.x[v], dy = x.y[v] - from.y[v] - along * move.y[v],
+                     dz = x.z[v] - from.z[v] - along * move.z[v];
+        if (!(dx * dx + dy * dy + dz * dz <= limit)) return false;
+    }
+    return true;
 }
 
 }  // namespace sim

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "sim/mesh.h"
@@ -108,6 +109,10 @@ struct ContactSurface {
     // The neighbours, found once: per vertex the triangles (indices into `triangles`), per edge the
     // edges (indices into `edges`), ascending.
     std::vector<std::vector<int>> neighbourTriangles, neighbourEdges;
+    // The nearest pair at rest that is not neighbours, if one is within neighbourMm (a rest shape
+    // whose walls already touch), and its distance (infinite when none is).
+    ContactPair restNearest;
+    double restClearanceMm = std::numeric_limits<double>::infinity();
 };
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
                                   const std::vector<int>& body, double neighbourMm);
@@ -162,8 +167,22 @@ ContactSummary SummariseContact(const ContactSurface& surface, const BarrierDef&
 // start farther apart than minDistanceMm.
 double PairImpactTime(PairKind kind, const Vector12& x, const Vector12& dx, double minDistanceMm, double tMax);
 
+// The pairs that may come within a reach anywhere on a straight move from `from` by `move` (a swept
+// query): an assembly at a point of that move, a line search's trial, sums over them instead of
+// searching again. A point covered may stray toleranceMm from the move (a turning clamp's vertices
+// move on arcs): the pairs were searched toleranceMm beyond each side of the reach.
+struct ContactSweep {
+    std::vector<ContactPair> pairs;
+    Positions from, move;
+    double toleranceMm = 0;
+    bool Covers(const Positions& x) const;
+};
+
 // The largest fraction t in [0, 1] of the move x -> x + dx that no pair of the surface crosses
-// (min over ContactCandidates of the swept move within minDistanceMm).
-double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm);
+// (min over ContactCandidates of the swept move within minDistanceMm). With sweep, the swept
+// query looks out to sweepReachMm (at least minDistanceMm) and keeps its pairs there, covering the
+// move for that reach less toleranceMm each side.
+double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const Positions& dx, double minDistanceMm,
+                      ContactSweep* sweep = nullptr, double sweepReachMm = 0, double toleranceMm = 0);
 
 }  // namespace sim

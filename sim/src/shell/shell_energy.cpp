@@ -379,6 +379,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         std::vector<ContactPair> found;
         const std::vector<ContactPair>* pairs = &found;
         if (terms.contactList && terms.contactList->Covers(x)) pairs = &terms.contactList->pairs;
+        else if (!hessian && terms.contactSweep && terms.contactSweep->Covers(x)) pairs = &terms.contactSweep->pairs;
         else found = ContactCandidates(*p.contact, x, nullptr, ContactReachMm(p.barrier));
         const double reachSquared = ContactReachMm(p.barrier) * ContactReachMm(p.barrier);
         CompensatedSum contact;

@@ -346,15 +346,12 @@ void SetContact(ShellProblem& p, const ContactDef& def, std::string* error) {
     // to half its length, which a wall does by wrinkling, not by compressing.
     p.contact = std::make_shared<const ContactSurface>(MakeContactSurface(p.rest, triangles, body, 2 * ContactReachMm(p.barrier)));
     // Walls that already touch at rest cannot be pushed apart by a barrier that starts at contact.
-    for (const ContactPair& pair : ContactCandidates(*p.contact, p.rest, nullptr, h)) {
-        const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, p.rest), nullptr, nullptr));
-        if (d <= h) {
-            char text[160];
-            std::snprintf(text, sizeof text, "the rest shape's walls are %.3g mm apart near z = %.1f mm, closer than the wall's thickness (%g mm)", d,
-                          p.rest.z[pair.vertices[0]], h);
-            if (error) *error = text;
-            return;
-        }
+    if (p.contact->restClearanceMm <= h) {
+        char text[160];
+        std::snprintf(text, sizeof text, "the rest shape's walls are %.3g mm apart near z = %.1f mm, closer than the wall's thickness (%g mm)",
+                      p.contact->restClearanceMm, p.rest.z[p.contact->restNearest.vertices[0]], h);
+        if (error) *error = text;
+        return;
     }
     if (error) error->clear();
 }

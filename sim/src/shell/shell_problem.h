@@ -205,6 +205,9 @@ struct EnergyTerms {
     // The contact pairs to sum (a Newton solve's list); null, or a list that does not cover the
     // state, and they are found afresh. A Hessian's pattern must hold every pair summed.
     const ContactList* contactList = nullptr;
+    // The pairs of the last step's swept query, which cover the states along that step (a line
+    // search's trials, assembled without a Hessian) where the list does not.
+    const ContactSweep* contactSweep = nullptr;
 };
 
 // The sparse pattern of a problem's Hessian over its unknowns, and where each element's entries go.

@@ -137,7 +137,10 @@ struct Solver {
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
           exactPattern(workspace->exactPattern), exactFactor(&workspace->exactFactor) {
         forceTolerance = d.tolerance * MembraneMaterialShearModulus(p.material) * p.material.thicknessMm * p.meanEdgeMm;
-        if (p.contact) terms.contactList = &contactList;
+        if (p.contact) {
+            terms.contactList = &contactList;
+            terms.contactSweep = &contactSweep;
+        }
     }
 
     // Self-contact (docs/models/shell.md section 8). The pairs every assembly sums come from one
@@ -161,8 +164,13 @@ struct Solver {
         factorAge = 0;
     }
     // The largest fraction of the step from q that no wall crosses (1 with contact off): continuous
-    // collision detection on the straight move of every vertex.
-    double ImpactFree(const Eigen::VectorXd& q, const Eigen::VectorXd& step) const {
+    // collision detection on the straight move of every vertex. When the list cannot vouch for the
+    // step, the swept query that finds the pairs to check also looks out to the barrier's reach, and
+    // its pairs are kept for the line search's trials along the step (the trials would otherwise each
+    // search afresh: 37 searches in an evaluation of the A = 1.3 sine).
+    ContactSweep contactSweep;
+    static constexpr double kSweepTolerance = 0.1;  // of the reach: how far a trial may stray from the straight move
+    double ImpactFree(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
         if (!problem.contact) return 1;
         Positions from, to;
         PositionsOf(problem, q, from);
@@ -184,7 +192,8 @@ struct Solver {
                 free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, to), h, free));
             return free;
         }
-        return ImpactFreeStep(*problem.contact, from, to, h);
+        const double reach = ContactReachMm(problem.barrier), tolerance = kSweepTolerance * reach;
+        return ImpactFreeStep(*problem.contact, from, to, h, &contactSweep, reach + 2 * tolerance, tolerance);
     }
     ~Solver() { tLastWorkspace = std::move(workspace); }
     // Counts one Newton iteration; true (and overBudget) when the evaluation's budget is already spent.

@@ -276,6 +276,38 @@ TEST(ContactCandidates, FindEveryPairWithinReach) {
         EXPECT_GE(std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, sheet.x), nullptr, nullptr)), reach);
 }
 
+TEST(ContactCandidates, RestClearanceIsTheNearestPairApartAlongTheWall) {
+    // Two flat sheets 0.3 apart (one above the other, not joined): the nearest pair at rest that is
+    // not neighbours is a sheet's point over the other's triangle, 0.3 apart. One sheet alone has
+    // only neighbours within reach: no such pair.
+    Sheet two;
+    const int n = 6;
+    two.x.Resize(2 * n * n);
+    for (int layer = 0; layer < 2; ++layer)
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const int k = layer * n * n + i * n + j;
+                two.x.x[k] = 0.4 * i + 0.05 * layer;
+                two.x.y[k] = 0.4 * j;
+                two.x.z[k] = 0.3 * layer;
+            }
+    for (int layer = 0; layer < 2; ++layer)
+        for (int i = 0; i + 1 < n; ++i)
+            for (int j = 0; j + 1 < n; ++j) {
+                const int a = layer * n * n + i * n + j, b = a + n, c = b + 1, d = a + 1;
+                two.triangles.push_back({a, b, c});
+                two.triangles.push_back({a, c, d});
+            }
+    const ContactSurface both = MakeContactSurface(two.x, two.triangles, {}, 1.0);
+    EXPECT_NEAR(both.restClearanceMm, 0.3, 1e-12);
+    const auto& v = both.restNearest.vertices;
+    EXPECT_NEAR(std::sqrt(SquaredDistance(both.restNearest.kind, PairCoordinates(both.restNearest, two.x), nullptr, nullptr)), 0.3, 1e-12);
+    EXPECT_NE(v[0] < n * n, v[3] < n * n);  // one primitive on each sheet
+    Sheet one = two;
+    one.triangles.resize(one.triangles.size() / 2);
+    EXPECT_TRUE(std::isinf(MakeContactSurface(one.x, one.triangles, {}, 1.0).restClearanceMm));
+}
+
 TEST(ContactCandidates, FindEveryPairThatComesWithinReachOnAMove) {
     // The swept query continuous collision detection relies on: every pair that comes within the
     // reach anywhere along a move (sampled at 41 points) is a candidate.
