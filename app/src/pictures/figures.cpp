@@ -541,10 +541,16 @@ void FrameWriter::Wait() {
     if (pending_.valid()) pending_.get();
 }
 
+bool UnderVacuum(const sim::EvalJob& job) {
+    const auto* def = std::get_if<sim::ShellDef>(&job.def);
+    return def && def->load.pressureKpa < 0;
+}
+
 std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, const fs::path& folder, const DesignFigures& f, int figureLevel,
                                             int frameLevel) {
     std::vector<std::string> written;
     const std::pair<const char*, const sim::SimResult*> loads[] = {{"inflation", f.inflated}, {"stretch", f.stretched}};
+    const bool vacuum = UnderVacuum(f.job);
     // One design's figures share a camera: its "before" mesh is the same size in each.
     std::vector<const sim::Positions*> framed;
     for (const auto& [load, result] : loads)
@@ -555,7 +561,8 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
     for (const auto& [load, result] : loads) {
         if (!result) continue;
         const std::string name = f.prefix + load + ".png";
-        render::Scene scene = BeforeAfterScene(f.title + "  -  " + load, *result, f.job, f.colouring);
+        const std::string title = f.title + "  -  " + (vacuum && result == f.inflated ? "vacuum" : load);
+        render::Scene scene = BeforeAfterScene(title, *result, f.job, f.colouring);
         if (f.inflated && f.stretched) scene.framing = render::FrameMeshes(framed);
         WritePng((folder / name).string(), renderer.Render(scene), figureLevel);
         written.push_back(name);
@@ -573,7 +580,7 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
         FrameWriter writer(frameLevel);
         for (int k = 0; k < f.turntableFrames; ++k)
             writer.Write((folder / sub / fmt::format("frame_{:04}.png", k)).string(),
-                         renderer.Render(TurntableScene(f.title + "  -  inflated", *f.inflated, f.job, 360.0 * k / f.turntableFrames, f.colouring)));
+                         renderer.Render(TurntableScene(f.title + (vacuum ? "  -  under vacuum" : "  -  inflated"), *f.inflated, f.job, 360.0 * k / f.turntableFrames, f.colouring)));
         writer.Wait();
         written.push_back(sub + "/frame_%04d.png x " + std::to_string(f.turntableFrames));
     }
