@@ -121,6 +121,43 @@ TEST_F(ShellCli, RenderShowsWhereCollapsedWallsTouch) {
     testing_support::ExpectPicture(dir_ / "pictures" / "inflation.png");
 }
 
+// The searches under vacuum: the GA and an optimizer evolve designs whose walls collapse and touch,
+// and every design evaluated is a valid state or refused at rest, none passing through itself.
+TEST_F(ShellCli, TheGaAndAnOptimizerSearchVacuumDesignsWithContact) {
+    const std::string model = R"("model": {"name": "shell", "geometry": {"length_mm": 60, "ring_vertices": 16, "rings": 12, "edge_spacing_mm": 0},
+        "load": {"steps": 2, "pressure_kpa": -0.5}, "contact": "on"}, "render": {"figures": false, "thumbnails": false},)";
+    Write("ga.json", R"({"id": "ga", "seed": 4, )" + model + R"(
+        "evolve": {"runs": 1, "population": 4, "generations": 1, "elite": 1,
+                   "genome": {"kind": "bspline", "region": "middle", "splines": 1, "control": [0, 2], "control_step": 0.5}}})");
+    Write("cmaes.json", R"({"id": "cmaes", "seed": 3, )" + model + R"(
+        "optimizer": {"algorithm": "cmaes", "population": 6, "generations": 1, "objectives": ["contraction"],
+                      "genome": {"family": "sine", "amplitude": [0.5, 1.5], "phase_end": [2, 3.1]}}})");
+    for (const std::string name : {"ga", "cmaes"}) {
+        const Result r = Run("evolve " + Path(name + ".json") + " --out " + Path(name));
+        ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+        const app::Table evaluations = app::Table::Read((dir_ / name / "evaluations.csv").string());
+        ASSERT_GE(evaluations.Rows(), 4u) << name;
+        double best = -INFINITY;
+        size_t bestRow = 0;
+        for (size_t k = 0; k < evaluations.Rows(); ++k) {
+            const std::string status = evaluations.Text(k, "status");
+            EXPECT_TRUE(status == "ok" || status == "invalid-geometry") << name << " evaluation " << k << ": " << status;
+            if (status == "ok" && evaluations.Number(k, "contraction_percent") > best) {
+                best = evaluations.Number(k, "contraction_percent");
+                bestRow = k;
+            }
+        }
+        // A collapsed tube shortens: the best design contracts, with its walls in contact.
+        EXPECT_GT(best, 0.5) << name;
+        const Result again = Run("simulate --from " + Path(name + "/evaluations.capnp") + " --index " + evaluations.Text(bestRow, "evaluation"));
+        ASSERT_EQ(again.exitCode, 0) << again.err;
+        const auto json = nlohmann::json::parse(again.out);
+        EXPECT_EQ(json["contraction_percent"].get<double>(), best) << name;
+        EXPECT_GT(json["contact_pairs"].get<int>(), 0) << name;
+        EXPECT_LT(json["collapse_pressure_kpa"].get<double>(), 0) << name;
+    }
+}
+
 // A sweep over pressure is a design's contraction-pressure curve; its archive gives each point back.
 TEST_F(ShellCli, APressureSweepIsTheContractionPressureCurveAndItsArchiveReplays) {
     Write("pressure.json", R"({"id": "p", "model": {"name": "membrane", "geometry": {"ring_vertices": 16, "rings": 20}, "load": {"steps": 2}},
