@@ -44,6 +44,12 @@ FibreClass ClassOf(const sim::EvalJob& job) {
 }
 const char* const kClassNames[kFibreClasses] = {"without fibres", "with one fibre family", "with a braid"};
 
+// A study under a negative pressure: its walls collapse onto each other.
+bool UnderVacuum(const Experiment& e) {
+    const auto* def = std::get_if<sim::ShellDef>(&e.def);
+    return def && def->load.pressureKpa < 0;
+}
+
 // What the study adds to a thesis shape beyond the shape itself: "" for an isotropic study, else its
 // fibres as the job carries them (", with a braid at +/-30 deg added").
 std::string FibresAdded(const sim::EvalJob& job) {
@@ -154,8 +160,11 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         if (entry.experiment.compare.empty()) continue;
         ChapterRow row;
         row.physical = &entry;
-        for (const ReportEntry& other : entries)
-            if (other.experiment.id == entry.experiment.compare && other.experiment.compare.empty()) row.thesis = &other;
+        // A vacuum study is not set beside the thesis model's best: that design was bred to inflate,
+        // and evacuated it folds over thousands of contact pairs for a figure no one asked for.
+        if (!UnderVacuum(entry.experiment))
+            for (const ReportEntry& other : entries)
+                if (other.experiment.id == entry.experiment.compare && other.experiment.compare.empty()) row.thesis = &other;
         row.statuses = TallyOf(dir / entry.folder / "evaluations.capnp").statuses;
         if (row.thesis && row.thesis->outcome.bestJob) {
             jobs.push_back(JobOf(entry.experiment, row.thesis->outcome.bestJob->shape));
@@ -230,24 +239,28 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optio
     int thesisBestsValid = 0, thesisBests = 0, thesisRows = 0;
     // Designs by what their wall carries: the isotropic studies' designs, and the fibre studies' by
     // class (braids, single families and both families off are not the same actuator).
-    ClassTally isotropic, fibreStudy[kFibreClasses];
+    // Vacuum studies (a negative pressure: walls collapse onto each other) are counted apart: their
+    // contraction is not an inflated actuator's.
+    ClassTally isotropic, vacuum, fibreStudy[kFibreClasses];
     struct Best {
         const ChapterRow* row = nullptr;
         std::optional<ArchiveRecord> record;
-    } bestIsotropic, bestWithFibres;
+    } bestIsotropic, bestWithFibres, bestVacuum;
+    const auto underVacuum = [](const ChapterRow& row) { return UnderVacuum(row.physical->experiment); };
     int meshChecked = 0, meshWithin = 0;
     for (const ChapterRow& row : chapter.rows) {
         Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");
         const bool fibres = std::get<sim::ShellDef>(row.physical->experiment.def).fibres.layout != sim::FibreLayout::None;
+        const bool evacuated = underVacuum(row);
         for (int k = 0; k < kFibreClasses; ++k) {
-            ClassTally& into = fibres ? fibreStudy[k] : isotropic;
+            ClassTally& into = evacuated ? vacuum : fibres ? fibreStudy[k] : isotropic;
             const ClassTally& from = tally.classes[k];
             into.evaluated += from.evaluated;
             into.ok += from.ok;
             into.contracting += from.contracting;
         }
-        Best& slot = fibres ? bestWithFibres : bestIsotropic;
-        for (int k = fibres ? kOneFamily : kNoFibres; k < (fibres ? kFibreClasses : kOneFamily); ++k) {
+        Best& slot = evacuated ? bestVacuum : fibres ? bestWithFibres : bestIsotropic;
+        for (int k = fibres && !evacuated ? kOneFamily : kNoFibres; k < (fibres || evacuated ? kFibreClasses : kOneFamily); ++k) {
             const auto& candidate = tally.classes[k].best;
             if (candidate && (!slot.record || candidate->result.contractionPercent > slot.record->result.contractionPercent)) {
                 slot.row = &row;
@@ -276,9 +289,15 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optio
     md += "\n";
 
     // The finding, from this run's numbers only.
+    double inflatedKpa = shell.load.pressureKpa;  // the inflated studies' pressure
+    for (const ChapterRow& row : chapter.rows)
+        if (!underVacuum(row)) {
+            inflatedKpa = std::get<sim::ShellDef>(row.physical->experiment.def).load.pressureKpa;
+            break;
+        }
     md += "**Finding.** ";
     md += fmt::format("Of {} designs of the isotropic studies (no fibres) evaluated under the `{}` model at {:g} kPa, {} reached equilibrium and {} "
-                      "contracted", isotropic.evaluated, model, shell.load.pressureKpa, isotropic.ok, isotropic.contracting);
+                      "contracted", isotropic.evaluated, model, inflatedKpa, isotropic.ok, isotropic.contracting);
     if (isotropic.contracting > 0 && bestIsotropic.record)
         md += fmt::format("; the best, in experiment {}: {}.", bestIsotropic.row->physical->experiment.id,
                           WithMeshVerdict(bestIsotropic.record->result.contractionPercent, *bestIsotropic.row));
@@ -350,6 +369,27 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optio
             for (const auto& figure : b->row->physical->outcome.figures)
                 if (figure == "best_inflation.png" || figure == "best_pressure_curve.png")
                     md += "![" + b->row->physical->experiment.id + " " + figure + "](" + b->row->physical->folder + "/" + figure + ")\n";
+        }
+    }
+    if (vacuum.evaluated > 0) {
+        const sim::ShellDef& evacuated = std::get<sim::ShellDef>(bestVacuum.row ? bestVacuum.row->physical->experiment.def : first.def);
+        md += fmt::format("\n\n**Under vacuum.** The vacuum studies (self-contact on: collapsing walls rest a wall thickness apart) evaluated {} designs at "
+                          "{:g} kPa; {} reached equilibrium and {} contracted.",
+                          vacuum.evaluated, evacuated.load.pressureKpa, vacuum.ok, vacuum.contracting);
+        if (bestVacuum.record) {
+            const sim::ShellOutputs& o = bestVacuum.record->result.shell;
+            md += fmt::format(" The best, in experiment {}: {}; its wall collapsed at {} kPa and rests on itself over {} contact pairs (smallest gap {} mm "
+                              "beyond the wall's thickness, contact force {} N).",
+                              bestVacuum.row->physical->experiment.id, WithMeshVerdict(bestVacuum.record->result.contractionPercent, *bestVacuum.row),
+                              Cell(o.collapsePressureKpa), o.contactPairs, Cell(o.minGapMm), Cell(o.contactForceN));
+            if (bestIsotropic.record)
+                md += fmt::format(" Beside it, the best inflated design without fibres (experiment {}, the same tube and material at {:g} kPa): {:+.2f} %.",
+                                  bestIsotropic.row->physical->experiment.id, bestIsotropic.record->result.shell.targetPressureKpa,
+                                  bestIsotropic.record->result.contractionPercent);
+            md += "\n\n";
+            for (const auto& figure : bestVacuum.row->physical->outcome.figures)
+                if (figure == "best_inflation.png" || figure == "best_pressure_curve.png")
+                    md += "![" + bestVacuum.row->physical->experiment.id + " " + figure + "](" + bestVacuum.row->physical->folder + "/" + figure + ")\n";
         }
     }
     md += fmt::format("\n\nThe comparison took {:.0f} s; its numbers are in [`{}/comparison.csv`]({}/comparison.csv).\n\n", chapter.seconds,

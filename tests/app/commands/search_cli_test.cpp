@@ -591,12 +591,12 @@ TEST_F(SearchCli, EveryShippedExperimentFileIsValid) {
             if (entry.is_directory()) continue;
             const std::string name = entry.path().filename().string();
             const bool optimizers = folder.string().find("optimizers") != std::string::npos;
-            const std::string command = name.find("5.") <= 1 || optimizers ? "evolve " : "sweep ";
+            const std::string command = name.find("5.") <= 2 || optimizers ? "evolve " : "sweep ";
             const Result r = Run(command + entry.path().string());
             EXPECT_THAT(r.err, HasSubstr("--out DIR is required")) << entry.path();
             ++files;
         }
-    EXPECT_EQ(files, 10 + 10 + 5 + 3 + 3) << "the thesis's experiments, part 2's under the shell model, the optimizers' and their comparisons'";
+    EXPECT_EQ(files, 10 + 12 + 5 + 3 + 3) << "the thesis's experiments, part 2's under the shell model (2 under vacuum), the optimizers' and their comparisons'";
 }
 
 // --thumbnails pictures every evaluation of the experiments that ask for it, as evolve and sweep do,
@@ -630,11 +630,18 @@ TEST_F(SearchCli, QuickReproductionWritesACompleteReport) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string report = Slurp(dir_ / "thesis" / "report.md");
     for (const char* section : {"## 4.1 ", "## 4.2 ", "## 4.3 ", "## 5.1 ", "## 5.2 ", "## 5.3 ", "## 5.4 ", "## 5.5 ", "## 6.1 ", "## 6.2 ", "## S4.1 ",
-                                "## S5.4 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**", "# Part 3: optimizers compared",
+                                "## S5.4 ", "## SV4.1 ", "## SV5.2 ", "# Part 2: the thesis's experiments under the `shell` model", "**Finding.**",
+                                "**Under vacuum.**", "# Part 3: optimizers compared",
                                 "## Under the thesis model", "## Under the shell model"})
         EXPECT_THAT(report, HasSubstr(section));
     const auto comparison = app::ParseCsv(Slurp(dir_ / "thesis" / "comparison" / "comparison.csv"));
-    EXPECT_EQ(comparison.size(), 10u) << "a row per experiment of part 2 that re-runs one of part 1 (the header, 7 isotropic, 2 with fibres)";
+    EXPECT_EQ(comparison.size(), 12u) << "a row per experiment of part 2 that re-runs one of part 1 (the header, 7 isotropic, 2 with fibres, 2 under vacuum)";
+    // The vacuum studies' best beside the best inflated design, with its walls in contact.
+    const size_t vacuum = report.find("**Under vacuum.**");
+    ASSERT_NE(vacuum, std::string::npos);
+    const std::string vacuumText = report.substr(vacuum, report.find("\n\n", vacuum) - vacuum);
+    EXPECT_THAT(vacuumText, HasSubstr("contact pairs"));
+    EXPECT_THAT(vacuumText, HasSubstr("Beside it, the best inflated design without fibres"));
     EXPECT_THAT(report, HasSubstr("**With fibres.**"));
     // The best fibre-reinforced design's characteristic curves, drawn and tabled (the figure is
     // checked below with every picture the report shows).
