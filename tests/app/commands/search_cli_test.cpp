@@ -617,7 +617,12 @@ TEST_F(SearchCli, ReproduceMakesThumbnailsOnlyWhenAskedTo) {
 // Part 2 alone has no thesis-model bests to re-evaluate: its finding says so instead of counting
 // "0 best designs".
 TEST_F(SearchCli, PartTwoAloneSaysPartOneIsMissing) {
-    const Result r = Run("reproduce --quick --part physical --out " + Path("physical"));
+    // Two of part 2's files (an inflated and a vacuum study) are enough to say so.
+    const fs::path shipped = fs::path(ACTUATOR_ASSETS_DIR) / "experiments" / "shell";
+    fs::create_directories(dir_ / "experiments" / "shell");
+    for (const char* name : {"S4.1_amplitude_sweep.json", "SV4.1_vacuum_amplitude_sweep.json"})
+        fs::copy_file(shipped / name, dir_ / "experiments" / "shell" / name);
+    const Result r = Run("reproduce --quick --part physical --experiments " + Path("experiments") + " --out " + Path("physical"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string report = Slurp(dir_ / "physical" / "report.md");
     EXPECT_THAT(report, HasSubstr("**Finding.**"));
