@@ -244,6 +244,20 @@ Sheet FoldedSheet(int n, double size, std::mt19937& rng) {
     return s;
 }
 
+// Every pair of the surface that shares no vertex, point-triangle and edge-edge: brute force.
+template <typename Visit>
+void ForEveryPair(const ContactSurface& surface, Visit&& visit) {
+    for (int p : surface.points)
+        for (const auto& t : surface.triangles)
+            if (p != t[0] && p != t[1] && p != t[2]) visit(ContactPair{PairKind::PointTriangle, {p, t[0], t[1], t[2]}});
+    for (std::size_t i = 0; i < surface.edges.size(); ++i)
+        for (std::size_t j = i + 1; j < surface.edges.size(); ++j) {
+            const auto &a = surface.edges[i], &b = surface.edges[j];
+            if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+            visit(ContactPair{PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
+        }
+}
+
 TEST(ContactCandidates, FindEveryPairWithinReach) {
     std::mt19937 rng(3);
     const Sheet sheet = FoldedSheet(14, 3.0, rng);
@@ -258,15 +272,7 @@ TEST(ContactCandidates, FindEveryPairWithinReach) {
         ++within;
         EXPECT_TRUE(std::binary_search(candidates.begin(), candidates.end(), pair));
     };
-    for (int p : surface.points)
-        for (const auto& t : surface.triangles)
-            if (p != t[0] && p != t[1] && p != t[2]) expectFound({PairKind::PointTriangle, {p, t[0], t[1], t[2]}});
-    for (std::size_t i = 0; i < surface.edges.size(); ++i)
-        for (std::size_t j = i + 1; j < surface.edges.size(); ++j) {
-            const auto &a = surface.edges[i], &b = surface.edges[j];
-            if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
-            expectFound({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
-        }
+    ForEveryPair(surface, expectFound);
     EXPECT_GT(within, 100);                            // the folds do come within reach
     EXPECT_LT(candidates.size(), 40u * within + 1000);  // and the hash is not all pairs
 
@@ -336,15 +342,7 @@ TEST(ContactCandidates, FindEveryPairThatComesWithinReachOnAMove) {
                 return;
             }
     };
-    for (int p : surface.points)
-        for (const auto& t : surface.triangles)
-            if (p != t[0] && p != t[1] && p != t[2]) expectFound({PairKind::PointTriangle, {p, t[0], t[1], t[2]}});
-    for (std::size_t i = 0; i < surface.edges.size(); ++i)
-        for (std::size_t j = i + 1; j < surface.edges.size(); ++j) {
-            const auto &a = surface.edges[i], &b = surface.edges[j];
-            if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
-            expectFound({PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}});
-        }
+    ForEveryPair(surface, expectFound);
     EXPECT_GT(reached, 40);  // 68: the move does bring parts of the folds within reach
 }
 
