@@ -863,8 +863,19 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 status = Status::BudgetExceeded;
                 break;
             }
+            // Vacuum with contact off: a collapse Newton cannot follow has walls passing through
+            // each other, not a pressure maximum (the self-intersection check runs as at the end).
+            const auto passedThrough = [&] {
+                if (!collapsing || t.problem.contact || !t.def.solver.selfContact) return false;
+                PositionsOf(t.problem, trial, t.x);
+                return std::isfinite(EnclosedVolume(t.problem, t.x)) && SelfIntersects(t.problem, t.x);
+            };
             if (end == NewtonEnd::NonFinite && increment <= smallest) status = Status::NonFinite;
             if (end == NewtonEnd::Runaway && increment <= smallest) {
+                if (passedThrough()) {
+                    status = Status::SelfIntersection;
+                    break;
+                }
                 out.limitPressureKpa = t.GaugeKpa(reached);
                 status = Status::LimitPoint;
                 break;
@@ -925,7 +936,8 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 // Newton runs away when no equilibrium exists: past the pressure maximum.
                 PositionsOf(t.problem, trial, t.x);
                 const double volume = EnclosedVolume(t.problem, t.x);
-                if (load.kind != ShellLoad::Force && (end == NewtonEnd::Runaway || !std::isfinite(volume) || volume > 2 * lastVolume)) {
+                if (status == Status::Ok && passedThrough()) status = Status::SelfIntersection;
+                else if (load.kind != ShellLoad::Force && (end == NewtonEnd::Runaway || !std::isfinite(volume) || volume > 2 * lastVolume)) {
                     out.limitPressureKpa = t.GaugeKpa(reached);
                     status = Status::LimitPoint;
                 } else if (status == Status::Ok) {

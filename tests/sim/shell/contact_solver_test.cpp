@@ -60,6 +60,25 @@ TEST(VacuumContact, CollapsedTubeRestsAWallApart) {
     EXPECT_EQ(sim::Evaluate(VacuumTube(sim::ContactMode::Off)).status, sim::Status::SelfIntersection);
 }
 
+TEST(VacuumContact, AnEvacuatedSinePassesThroughItselfWithoutContactAndRestsOnItselfWithIt) {
+    // The thesis's sine with A = 2, evacuated: without contact its collapsing walls pass through
+    // each other (self-intersection: not a pressure maximum, though Newton runs away there), with
+    // contact it is a valid state that shortens.
+    sim::EvalJob off = VacuumTube(sim::ContactMode::Off);
+    sim::SineShape sine;
+    sine.amplitude = 2;
+    off.shape = sine;
+    sim::EvalJob on = off;
+    on.Shell().contact.mode = sim::ContactMode::On;
+    const sim::SimResult a = sim::Evaluate(off), b = sim::Evaluate(on);
+    EXPECT_EQ(a.status, sim::Status::SelfIntersection) << kReproduce << " --shape sine --amplitude 2 --contact off";
+    EXPECT_TRUE(std::isnan(a.shell.limitPressureKpa));
+    EXPECT_LT(a.shell.collapsePressureKpa, 0);
+    ASSERT_EQ(b.status, sim::Status::Ok) << kReproduce << " --shape sine --amplitude 2";
+    EXPECT_GT(b.contractionPercent, 0.5);
+    EXPECT_GT(b.shell.contactPairs, 0);
+}
+
 TEST(VacuumContact, CollapsePressureIsWhereTheRoundTubeTurnsUnstable) {
     // Newton follows the round tube's symmetric state past the pressure where it turns unstable;
     // the stability check after each step finds that pressure, bracketed within a 64th of a load
