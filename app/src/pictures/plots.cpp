@@ -1,5 +1,6 @@
 #include "pictures/plots.h"
 
+#include <algorithm>
 #include <map>
 
 #include <cmath>
@@ -267,6 +268,14 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
         curve.y.push_back(o.curveContractionPercent[k]);
     }
     plot.series.push_back(curve);
+    if (std::isfinite(o.collapsePressureKpa) && curve.y.size() > 1) {
+        // Vacuum: where the round wall buckled and folded in, a dashed line across the curve's range.
+        const auto [low, high] = std::minmax_element(curve.y.begin(), curve.y.end());
+        render::LineSeries collapse{fmt::format("collapse at {:.3g} kPa", o.collapsePressureKpa),
+                                    {o.collapsePressureKpa, o.collapsePressureKpa}, {*low, *high}, {0.45f, 0.45f, 0.45f}};
+        collapse.dashed = true;
+        plot.series.push_back(collapse);
+    }
     if (std::isfinite(o.limitPressureKpa)) {
         // The limit point: the step at the pressure maximum.
         size_t top = 0;
