@@ -117,7 +117,7 @@ static int RunReproduce(int argc, char** argv, int first) {
     // the physical model's best meshed twice as finely.
     if (std::any_of(entries.begin(), entries.end(), [](const ReportEntry& e) { return !e.experiment.compare.empty(); }))
         std::cerr << "reproduce: comparing part 2 with part 1\n";
-    const Chapter chapter = CompareChapters(entries, dir, *evaluator);
+    const Chapter chapter = CompareChapters(entries, dir, *evaluator, quick);
     // Part 3: optimizers side by side on one of the thesis's problems, under the thesis model
     // (optimizers/compare/) and the shell model (optimizers/compare_shell/, fewer seeds: it costs more).
     std::string optimizers;

@@ -146,7 +146,7 @@ std::optional<ChapterCurves> BestFibreCurves(const Chapter& chapter, const fs::p
 
 }  // namespace
 
-Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path& dir, Evaluator& evaluator) {
+Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path& dir, Evaluator& evaluator, bool quick) {
     const auto started = std::chrono::steady_clock::now();
     Chapter chapter;
     chapter.folder = "comparison";
@@ -170,7 +170,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
             jobs.push_back(JobOf(entry.experiment, row.thesis->outcome.bestJob->shape));
             slots.push_back({chapter.rows.size(), false});
         }
-        if (entry.outcome.bestJob) {
+        if (entry.outcome.bestJob && !(quick && UnderVacuum(entry.experiment))) {
             jobs.push_back(RefinedJob(*entry.outcome.bestJob));
             slots.push_back({chapter.rows.size(), true});
         }
