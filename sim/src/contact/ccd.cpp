@@ -61,6 +61,12 @@ double ImpactFreeStep(const ContactSurface& surface, const Positions& x, const P
         sweep->from = x;
         sweep->move = dx;
         sweep->toleranceMm = toleranceMm;
+        double longest = -1;
+        for (int v = 0; v < dx.Size(); ++v)
+            if (const double l = dx.x[v] * dx.x[v] + dx.y[v] * dx.y[v] + dx.z[v] * dx.z[v]; l > longest) {
+                longest = l;
+                sweep->fastest = v;
+            }
     }
     return t;
 }
@@ -70,15 +76,8 @@ bool ContactSweep::Covers(const Positions& x) const {
     if (from.Size() != n || n == 0) return false;
     // How far along the move x is, from the vertex that moves most; then every vertex's distance
     // from its place at that fraction.
-    int most = 0;
-    double longest = -1;
-    for (int v = 0; v < n; ++v) {
-        const double l = move.x[v] * move.x[v] + move.y[v] * move.y[v] + move.z[v] * move.z[v];
-        if (l > longest) {
-            longest = l;
-            most = v;
-        }
-    }
+    const int most = fastest;
+    const double longest = move.x[most] * move.x[most] + move.y[most] * move.y[most] + move.z[most] * move.z[most];
     double along = 0;
     if (longest > 0)
         along = std::clamp(((x.x[most] - from.x[most]) * move.x[most] + (x.y[most] - from.y[most]) * move.y[most] +

@@ -174,6 +174,7 @@ double PairImpactTime(PairKind kind, const Vector12& x, const Vector12& dx, doub
 struct ContactSweep {
     std::vector<ContactPair> pairs;
     Positions from, move;
+    int fastest = 0;  // the vertex that moves most: how far along the move a state is, is read off it
     double toleranceMm = 0;
     bool Covers(const Positions& x) const;
 };
