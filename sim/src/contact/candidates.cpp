@@ -8,7 +8,9 @@
 #include <cstdint>
 #include <limits>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 #include "contact/contact.h"
 
@@ -195,13 +197,18 @@ public:
         for (int n = 0; n < static_cast<int>(boxes.size()); ++n)
             if (Finite(boxes[n])) ForEachCell(boxes[n], cell, [&](std::uint64_t key) { items_[fill_[Find(key)]++] = n; });
     }
-    // Calls visit(n) for the primitives in every cell the box touches (a primitive once per cell).
+    // Calls visit(n) for the primitives above `after` in every cell the box touches (a primitive once
+    // per cell). A cell lists its primitives in ascending order, so those at or below `after` cost a
+    // binary search, not a visit each.
     template <typename Visit>
-    void ForEachNear(const Box& b, Visit&& visit) const {
+    void ForEachNear(const Box& b, int after, Visit&& visit) const {
         ForEachCell(b, cell_, [&](std::uint64_t key) {
             const std::size_t slot = Find(key);
             if (slot == kNone) return;
-            for (int k = begin_[slot]; k < begin_[slot + 1]; ++k) visit(items_[k]);
+            const int* first = items_.data() + begin_[slot];
+            const int* last = items_.data() + begin_[slot + 1];
+            if (after >= 0) first = std::upper_bound(first, last, after);
+            for (; first != last; ++first) visit(*first);
         });
     }
     static bool Finite(const Box& b) { return b.lo.allFinite() && b.hi.allFinite(); }  // a non-finite state is the solver's to report
@@ -305,10 +312,22 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
     edgeGrid.Build(edgeBoxes, cell);
     seen.Resize(std::max(surface.triangles.size(), surface.edges.size()));
 
-    // Without a move, pairs farther apart than the reach are left out by their true distance.
+    // Pairs farther apart than the reach are left out by their true distance, and on a move by how
+    // near it can bring them: a point of one primitive and a point of the other are weighted sums of
+    // their vertices, so they close in by at most the largest difference between a move of one's
+    // vertex and a move of the other's. (Parts of a wall moving together, a ballooning bulb's,
+    // overlap in their swept boxes but not in this.)
     const double reachSquared = reachMm * reachMm;
     const auto within = [&](const ContactPair& pair) {
-        return dx || SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr) < reachSquared;
+        const double squared = SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr);
+        if (squared < reachSquared) return true;
+        if (!dx) return false;
+        const Vector12 move = PairCoordinates(pair, *dx);
+        const int split = pair.kind == PairKind::PointTriangle ? 1 : 2;  // the first primitive's vertices
+        double closing = 0;
+        for (int i = 0; i < split; ++i)
+            for (int j = split; j < 4; ++j) closing = std::max(closing, (move.segment<3>(3 * i) - move.segment<3>(3 * j)).squaredNorm());
+        return std::sqrt(squared) - std::sqrt(closing) < reachMm;
     };
     const auto movable = [&](const std::array<int, 4>& v) {
         if (surface.body.empty()) return true;
@@ -323,7 +342,7 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
         seen.Next();
         if (!surface.neighbourTriangles.empty())
             for (int t : surface.neighbourTriangles[p]) seen.Mark(t);
-        triangleGrid.ForEachNear(box, [&](int n) {
+        triangleGrid.ForEachNear(box, -1, [&](int n) {
             if (!seen.Mark(n)) return;
             const auto& t = surface.triangles[n];
             if (p == t[0] || p == t[1] || p == t[2] || !Overlap(box, triangleBoxes[n])) return;
@@ -337,10 +356,12 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
         if (!CellGrid::Finite(box)) continue;
         const auto& ei = surface.edges[e];
         seen.Next();
-        if (!surface.neighbourEdges.empty())
-            for (int f : surface.neighbourEdges[e]) seen.Mark(f);
-        edgeGrid.ForEachNear(box, [&](int f) {
-            if (f <= e || !seen.Mark(f)) return;
+        if (!surface.neighbourEdges.empty()) {
+            const std::vector<int>& neighbours = surface.neighbourEdges[e];
+            for (auto f = std::upper_bound(neighbours.begin(), neighbours.end(), e); f != neighbours.end(); ++f) seen.Mark(*f);
+        }
+        edgeGrid.ForEachNear(box, e, [&](int f) {
+            if (!seen.Mark(f)) return;
             const auto& ej = surface.edges[f];
             if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1] || !Overlap(box, edgeBoxes[f])) return;
             const ContactPair pair{PairKind::EdgeEdge, {ei[0], ei[1], ej[0], ej[1]}};
@@ -368,36 +389,83 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
     return pairs;
 }
 
-double ContactList::Drift(const Positions& x) const {
-    if (built.Size() != x.Size()) return std::numeric_limits<double>::infinity();
+double ContactList::ClearanceAt(const Positions& x) const {
+    constexpr double kNone = -std::numeric_limits<double>::infinity();
+    const int n = x.Size();
+    if (built.Size() != n || n == 0) return kNone;
+    // The moves u = x - built, and the least-squares affine motion u ~ A (built - c) + b.
+    Eigen::Vector3d meanMove = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d moveSpread = Eigen::Matrix3d::Zero();  // sum of u (built - c)^T
     double largest = 0;
-    for (int v = 0; v < x.Size(); ++v) {
-        const double dx = x.x[v] - built.x[v], dy = x.y[v] - built.y[v], dz = x.z[v] - built.z[v];
-        largest = std::max(largest, dx * dx + dy * dy + dz * dz);
+    for (int v = 0; v < n; ++v) {
+        const Eigen::Vector3d u(x.x[v] - built.x[v], x.y[v] - built.y[v], x.z[v] - built.z[v]);
+        const Eigen::Vector3d r = Eigen::Vector3d(built.x[v], built.y[v], built.z[v]) - builtCentre;
+        meanMove += u;
+        moveSpread += u * r.transpose();
+        largest = std::max(largest, u.squaredNorm());
     }
-    return std::isfinite(largest) ? std::sqrt(largest) : std::numeric_limits<double>::infinity();
+    if (!std::isfinite(largest)) return kNone;
+    meanMove /= n;
+    const Eigen::Matrix3d strain = moveSpread * builtSpreadInverse;
+    double leftOver = 0;
+    for (int v = 0; v < n; ++v) {
+        const Eigen::Vector3d u(x.x[v] - built.x[v], x.y[v] - built.y[v], x.z[v] - built.z[v]);
+        const Eigen::Vector3d r = Eigen::Vector3d(built.x[v], built.y[v], built.z[v]) - builtCentre;
+        leftOver = std::max(leftOver, (u - strain * r - meanMove).squaredNorm());
+    }
+    // Any affine map F bounds the distances: |F(p) - F(q)| >= sigma_min(F) |p - q|, and moves of at
+    // most m beyond it bring two primitives at most 2 m nearer. The fitted map and the identity (the
+    // plain largest move) are both bounds; the larger one holds.
+    const double smallestStretch = Eigen::JacobiSVD<Eigen::Matrix3d>(Eigen::Matrix3d::Identity() + strain).singularValues()[2];
+    return std::max(clearanceMm - 2 * std::sqrt(largest), smallestStretch * clearanceMm - 2 * std::sqrt(leftOver));
 }
-
-bool ContactList::Covers(const Positions& x) const { return Drift(x) <= marginMm; }
 
 bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x) {
     if (list.Covers(x)) return false;
+    const auto setBuilt = [&](double clearanceMm) {
+        list.built = x;
+        list.reachMm = ContactReachMm(barrier);
+        list.clearanceMm = clearanceMm;
+        list.builtCentre.setZero();
+        for (int v = 0; v < x.Size(); ++v) list.builtCentre += Eigen::Vector3d(x.x[v], x.y[v], x.z[v]);
+        list.builtCentre /= std::max(1, x.Size());
+        Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+        for (int v = 0; v < x.Size(); ++v) {
+            const Eigen::Vector3d r = Eigen::Vector3d(x.x[v], x.y[v], x.z[v]) - list.builtCentre;
+            spread += r * r.transpose();
+        }
+        // A pseudo-inverse: a flat or straight surface fits no motion across itself (any fit is a
+        // valid bound; this one is the smallest).
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
+        const Eigen::Vector3d values = eigen.eigenvalues();
+        Eigen::Vector3d inverse = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 3; ++k)
+            if (values[k] > 1e-12 * values.cwiseAbs().maxCoeff()) inverse[k] = 1 / values[k];
+        list.builtSpreadInverse = eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
+    };
     // The pairs within 1.4 reaches: a wider list is rebuilt less often but puts every pair in it into
     // the Hessian's pattern (a collapsed tube: 36,000 pairs at twice the reach, where 2,000 touch).
     // The pairs left out are searched to 2 reaches (a wall's neighbours are left out to there at
     // rest, so on a wall far from contact none is found): the nearest of them sets how far the
     // walls may move before one of them could come within the reach (0.2 to 0.5 reaches).
     const double reach = ContactReachMm(barrier), search = 2 * reach;
+    // At rest the surface's own query has already looked this far: when the nearest pair it found is
+    // beyond the list's reach, the list is empty and that pair sets its clearance (a first list with
+    // no search of its own).
+    if (list.built.Size() == 0 && surface.neighbourMm >= search && surface.restClearanceMm >= 1.4 * reach && x == surface.rest) {
+        setBuilt(std::min(search, surface.restClearanceMm));
+        list.pairs.clear();
+        return false;
+    }
     const std::vector<ContactPair> near = ContactCandidates(surface, x, nullptr, search);
-    list.built = x;
-    list.clearanceMm = search;
+    double clearance = search;
     std::vector<ContactPair> pairs;
     for (const ContactPair& pair : near) {
         const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr));
         if (d < 1.4 * reach) pairs.push_back(pair);
-        else list.clearanceMm = std::min(list.clearanceMm, d);
+        else clearance = std::min(clearance, d);
     }
-    list.marginMm = 0.5 * (list.clearanceMm - reach);
+    setBuilt(clearance);
     if (pairs == list.pairs) return false;
     list.pairs = std::move(pairs);
     return true;

@@ -126,23 +126,30 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
 // The distance at which pairs act: a wall thickness and the barrier's reach beyond it.
 inline double ContactReachMm(const BarrierDef& barrier) { return barrier.thicknessMm + barrier.activationMm; }
 
-// The pairs an assembly sums over (a Verlet list): the candidates within the reach plus twice a
-// margin of the positions it was built at. It holds every pair within the reach for as long as no
-// vertex has moved more than the margin from there, so a Newton solve rebuilds it (and its Hessian's
-// pattern) only when the walls have moved that far.
+// The pairs an assembly sums over (a Verlet list): the candidates within 1.4 reaches of the
+// positions it was built at. It holds every pair within the reach for as long as no pair left out
+// can have come that near, so a Newton solve rebuilds it (and its Hessian's pattern) only when the
+// walls have moved far enough for that.
 //
-// The distance of the nearest pair left out (clearanceMm, searched out to a few reaches) sets the
-// margin, and lets continuous collision detection look at the list's pairs alone while the walls
-// cannot have come nearer: a tube inflating far from contact pays for a search now and then, not at
-// every step.
+// How near a pair left out can have come is bounded from the distance of the nearest of them at
+// `built` (clearanceMm, searched out to two reaches) and the vertices' moves since: an affine motion
+// (a tube swelling and shortening) changes every distance by at most its strain, and what is left of
+// the moves by at most twice the largest. The same bound lets continuous collision detection look at
+// the list's pairs alone while the walls cannot have come nearer: a tube inflating far from contact
+// pays for a search now and then, not at every step.
 struct ContactList {
     std::vector<ContactPair> pairs;
     Positions built;
-    double marginMm = 0;     // the list holds while no vertex has moved farther than this from `built`
+    double reachMm = 0;      // the list holds every pair within this while ClearanceAt is at least this
     double clearanceMm = 0;  // every pair not in the list was at least this far apart at `built`
-    bool Covers(const Positions& x) const;
-    // The largest distance a vertex has moved from `built`.
-    double Drift(const Positions& x) const;
+    // The built positions' centroid and the pseudo-inverse of their spread about it (sum of
+    // (x - c)(x - c)^T): what fitting an affine motion to the moves since needs.
+    Eigen::Vector3d builtCentre = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d builtSpreadInverse = Eigen::Matrix3d::Zero();
+    // A lower bound on the distance at x of every pair not in the list (-infinity for positions the
+    // list was not built on or that are not finite).
+    double ClearanceAt(const Positions& x) const;
+    bool Covers(const Positions& x) const { return ClearanceAt(x) >= reachMm; }
 };
 // Rebuilds the list at x when it does not cover x. True when its pairs changed.
 bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x);

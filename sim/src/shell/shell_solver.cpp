@@ -163,6 +163,14 @@ struct Solver {
         direct = false;
         factorAge = 0;
     }
+    // A lower bound on a distance along a straight move, from lower bounds at its two ends and the
+    // largest move m of any vertex: at a fraction t of the way it is at least startMm - 2 t m and
+    // endMm - 2 (1 - t) m; the least over t of the larger of the two.
+    static double StepClearance(double startMm, double endMm, double largestMoveMm) {
+        if (!(largestMoveMm > 0)) return std::min(startMm, endMm);
+        const double t = std::clamp((startMm - endMm + 2 * largestMoveMm) / (4 * largestMoveMm), 0.0, 1.0);
+        return std::max(startMm - 2 * t * largestMoveMm, endMm - 2 * (1 - t) * largestMoveMm);
+    }
     // The largest fraction of the step from q that no wall crosses (1 with contact off): continuous
     // collision detection on the straight move of every vertex. When the list cannot vouch for the
     // step, the swept query that finds the pairs to check also looks out to the barrier's reach, and
@@ -172,9 +180,10 @@ struct Solver {
     static constexpr double kSweepTolerance = 0.1;  // of the reach: how far a trial may stray from the straight move
     double ImpactFree(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
         if (!problem.contact) return 1;
-        Positions from, to;
+        Positions from, end, to;
         PositionsOf(problem, q, from);
-        PositionsOf(problem, q + step, to);
+        PositionsOf(problem, q + step, end);
+        to = end;  // becomes the move
         double largestMove = 0;
         for (int v = 0; v < to.Size(); ++v) {
             to.x[v] -= from.x[v];
@@ -183,10 +192,11 @@ struct Solver {
             largestMove = std::max(largestMove, std::sqrt(to.x[v] * to.x[v] + to.y[v] * to.y[v] + to.z[v] * to.z[v]));
         }
         const double h = problem.barrier.thicknessMm;
-        // Pairs left out of the list were clearanceMm apart at its state: two vertices' moves since
-        // and in this step cannot bring them within a wall's thickness when they are short enough.
-        const double drift = contactList.Drift(from);
-        if (std::isfinite(largestMove) && contactList.clearanceMm - 2 * (drift + largestMove) > h) {
+        // Pairs left out of the list are at least ClearanceAt apart at either end of the step, and
+        // come nearer between them by at most twice the largest move times the way from the nearer
+        // end: when even the lowest point of that is beyond a wall's thickness, the list's pairs are
+        // the only ones to check.
+        if (std::isfinite(largestMove) && StepClearance(contactList.ClearanceAt(from), contactList.ClearanceAt(end), largestMove) > h) {
             double free = 1;
             for (const ContactPair& pair : contactList.pairs)
                 free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, to), h, free));

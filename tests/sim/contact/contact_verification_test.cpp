@@ -346,6 +346,49 @@ TEST(ContactCandidates, FindEveryPairThatComesWithinReachOnAMove) {
     EXPECT_GT(reached, 40);  // 68: the move does bring parts of the folds within reach
 }
 
+TEST(ContactList, ClearanceBoundsEveryPairLeftOutUnderAnyMove) {
+    // The list is trusted while ClearanceAt says no pair left out can be within the reach: check the
+    // bound against every pair's true distance under random affine motions (stretch up to 1.6 and
+    // down to 0.7, shear, turn, shift) with random moves on top.
+    std::mt19937 rng(11);
+    const Sheet sheet = FoldedSheet(10, 3.0, rng);
+    const ContactSurface surface = MakeContactSurface(sheet.x, sheet.triangles, {}, 0);
+    const BarrierDef barrier{.thicknessMm = 0.1, .activationMm = 0.05};
+    ContactList list;
+    UpdateContactList(list, surface, barrier, sheet.x);
+    ASSERT_GT(list.clearanceMm, ContactReachMm(barrier));
+    std::uniform_real_distribution<double> stretch(0.7, 1.6), shear(-0.3, 0.3), shift(-5, 5), noise(-1, 1);
+    int covered = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        Eigen::Matrix3d f = Eigen::AngleAxisd(shift(rng), Eigen::Vector3d(noise(rng), noise(rng), noise(rng)).normalized()).toRotationMatrix();
+        f = f * Eigen::Vector3d(stretch(rng), stretch(rng), stretch(rng)).asDiagonal();
+        f(0, 1) += shear(rng);
+        f(1, 2) += shear(rng);
+        const Eigen::Vector3d b(shift(rng), shift(rng), shift(rng));
+        const double wobble = (trial % 4) * 0.02;  // 0 to 0.06 on top of the affine motion
+        Positions x = sheet.x;
+        for (int v = 0; v < x.Size(); ++v) {
+            const Eigen::Vector3d p = f * Eigen::Vector3d(x.x[v], x.y[v], x.z[v]) + b;
+            x.x[v] = p.x() + wobble * noise(rng);
+            x.y[v] = p.y() + wobble * noise(rng);
+            x.z[v] = p.z() + wobble * noise(rng);
+        }
+        const double bound = list.ClearanceAt(x);
+        covered += list.Covers(x);
+        ForEveryPair(surface, [&](const ContactPair& pair) {
+            if (std::binary_search(list.pairs.begin(), list.pairs.end(), pair)) return;
+            EXPECT_GE(std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr)), bound - 1e-12) << "trial " << trial;
+        });
+    }
+    // The affine part is what keeps a swelling, turning sheet covered: every move above is far
+    // larger than the clearance, yet the stiffer motions keep the list.
+    EXPECT_GT(covered, 10);
+    // And positions it was not built on are never covered.
+    Positions fewer = sheet.x;
+    fewer.x.pop_back(), fewer.y.pop_back(), fewer.z.pop_back();
+    EXPECT_FALSE(list.Covers(fewer));
+}
+
 TEST(ContactCcd, NoRandomStepCrossesAWall) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(0, 1);
