@@ -622,4 +622,4 @@ def test_vacuum_with_contact_equals_the_command_line():
     assert ours.shell["contact_pairs"] == cli["contact_pairs"] > 0
     assert 0 < ours.shell["min_gap_mm"] == cli["min_gap_mm"] < 0.1
     with pytest.raises(ValueError, match="contact_gap_fraction: has no effect: it applies when contact is on, not off"):
-        actuator.evaluate(actuator.cylinder(), model="shell", contact=actuator.Contact(contact_gap_fraction=0.05))
+        actuator.evaluate(actuator.cylinder(), model="shell", contact=actuator.Contact(contact="off", contact_gap_fraction=0.05))

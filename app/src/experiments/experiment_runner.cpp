@@ -19,12 +19,15 @@ namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
 // DIR/run.json: what the folder was started with, so that a resume under an edited experiment is
-// refused, naming what changed.
+// refused, naming what changed. It also holds the model's settings as this version resolved them
+// (defaults included): a resume by a version whose defaults differ would mix two models' results.
 void CheckOrRecordExperiment(const Experiment& e, const fs::path& dir, bool resume) {
     const fs::path path = dir / "run.json";
+    const Json model = ModelJson(sim::EvalJob{sim::CylinderShape{}, e.model, e.def});
     if (!resume) {
         WriteFileAtomically((dir / "experiment.json").string(), ExperimentText(e));
-        WriteFileAtomically(path.string(), Json{{"experiment_hash", ExperimentHash(e)}, {"experiment", e.document}}.dump(2) + "\n");
+        WriteFileAtomically(path.string(),
+                            Json{{"experiment_hash", ExperimentHash(e)}, {"experiment", e.document}, {"model", model}}.dump(2) + "\n");
         return;
     }
     std::error_code ec;
@@ -32,7 +35,14 @@ void CheckOrRecordExperiment(const Experiment& e, const fs::path& dir, bool resu
     Json run;
     try {
         run = ParseJson(ReadInputFile(path.string()), path.string());
-        if (run.at("experiment_hash").get<std::string>() == ExperimentHash(e)) return;
+        if (run.at("experiment_hash").get<std::string>() == ExperimentHash(e)) {
+            // Folders from before the model was recorded resume as they did (nothing to check).
+            if (!run.contains("model") || run.at("model") == model) return;
+            const std::string changed = ExperimentDifference(run.at("model"), model);
+            throw UsageError("--resume: " + Quote(dir.string()) + " was started by a version of actuator whose " + sim::Name(e.model) +
+                             " model's defaults differ from this one's (" + (changed.empty() ? std::string("its settings differ") : changed) +
+                             "): its results and new ones would not be of one model; start afresh with --overwrite");
+        }
     } catch (const Json::exception&) {
         throw UsageError(Quote(path.string()) + " is damaged; start afresh with --overwrite");
     }

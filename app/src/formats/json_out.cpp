@@ -87,6 +87,7 @@ static void DefJson(const sim::ShellDef& s, Json& j) {
     VisitFields(s.ends, Writer{j});
     VisitFields(s.solver, Writer{j});
     VisitFields(s.fibres, Writer{j});
+    VisitFields(s.contact, Writer{j});
     if (s.envelope.Any()) VisitFields(s.envelope, Writer{j});  // written when given: records without one read as before
     if (!s.fibres.bands.empty()) {
         Json bands = Json::array();

@@ -278,8 +278,9 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     const std::string tip = s.getTip();
     def.ends.tip = tip.empty() ? sim::TipEnd::Held : NamedEnum<sim::TipEnd>(tip, "tip");
     def.envelope = {s.getMaxRadiusRatio(), s.getMaxRadiusMm(), s.getMaxSiliconeG()};
-    if (const std::string contact = s.getContact(); !contact.empty())  // else off, as such records were evaluated
-        def.contact = {NamedEnum<sim::ContactMode>(contact, "contact"), s.getContactGapFraction(), s.getContactStiffness()};
+    const std::string contact = s.getContact();
+    def.contact = contact.empty() ? sim::ContactDef{.mode = sim::ContactMode::Off}  // as such records were evaluated
+                                  : sim::ContactDef{NamedEnum<sim::ContactMode>(contact, "contact"), s.getContactGapFraction(), s.getContactStiffness()};
     l.strokePercent = s.getStrokePercent();
     l.strokeMm = s.getStrokeMm();
     l.isobaricPoints = Count(s.getIsobaricPoints());

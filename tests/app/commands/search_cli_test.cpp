@@ -446,6 +446,26 @@ TEST_F(SearchCli, AFolderWithResultsIsNeverMixedInto) {
     EXPECT_EQ(Slurp(dir_ / "a" / "evaluations.csv"), csv);
 }
 
+// A folder started by a version whose defaults for the model differ is not resumed: its results and
+// new ones would be of two models. run.json holds the model as this version resolved it (defaults
+// included); folders from before it resume as they did.
+TEST_F(SearchCli, AResumeUnderOtherModelDefaultsIsRefused) {
+    Write("shell.json", R"({"model": {"name": "shell", "geometry": {"length_mm": 30, "ring_vertices": 12, "rings": 8},
+        "load": {"pressure_kpa": 0.5, "steps": 1}},
+        "sweep": {"shape": {"family": "sine", "phase": [0.5, "pi-0.5"]}, "axes": [{"parameter": "amplitude", "values": [1]}]}})");
+    ASSERT_EQ(Run("sweep " + Path("shell.json") + " --out " + Path("shell")).exitCode, 0);
+    const fs::path run = dir_ / "shell" / "run.json";
+    nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(Slurp(run));
+    ASSERT_EQ(recorded["model"]["contact"], "off");
+    ASSERT_EQ(Run("sweep --resume " + Path("shell")).exitCode, 0);  // the same version resumes
+    recorded["model"]["contact"] = "on";  // as if another version had made contact the default
+    Write("shell/run.json", recorded.dump(2));
+    ExpectRefused("sweep --resume " + Path("shell"), "(contact: 'on' -> 'off')");
+    recorded.erase("model");
+    Write("shell/run.json", recorded.dump(2));
+    EXPECT_EQ(Run("sweep --resume " + Path("shell")).exitCode, 0);
+}
+
 TEST_F(SearchCli, OverwriteKeepsTheOldResultsUntilTheNewRunHasOne) {
     ASSERT_EQ(Run("evolve " + SmallGa(1, 1, false) + " --out " + Path("a")).exitCode, 0);
     const std::string old = Slurp(dir_ / "a" / "evaluations.csv");

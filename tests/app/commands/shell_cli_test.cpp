@@ -70,8 +70,8 @@ TEST_F(ShellCli, BadInputIsRefusedWithOneLineAndNothingWritten) {
     ExpectRefused("simulate --model plastic" + save, "thesis, membrane or shell");
     ExpectRefused("render --model shell --shape cylinder --color-by stretch --timelapse 3 --steps 5 --out " + Path("pictures"), "--steps");
     ExpectRefused("render --model thesis --shape cylinder --color-by stress --out " + Path("pictures"), "membrane or shell");
-    ExpectRefused("render --model shell --shape cylinder --color-by gap --out " + Path("pictures"), "--contact on");
-    ExpectRefused("simulate --model shell --contact-gap-fraction 0.05" + save, "applies to --contact on, not --contact off");
+    ExpectRefused("render --model shell --shape cylinder --contact off --color-by gap --out " + Path("pictures"), "--contact on");
+    ExpectRefused("simulate --model shell --contact off --contact-gap-fraction 0.05" + save, "applies to --contact on, not --contact off");
     ExpectRefused("simulate --model shell --contact sideways" + save, "off or on");
     // A mesh that is not the model's surface.
     Write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
