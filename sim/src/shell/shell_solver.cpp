@@ -497,8 +497,12 @@ struct Solver {
             const double lastGradientNorm = r.gradient.norm();  // held
             const double slope = step.dot(r.gradient);
             const bool roundOff = std::fabs(slope) < 1e-13 * std::max(1.0, std::fabs(r.energy));
-            // No step passes a wall through another: it starts no farther than the first contact.
-            double alpha = trustStep ? 1 : ImpactFree(q, step);
+            // No step passes a wall through another: the step the energy accepts is cut back to
+            // the first contact on its way, and judged again there. (Checking the accepted move,
+            // not the whole step first, keeps the cost of a run-away step, hundreds of millimetres
+            // that the halving cuts to a few, from a sweep over the whole tube; where no wall is in
+            // the way the steps are those of contact off.)
+            double alpha = 1;
             Eigen::VectorXd next;
             bool accepted = trustStep;
             if (trustStep) {
@@ -510,6 +514,10 @@ struct Solver {
                 // With the gradient: the next iteration's (most steps are taken whole).
                 EnergyResult trial = AssembleEnergy(problem, next, load, terms, true, nullptr, HessianKind::Projected);
                 if (roundOff || (std::isfinite(trial.energy) && trial.energy <= r.energy + 1e-4 * alpha * slope)) {
+                    if (const double free = ImpactFree(q, alpha * step); free < 1) {
+                        alpha *= free;
+                        continue;
+                    }
                     r = std::move(trial);
                     accepted = true;
                     break;
