@@ -301,7 +301,7 @@ static int RunRender(int argc, char** argv, int first) {
     // frames once they are in place.
     OutputBatch batch;
     std::vector<std::pair<fs::path, fs::path>> videos;  // (frames, mp4)
-    const std::string loadName = std::string(sim::ModelOf(job).loadName(job)) + (UnderVacuum(job) ? " (vacuum)" : "");
+    const std::string loadName = std::string(sim::ModelOf(job).loadName(job)) + (sim::UnderVacuum(job.def) ? " (vacuum)" : "");
     const std::string title = stored ? fmt::format("archive {}#{}: {}{}  -  {}", stored->experiment.empty() ? "" : stored->experiment + " ", index,
                                                    ShapeTitle(job.shape), stored->label.empty() ? "" : "  (" + stored->label + ")", loadName)
                                      : JobTitle(job);
@@ -335,13 +335,13 @@ static int RunRender(int argc, char** argv, int first) {
     };
     if (p.turntable > 0)
         sequence("turntable", p.turntable,
-                 [&](int k) { return TurntableScene(title + (UnderVacuum(job) ? "  -  under vacuum" : "  -  inflated"), inflated, job, 360.0 * k / p.turntable, colouring); });
+                 [&](int k) { return TurntableScene(title + (sim::UnderVacuum(job.def) ? "  -  under vacuum" : "  -  inflated"), inflated, job, 360.0 * k / p.turntable, colouring); });
     if (p.timelapse > 0 && thesis) WriteThesisTimelapse(job, title, colouring, p, sequence);
     if (p.timelapse > 0 && !thesis) {
         // One frame per converged load step; a run that stopped early shows the steps it reached.
         std::vector<render::Scene> scenes;
         for (int k = 0; k < static_cast<int>(inflated.shell.steps.size()); ++k)
-            scenes.push_back(LoadStepScene(title + (UnderVacuum(job) ? "  -  under vacuum" : "  -  inflating"), inflated, job, k, colouring));
+            scenes.push_back(LoadStepScene(title + (sim::UnderVacuum(job.def) ? "  -  under vacuum" : "  -  inflating"), inflated, job, k, colouring));
         if (scenes.empty()) std::cerr << "note: no load step converged (" << sim::Name(inflated.status) << "), so no time-lapse is written\n";
         else {
             ShareFramingAndScale(scenes);

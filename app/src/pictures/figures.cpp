@@ -541,16 +541,13 @@ void FrameWriter::Wait() {
     if (pending_.valid()) pending_.get();
 }
 
-bool UnderVacuum(const sim::EvalJob& job) {
-    const auto* def = std::get_if<sim::ShellDef>(&job.def);
-    return def && def->load.pressureKpa < 0;
-}
-
 std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, const fs::path& folder, const DesignFigures& f, int figureLevel,
                                             int frameLevel) {
     std::vector<std::string> written;
     const std::pair<const char*, const sim::SimResult*> loads[] = {{"inflation", f.inflated}, {"stretch", f.stretched}};
-    const bool vacuum = UnderVacuum(f.job);
+    // Under vacuum the pictures say "vacuum" where others say "inflation" (the files keep the name
+    // inflation.png, which reports and experiment files use).
+    const bool vacuum = sim::UnderVacuum(f.job.def);
     // One design's figures share a camera: its "before" mesh is the same size in each.
     std::vector<const sim::Positions*> framed;
     for (const auto& [load, result] : loads)

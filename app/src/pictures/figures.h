@@ -106,10 +106,6 @@ private:
     std::future<void> pending_;
 };
 
-// A negative pressure pulls the wall in: a vacuum design's pictures say "vacuum" where others say
-// "inflation" (their files keep the name inflation.png, which reports and experiment files use).
-bool UnderVacuum(const sim::EvalJob& job);
-
 // A design's figures: `inflation.png`-style before/after under each load, and a turntable of the
 // inflated mesh when `turntableFrames` > 0; under the membrane and shell models also the
 // contraction-pressure curve, `pressure_curve.png`. Names are `prefix` + "inflation.png", ...

@@ -44,12 +44,6 @@ FibreClass ClassOf(const sim::EvalJob& job) {
 }
 const char* const kClassNames[kFibreClasses] = {"without fibres", "with one fibre family", "with a braid"};
 
-// A study under a negative pressure: its walls collapse onto each other.
-bool UnderVacuum(const Experiment& e) {
-    const auto* def = std::get_if<sim::ShellDef>(&e.def);
-    return def && def->load.pressureKpa < 0;
-}
-
 // What the study adds to a thesis shape beyond the shape itself: "" for an isotropic study, else its
 // fibres as the job carries them (", with a braid at +/-30 deg added").
 std::string FibresAdded(const sim::EvalJob& job) {
@@ -162,7 +156,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
         row.physical = &entry;
         // A vacuum study is not set beside the thesis model's best: that design was bred to inflate,
         // and evacuated it folds over thousands of contact pairs for a figure no one asked for.
-        if (!UnderVacuum(entry.experiment))
+        if (!sim::UnderVacuum(entry.experiment.def))
             for (const ReportEntry& other : entries)
                 if (other.experiment.id == entry.experiment.compare && other.experiment.compare.empty()) row.thesis = &other;
         row.statuses = TallyOf(dir / entry.folder / "evaluations.capnp").statuses;
@@ -170,7 +164,7 @@ Chapter CompareChapters(const std::vector<ReportEntry>& entries, const fs::path&
             jobs.push_back(JobOf(entry.experiment, row.thesis->outcome.bestJob->shape));
             slots.push_back({chapter.rows.size(), false});
         }
-        if (entry.outcome.bestJob && !(quick && UnderVacuum(entry.experiment))) {
+        if (entry.outcome.bestJob && !(quick && sim::UnderVacuum(entry.experiment.def))) {
             jobs.push_back(RefinedJob(*entry.outcome.bestJob));
             slots.push_back({chapter.rows.size(), true});
         }
@@ -246,7 +240,7 @@ std::string ChapterMarkdown(const Chapter& chapter, bool quick, const std::optio
         const ChapterRow* row = nullptr;
         std::optional<ArchiveRecord> record;
     } bestIsotropic, bestWithFibres, bestVacuum;
-    const auto underVacuum = [](const ChapterRow& row) { return UnderVacuum(row.physical->experiment); };
+    const auto underVacuum = [](const ChapterRow& row) { return sim::UnderVacuum(row.physical->experiment.def); };
     int meshChecked = 0, meshWithin = 0;
     for (const ChapterRow& row : chapter.rows) {
         Tally tally = TallyOf(row.physical->outcome.dir / "evaluations.capnp");

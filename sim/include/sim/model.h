@@ -31,6 +31,13 @@ constexpr ModelKind kDefaultModel = ModelKind::Shell;
 // Each model's def; membrane and shell share ShellDef (bending on or off).
 using ModelDef = std::variant<ThesisDef, ShellDef>;
 
+// A physical model under a negative pressure: its walls collapse onto each other (the thesis model
+// has no vacuum).
+inline bool UnderVacuum(const ModelDef& def) {
+    const auto* shell = std::get_if<ShellDef>(&def);
+    return shell && UnderVacuum(shell->load);
+}
+
 // One evaluation: a design under a model. `def` holds the model's def (ThesisDef for the thesis
 // model, ShellDef for membrane and shell).
 struct EvalJob {

@@ -132,6 +132,8 @@ struct LoadDef {
     int isobaricPoints = 0;    // Inflate: after the free inflation, the top held at this many strokes from none
                                // to the free stroke (the isobaric curve and the work of one stroke); 0: none
 };
+// A negative pressure: the walls collapse onto each other.
+inline bool UnderVacuum(const LoadDef& load) { return load.pressureKpa < 0; }
 
 // Stiff threads on the wall (docs/models/shell.md section 7): fibre families as directions in the rest tangent
 // plane at an angle to the meridian, tension only, energy (k/4)(I4 - 1)^2 per rest area.

@@ -858,7 +858,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
     Eigen::VectorXd tangent;
     double volumePerLoad = NAN;  // vacuum: the last step's volume change per load fraction, mm^3 (round, so far)
     const bool predict = load.kind == ShellLoad::Inflate || load.kind == ShellLoad::Blocked;
-    const bool collapsing = load.kind == ShellLoad::Inflate && load.pressureKpa < 0;
+    const bool collapsing = load.kind == ShellLoad::Inflate && UnderVacuum(load);
     for (int k = 1; k <= load.steps && status == Status::Ok; ++k) {
         const double goal = double(k) / load.steps;
         double increment = goal - reached;
