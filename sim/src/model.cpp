@@ -199,7 +199,11 @@ std::vector<std::string> OutputNames(bool withTime) {
     for (const Model& model : kModels) {
         EvalJob& job = jobs.emplace_back();
         job.SetModel(model.kind);
-        if (auto* shell = std::get_if<ShellDef>(&job.def)) shell->fibres.layout = FibreLayout::Braid;  // every output a shell job can have
+        if (auto* shell = std::get_if<ShellDef>(&job.def)) {  // every output a shell job can have
+            shell->fibres.layout = FibreLayout::Braid;
+            shell->load.pressureKpa = -1;  // vacuum: the collapse pressure
+            shell->contact.mode = ContactMode::On;
+        }
     }
     return OutputNames(jobs, withTime);
 }

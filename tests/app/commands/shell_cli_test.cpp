@@ -155,6 +155,10 @@ TEST_F(ShellCli, TheGaAndAnOptimizerSearchVacuumDesignsWithContact) {
         EXPECT_EQ(json["contraction_percent"].get<double>(), best) << name;
         EXPECT_GT(json["contact_pairs"].get<int>(), 0) << name;
         EXPECT_LT(json["collapse_pressure_kpa"].get<double>(), 0) << name;
+        // The log a researcher reads carries the same contact and collapse outputs.
+        EXPECT_EQ(evaluations.Number(bestRow, "contact_pairs"), json["contact_pairs"].get<int>()) << name;
+        EXPECT_EQ(evaluations.Number(bestRow, "collapse_pressure_kpa"), json["collapse_pressure_kpa"].get<double>()) << name;
+        EXPECT_GE(evaluations.Number(bestRow, "min_gap_mm"), 0) << name;
     }
 }
 
