@@ -394,25 +394,22 @@ double ContactList::ClearanceAt(const Positions& x) const {
     const int n = x.Size();
     if (built.Size() != n || n == 0) return kNone;
     // The moves u = x - built, and the least-squares affine motion u ~ A (built - c) + b.
+    const auto move = [&](int v) -> Eigen::Vector3d { return {x.x[v] - built.x[v], x.y[v] - built.y[v], x.z[v] - built.z[v]}; };
+    const auto offset = [&](int v) -> Eigen::Vector3d { return Eigen::Vector3d(built.x[v], built.y[v], built.z[v]) - builtCentre; };
     Eigen::Vector3d meanMove = Eigen::Vector3d::Zero();
     Eigen::Matrix3d moveSpread = Eigen::Matrix3d::Zero();  // sum of u (built - c)^T
     double largest = 0;
     for (int v = 0; v < n; ++v) {
-        const Eigen::Vector3d u(x.x[v] - built.x[v], x.y[v] - built.y[v], x.z[v] - built.z[v]);
-        const Eigen::Vector3d r = Eigen::Vector3d(built.x[v], built.y[v], built.z[v]) - builtCentre;
+        const Eigen::Vector3d u = move(v);
         meanMove += u;
-        moveSpread += u * r.transpose();
+        moveSpread += u * offset(v).transpose();
         largest = std::max(largest, u.squaredNorm());
     }
     if (!std::isfinite(largest)) return kNone;
     meanMove /= n;
     const Eigen::Matrix3d strain = moveSpread * builtSpreadInverse;
     double leftOver = 0;
-    for (int v = 0; v < n; ++v) {
-        const Eigen::Vector3d u(x.x[v] - built.x[v], x.y[v] - built.y[v], x.z[v] - built.z[v]);
-        const Eigen::Vector3d r = Eigen::Vector3d(built.x[v], built.y[v], built.z[v]) - builtCentre;
-        leftOver = std::max(leftOver, (u - strain * r - meanMove).squaredNorm());
-    }
+    for (int v = 0; v < n; ++v) leftOver = std::max(leftOver, (move(v) - strain * offset(v) - meanMove).squaredNorm());
     // Any affine map F bounds the distances: |F(p) - F(q)| >= sigma_min(F) |p - q|, and moves of at
     // most m beyond it bring two primitives at most 2 m nearer. The fitted map and the identity (the
     // plain largest move) are both bounds; the larger one holds.

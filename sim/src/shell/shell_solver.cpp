@@ -174,8 +174,9 @@ struct Solver {
     // The largest fraction of the step from q that no wall crosses (1 with contact off): continuous
     // collision detection on the straight move of every vertex. When the list cannot vouch for the
     // step, the swept query that finds the pairs to check also looks out to the barrier's reach, and
-    // its pairs are kept for the line search's trials along the step (the trials would otherwise each
-    // search afresh: 37 searches in an evaluation of the A = 1.3 sine).
+    // its pairs are kept for assemblies at states along the step (a trust-region step's trial, the
+    // saddle escape's), which would otherwise each search afresh. Newton's line search asks after
+    // its trial is accepted, for the accepted move.
     ContactSweep contactSweep;
     static constexpr double kSweepTolerance = 0.1;  // of the reach: how far a trial may stray from the straight move
     double ImpactFree(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
