@@ -53,84 +53,156 @@ struct CompensatedSum {
 // [SECTION] Pattern
 // ---------------------------------------------------------------------------------------------
 
-HessianPattern::HessianPattern(const ShellProblem& p, const std::vector<ContactPair>& contact) : contactPairs(contact) {
-    std::vector<Eigen::Triplet<double>> entries;
-    auto addBlock = [&](const int* u, int count) {
-        for (int i = 0; i < count; ++i)
-            for (int j = 0; j < count; ++j)
-                if (u[i] >= 0 && u[j] >= 0) entries.emplace_back(u[i], u[j], 0.0);
-    };
-    for (const auto& t : p.wall) addBlock(UnknownsOfVertices(p, t).data(), 9);
-    for (const auto& t : p.caps) addBlock(UnknownsOfVertices(p, t).data(), 9);
-    for (const auto& h : p.hinges) addBlock(UnknownsOfVertices(p, h).data(), 12);
-    for (const auto& c : contactPairs) addBlock(UnknownsOfVertices(p, c.vertices).data(), 12);
-    std::vector<int> anchored;
-    for (int v : p.anchor.vertices)
-        for (int c = 0; c < 3; ++c) anchored.push_back(Unknown(p, v, c));
-    addBlock(anchored.data(), static_cast<int>(anchored.size()));
-    // Tip free: the top's parameters meet every unknown of every element on the clamp, and each other.
+namespace {
+
+// The unknowns of the top's parameters that meet every element on the clamp (tip free; else none).
+std::vector<int> TopCoupledUnknowns(const ShellProblem& p) {
     std::vector<int> top;
     for (int d : TopUnknowns(p))
         if (d >= 0 && p.rigidTop) top.push_back(d);
-    // Whether an element has a corner on the clamp's turn (1) or on the rigid top (2, tip free).
-    auto turned = [&](const int* vertices, int count) {
-        for (int k = 0; k < count; ++k) {
-            if (p.dofOf[3 * vertices[k]] == kTwist) return char(1);
-            if (p.dofOf[3 * vertices[k]] == kRigid) return char(2);
-        }
-        return char(0);
-    };
-    auto addTop = [&](const int* vertices, int count) {
-        if (top.empty() || turned(vertices, count) != 2) return;
-        for (int k = 0; k < count; ++k)
-            for (int c = 0; c < 3; ++c)
-                if (const int d = Unknown(p, vertices[k], c); d >= 0)
-                    for (int t : top) {
-                        entries.emplace_back(d, t, 0.0);
-                        entries.emplace_back(t, d, 0.0);
-                    }
-    };
-    for (const auto& t : p.wall) addTop(t.data(), 3);
-    for (const auto& t : p.caps) addTop(t.data(), 3);
-    for (const auto& h : p.hinges) addTop(h.data(), 4);
-    for (const auto& c : contactPairs) addTop(c.vertices.data(), 4);
+    return top;
+}
+
+// Whether an element has a corner on the clamp's turn (1) or on the rigid top (2, tip free).
+char Turned(const ShellProblem& p, const int* vertices, int count) {
+    for (int k = 0; k < count; ++k) {
+        if (p.dofOf[3 * vertices[k]] == kTwist) return char(1);
+        if (p.dofOf[3 * vertices[k]] == kRigid) return char(2);
+    }
+    return char(0);
+}
+
+// Calls add(row, col) for every entry an element's Hessian puts in the matrix: its unknowns' block,
+// and (tip free, a corner on the rigid top) its unknowns' couplings with the top's parameters.
+template <typename Add>
+void ForEachEntryOf(const ShellProblem& p, const std::vector<int>& top, const int* vertices, int count, Add&& add) {
+    int u[12];
+    for (int k = 0; k < count; ++k)
+        for (int c = 0; c < 3; ++c) u[3 * k + c] = Unknown(p, vertices[k], c);
+    for (int i = 0; i < 3 * count; ++i)
+        for (int j = 0; j < 3 * count; ++j)
+            if (u[i] >= 0 && u[j] >= 0) add(u[i], u[j]);
+    if (top.empty() || Turned(p, vertices, count) != 2) return;
+    for (int i = 0; i < 3 * count; ++i)
+        if (u[i] >= 0)
+            for (int t : top) {
+                add(u[i], t);
+                add(t, u[i]);
+            }
+}
+
+}  // namespace
+
+int HessianPattern::Slot(int row, int col) const {
+    if (row < 0 || col < 0) return -1;
+    const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col];
+    const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - matrix.innerIndexPtr());
+}
+
+HessianPattern::HessianPattern(const ShellProblem& p, const std::vector<ContactPair>& contact) : contactPairs(contact) {
+    std::vector<Eigen::Triplet<double>> entries;
+    const std::vector<int> top = TopCoupledUnknowns(p);
+    const auto add = [&](int row, int col) { entries.emplace_back(row, col, 0.0); };
+    for (const auto& t : p.wall) ForEachEntryOf(p, top, t.data(), 3, add);
+    for (const auto& t : p.caps) ForEachEntryOf(p, top, t.data(), 3, add);
+    for (const auto& h : p.hinges) ForEachEntryOf(p, top, h.data(), 4, add);
+    for (const auto& c : contactPairs) ForEachEntryOf(p, top, c.vertices.data(), 4, add);
+    std::vector<int> anchored;
+    for (int v : p.anchor.vertices)
+        for (int c = 0; c < 3; ++c) anchored.push_back(Unknown(p, v, c));
+    for (int a : anchored)
+        for (int b : anchored)
+            if (a >= 0 && b >= 0) add(a, b);
     for (int a : top)
-        for (int b : top) entries.emplace_back(a, b, 0.0);
-    for (int d = 0; d < p.unknowns; ++d) entries.emplace_back(d, d, 0.0);  // a full diagonal for shifts
+        for (int b : top) add(a, b);
+    for (int d = 0; d < p.unknowns; ++d) add(d, d);  // a full diagonal for shifts
     matrix.resize(p.unknowns, p.unknowns);
     matrix.setFromTriplets(entries.begin(), entries.end());
     matrix.makeCompressed();
 
-    auto slot = [&](int row, int col) -> int {
-        if (row < 0 || col < 0) return -1;
-        const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col];
-        const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[col + 1];
-        return static_cast<int>(std::lower_bound(begin, end, row) - matrix.innerIndexPtr());
-    };
     auto slots = [&](const int* u, int count, std::vector<int>& into) {
         for (int i = 0; i < count; ++i)
-            for (int j = 0; j < count; ++j) into.push_back(slot(u[i], u[j]));
+            for (int j = 0; j < count; ++j) into.push_back(Slot(u[i], u[j]));
     };
     for (const auto& t : p.wall) slots(UnknownsOfVertices(p, t).data(), 9, wallSlots);
     for (const auto& t : p.caps) slots(UnknownsOfVertices(p, t).data(), 9, capSlots);
     for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
-    for (const auto& c : contactPairs) slots(UnknownsOfVertices(p, c.vertices).data(), 12, contactSlots);
     slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
-    twistSlot = p.rigidTop ? -1 : slot(p.twist, p.twist);
+    for (const auto& t : p.wall) wallTurned.push_back(Turned(p, t.data(), 3));
+    for (const auto& t : p.caps) capTurned.push_back(Turned(p, t.data(), 3));
+    for (const auto& h : p.hinges) hingeTurned.push_back(Turned(p, h.data(), 4));
+    PlaceContactAndTop(p, top);
+}
+
+// The same matrix as building from scratch, entry for entry: each column's rows are the base's and
+// the contact blocks', merged in order, and every base slot moves to where its entry now sits.
+// Listing the wall's elements again (hundreds of thousands of entries through a sort) cost a
+// third of a collapsing tube's solve, whose list changes at most steps.
+HessianPattern::HessianPattern(const HessianPattern& base, const ShellProblem& p, const std::vector<ContactPair>& contact)
+    : wallSlots(base.wallSlots), hingeSlots(base.hingeSlots), capSlots(base.capSlots), anchorSlots(base.anchorSlots), contactPairs(contact),
+      wallTurned(base.wallTurned), capTurned(base.capTurned), hingeTurned(base.hingeTurned) {
+    const int n = p.unknowns;
+    const std::vector<int> top = TopCoupledUnknowns(p);
+    // The contact blocks' entries, bucketed by column, then sorted and made unique in each.
+    std::vector<int> extraBegin(n + 1, 0);
+    for (const ContactPair& c : contactPairs) ForEachEntryOf(p, top, c.vertices.data(), 4, [&](int, int col) { ++extraBegin[col + 1]; });
+    for (int col = 0; col < n; ++col) extraBegin[col + 1] += extraBegin[col];
+    std::vector<int> extraRows(extraBegin[n]);
+    std::vector<int> fill(extraBegin.begin(), extraBegin.end() - 1);
+    for (const ContactPair& c : contactPairs) ForEachEntryOf(p, top, c.vertices.data(), 4, [&](int row, int col) { extraRows[fill[col]++] = row; });
+
+    const int* baseOuter = base.matrix.outerIndexPtr();
+    const int* baseInner = base.matrix.innerIndexPtr();
+    std::vector<int> outer(n + 1, 0), inner;
+    inner.reserve(base.matrix.nonZeros() + extraRows.size());
+    std::vector<int> moved(base.matrix.nonZeros());  // a base entry's index in the new matrix
+    for (int col = 0; col < n; ++col) {
+        int* first = extraRows.data() + extraBegin[col];
+        int* last = extraRows.data() + extraBegin[col + 1];
+        std::sort(first, last);
+        last = std::unique(first, last);
+        int b = baseOuter[col];
+        const int bEnd = baseOuter[col + 1];
+        while (b < bEnd || first != last) {
+            if (first == last || (b < bEnd && baseInner[b] <= *first)) {
+                if (first != last && baseInner[b] == *first) ++first;
+                moved[b] = static_cast<int>(inner.size());
+                inner.push_back(baseInner[b++]);
+            } else {
+                inner.push_back(*first++);
+            }
+        }
+        outer[col + 1] = static_cast<int>(inner.size());
+    }
+    const std::vector<double> values(inner.size(), 0.0);
+    matrix = Eigen::Map<const Eigen::SparseMatrix<double>>(n, n, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), values.data());
+    for (auto* slots : {&wallSlots, &hingeSlots, &capSlots, &anchorSlots})
+        for (int& s : *slots)
+            if (s >= 0) s = moved[s];
+    PlaceContactAndTop(p, top);
+}
+
+void HessianPattern::PlaceContactAndTop(const ShellProblem& p, const std::vector<int>& top) {
+    contactSlots.clear();
+    contactSlots.reserve(144 * contactPairs.size());
+    for (const auto& c : contactPairs) {
+        const auto u = UnknownsOfVertices(p, c.vertices);
+        for (int i = 0; i < 12; ++i)
+            for (int j = 0; j < 12; ++j) contactSlots.push_back(Slot(u[i], u[j]));
+        contactTurned.push_back(Turned(p, c.vertices.data(), 4));
+    }
+    twistSlot = p.rigidTop ? -1 : Slot(p.twist, p.twist);
     const std::array<int, kTopParameters> topUnknown = TopUnknowns(p);
     for (int k = 0; k < kTopParameters && !top.empty(); ++k) {
         const int t = topUnknown[k];
-        for (int l = 0; l < kTopParameters; ++l) topBlockSlots[k][l] = slot(t, topUnknown[l]);
+        for (int l = 0; l < kTopParameters; ++l) topBlockSlots[k][l] = Slot(t, topUnknown[l]);
         if (t < 0) continue;
         for (int i = matrix.outerIndexPtr()[t]; i < matrix.outerIndexPtr()[t + 1]; ++i) {
             const int row = matrix.innerIndexPtr()[i];
-            if (std::find(top.begin(), top.end(), row) == top.end()) topCouplings[k].push_back({row, i, slot(t, row)});
+            if (std::find(top.begin(), top.end(), row) == top.end()) topCouplings[k].push_back({row, i, Slot(t, row)});
         }
     }
-    for (const auto& t : p.wall) wallTurned.push_back(turned(t.data(), 3));
-    for (const auto& t : p.caps) capTurned.push_back(turned(t.data(), 3));
-    for (const auto& h : p.hinges) hingeTurned.push_back(turned(h.data(), 4));
-    for (const auto& c : contactPairs) contactTurned.push_back(turned(c.vertices.data(), 4));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -215,6 +215,9 @@ class HessianPattern {
 public:
     // With the contact pairs whose Hessians it is to hold (sorted, as ContactCandidates gives them).
     explicit HessianPattern(const ShellProblem& problem, const std::vector<ContactPair>& contactPairs = {});
+    // The same pattern from the problem's pattern without contact: what a Newton solve builds each
+    // time its contact list changes (the wall's elements are not listed again).
+    HessianPattern(const HessianPattern& withoutContact, const ShellProblem& problem, const std::vector<ContactPair>& contactPairs);
     Eigen::SparseMatrix<double> matrix;  // full symmetric pattern, values overwritten by Assemble
     std::vector<int> wallSlots, hingeSlots, capSlots;  // per element: 81, 144 or 81 value indices (-1: none)
     std::vector<int> anchorSlots;                      // the anchor's dense block
@@ -228,6 +231,13 @@ public:
     // (row, it), slot of (it, row)) of every other unknown it meets; and the parameters' own block.
     std::array<std::vector<std::array<int, 3>>, kTopParameters> topCouplings;
     std::array<std::array<int, kTopParameters>, kTopParameters> topBlockSlots{};
+
+    // The index in the matrix's values of (row, col), which must be in the pattern (-1 for an
+    // unknown that is -1).
+    int Slot(int row, int col) const;
+
+private:
+    void PlaceContactAndTop(const ShellProblem& problem, const std::vector<int>& topUnknowns);
 };
 
 struct EnergyResult {

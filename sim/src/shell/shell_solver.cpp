@@ -84,6 +84,7 @@ struct Workspace {
     int unknowns = 0, axial = -1;
 
     std::vector<int> places;      // each unknown's place in the factors' vertex blocks
+    HessianPattern withoutContact;  // the pattern with no contact pair: what a contact list's pattern is merged into
     HessianPattern pattern;       // Newton's Hessian (projected, exact or definite, as each step needs)
     Factor factor;
     HessianPattern exactPattern;  // the exact Hessian (inertia, stiffness, volume control), factorised apart
@@ -91,7 +92,7 @@ struct Workspace {
 
     explicit Workspace(const ShellProblem& p)
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
-          places(VertexBlockPlaces(p)), pattern(p), exactPattern(pattern) {}
+          places(VertexBlockPlaces(p)), withoutContact(p), pattern(withoutContact), exactPattern(withoutContact) {}
     bool Fits(const ShellProblem& p) const {
         return pattern.contactPairs.empty() && unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
                caps == p.caps && hinges == p.hinges;
@@ -154,7 +155,7 @@ struct Solver {
         PositionsOf(problem, q, x);
         UpdateContactList(contactList, *problem.contact, problem.barrier, x);
         if (pattern.contactPairs == contactList.pairs) return;
-        workspace->pattern = HessianPattern(problem, contactList.pairs);
+        workspace->pattern = contactList.pairs.empty() ? workspace->withoutContact : HessianPattern(workspace->withoutContact, problem, contactList.pairs);
         workspace->exactPattern = workspace->pattern;
         workspace->factor = Factor();
         workspace->exactFactor = Factor();

@@ -199,3 +199,48 @@ TEST(VacuumContact, NoEffectWhereNoWallComesNear) {
 }
 
 }  // namespace
+
+// A Newton solve's Hessian pattern for a new contact list is merged into the pattern without
+// contact; it must be the pattern built from scratch, entry for entry and slot for slot, whatever
+// the top clamp may do (turn, be held, move freely: each adds its own couplings).
+TEST(ContactPattern, MergedIntoTheWallsPatternIsThePatternBuiltFromScratch) {
+    for (int ends = 0; ends < 3; ++ends) {
+        sim::EvalJob job = VacuumTube(sim::ContactMode::On);
+        sim::ShellDef& def = job.Shell();
+        if (ends == 1) def.ends.twist = sim::TwistEnd::Held;
+        if (ends == 2) def.ends.tip = sim::TipEnd::Free;
+        std::string error;
+        sim::ShellProblem p = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.6, 2.4}, true, &error);
+        ASSERT_TRUE(error.empty()) << error;
+        sim::SetContact(p, def.contact, &error);
+        ASSERT_TRUE(error.empty()) << error;
+        // Pairs out to 3 mm at rest: thousands, clamp vertices among them.
+        const std::vector<sim::ContactPair> pairs = sim::ContactCandidates(*p.contact, p.rest, nullptr, 3);
+        ASSERT_GT(pairs.size(), 1000u) << pairs.size();
+        const sim::HessianPattern without(p);
+        const sim::HessianPattern scratch(p, pairs), merged(without, p, pairs);
+        SCOPED_TRACE("ends case " + std::to_string(ends));
+        EXPECT_GT(merged.matrix.nonZeros(), without.matrix.nonZeros());
+        ASSERT_EQ(merged.matrix.nonZeros(), scratch.matrix.nonZeros());
+        const auto array = [](const int* a, Eigen::Index n) { return std::vector<int>(a, a + n); };
+        EXPECT_EQ(array(merged.matrix.outerIndexPtr(), p.unknowns + 1), array(scratch.matrix.outerIndexPtr(), p.unknowns + 1));
+        EXPECT_EQ(array(merged.matrix.innerIndexPtr(), merged.matrix.nonZeros()), array(scratch.matrix.innerIndexPtr(), scratch.matrix.nonZeros()));
+        EXPECT_EQ(merged.wallSlots, scratch.wallSlots);
+        EXPECT_EQ(merged.hingeSlots, scratch.hingeSlots);
+        EXPECT_EQ(merged.capSlots, scratch.capSlots);
+        EXPECT_EQ(merged.anchorSlots, scratch.anchorSlots);
+        EXPECT_EQ(merged.contactSlots, scratch.contactSlots);
+        EXPECT_EQ(merged.contactTurned, scratch.contactTurned);
+        EXPECT_EQ(merged.twistSlot, scratch.twistSlot);
+        EXPECT_EQ(merged.topBlockSlots, scratch.topBlockSlots);
+        EXPECT_EQ(merged.topCouplings, scratch.topCouplings);
+        EXPECT_EQ(merged.wallTurned, scratch.wallTurned);
+        EXPECT_EQ(merged.hingeTurned, scratch.hingeTurned);
+        if (ends == 2) EXPECT_FALSE(merged.topCouplings[0].empty());
+        if (ends == 0) EXPECT_GE(merged.twistSlot, 0);
+        // Merging no pairs gives the pattern without contact back.
+        const sim::HessianPattern none(without, p, {});
+        EXPECT_EQ(array(none.matrix.innerIndexPtr(), none.matrix.nonZeros()), array(without.matrix.innerIndexPtr(), without.matrix.nonZeros()));
+        EXPECT_EQ(none.hingeSlots, without.hingeSlots);
+    }
+}
