@@ -452,15 +452,18 @@ bool UpdateContactList(ContactList& list, const ContactSurface& surface, const B
     if (list.built.Size() == 0 && surface.neighbourMm >= search && surface.restClearanceMm >= 1.4 * reach && x == surface.rest) {
         setBuilt(std::min(search, surface.restClearanceMm));
         list.pairs.clear();
+        list.wider.clear();
         return false;
     }
     const std::vector<ContactPair> near = ContactCandidates(surface, x, nullptr, search);
     double clearance = search;
     std::vector<ContactPair> pairs;
+    list.wider.clear();
     for (const ContactPair& pair : near) {
         const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr));
         if (d < 1.4 * reach) pairs.push_back(pair);
         else clearance = std::min(clearance, d);
+        if (d < 1.8 * reach) list.wider.push_back(pair);
     }
     setBuilt(clearance);
     if (pairs == list.pairs) return false;

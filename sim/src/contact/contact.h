@@ -139,6 +139,10 @@ inline double ContactReachMm(const BarrierDef& barrier) { return barrier.thickne
 // pays for a search now and then, not at every step.
 struct ContactList {
     std::vector<ContactPair> pairs;
+    // The candidates within 1.8 reaches of `built` (pairs included): what a Hessian pattern that is
+    // to outlast this list holds, so that the lists built after it as walls slide along each other
+    // fall inside the pattern, and the factors' analysis and the last factor carry over.
+    std::vector<ContactPair> wider;
     Positions built;
     double reachMm = 0;      // the list holds every pair within this while ClearanceAt is at least this
     double clearanceMm = 0;  // every pair not in the list was at least this far apart at `built`
