@@ -75,24 +75,40 @@ int PointCount(DistanceCase kind) {
 Eigen::Vector3d At(const Vector12& x, int vertex) { return x.segment<3>(3 * vertex); }
 
 // The case's formula over its P points as SecondOrder numbers, scattered back to the pair's 12
-// coordinates.
+// coordinates. A distance does not change when every point moves alike, so the inputs are the
+// other points' offsets from the first, d_k = p_k - p_0 (3 (P - 1) of them, not 3 P: a Hessian of
+// 9 x 9 numbers carried through the formula, not 12 x 12), and the points' own derivatives follow
+// from dd_k/dp_k = I, dd_k/dp_0 = -I.
 template <int P>
 double DifferentiatedSquared(const ClosestFeatures& features, const Vector12& x, Vector12* gradient, Matrix12* hessian) {
-    using Number = SecondOrder<3 * P>;
+    using Number = SecondOrder<3 * (P - 1)>;
     Point3<Number> p[P];
-    for (int k = 0; k < P; ++k) {
+    const int first = features.local[0];
+    p[0] = {Number(0), Number(0), Number(0)};
+    for (int k = 1; k < P; ++k) {
         const int v = features.local[k];
-        p[k] = {Number::Input(x[3 * v], 3 * k), Number::Input(x[3 * v + 1], 3 * k + 1), Number::Input(x[3 * v + 2], 3 * k + 2)};
+        const auto input = [&](int c) { return Number::Input(x[3 * v + c] - x[3 * first + c], 3 * (k - 1) + c); };
+        p[k] = {input(0), input(1), input(2)};
     }
     const Number d = CaseSquared<P>(features.kind, p);
-    if (gradient) gradient->setZero();
-    if (hessian) hessian->setZero();
-    for (int k = 0; k < P; ++k) {
-        const int v = features.local[k];
-        if (gradient) gradient->segment<3>(3 * v) = d.gradient.template segment<3>(3 * k);
-        if (hessian)
-            for (int l = 0; l < P; ++l)
-                hessian->block<3, 3>(3 * v, 3 * features.local[l]) = d.hessian.template block<3, 3>(3 * k, 3 * l);
+    if (gradient) {
+        gradient->setZero();
+        for (int k = 1; k < P; ++k) {
+            const Eigen::Vector3d g = d.gradient.template segment<3>(3 * (k - 1));
+            gradient->segment<3>(3 * features.local[k]) = g;
+            gradient->segment<3>(3 * first) -= g;
+        }
+    }
+    if (hessian) {
+        hessian->setZero();
+        for (int k = 1; k < P; ++k)
+            for (int l = 1; l < P; ++l) {
+                const Eigen::Matrix3d block = d.hessian.template block<3, 3>(3 * (k - 1), 3 * (l - 1));
+                hessian->block<3, 3>(3 * features.local[k], 3 * features.local[l]) = block;
+                hessian->block<3, 3>(3 * first, 3 * features.local[l]) -= block;
+                hessian->block<3, 3>(3 * features.local[k], 3 * first) -= block;
+                hessian->block<3, 3>(3 * first, 3 * first) += block;
+            }
     }
     return d.value;
 }
@@ -158,10 +174,12 @@ double SquaredDistance(PairKind kind, const Vector12& x, Vector12* gradient, Mat
             default: return DifferentiatedSquared<4>(features, x, gradient, hessian);
         }
     }
+    // The same offsets from the first point as the differentiated path: the same bits.
     Point3<double> p[4];
+    const int first = features.local[0];
     for (int k = 0; k < PointCount(features.kind); ++k) {
         const int v = features.local[k];
-        p[k] = {x[3 * v], x[3 * v + 1], x[3 * v + 2]};
+        p[k] = {x[3 * v] - x[3 * first], x[3 * v + 1] - x[3 * first + 1], x[3 * v + 2] - x[3 * first + 2]};
     }
     switch (PointCount(features.kind)) {
         case 2: return CaseSquared<2>(features.kind, p);
