@@ -417,6 +417,11 @@ double ContactList::ClearanceAt(const Positions& x) const {
     return std::max(clearanceMm - 2 * std::sqrt(largest), smallestStretch * clearanceMm - 2 * std::sqrt(leftOver));
 }
 
+namespace {
+constexpr double kListReaches = 1.4;     // the list's pairs: within this many reaches
+constexpr double kPatternReaches = 1.8;  // ContactList::wider: within this many
+}  // namespace
+
 bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x) {
     if (list.Covers(x)) return false;
     const auto setBuilt = [&](double clearanceMm) {
@@ -449,7 +454,7 @@ bool UpdateContactList(ContactList& list, const ContactSurface& surface, const B
     // At rest the surface's own query has already looked this far: when the nearest pair it found is
     // beyond the list's reach, the list is empty and that pair sets its clearance (a first list with
     // no search of its own).
-    if (list.built.Size() == 0 && surface.neighbourMm >= search && surface.restClearanceMm >= 1.4 * reach && x == surface.rest) {
+    if (list.built.Size() == 0 && surface.neighbourMm >= search && surface.restClearanceMm >= kListReaches * reach && x == surface.rest) {
         setBuilt(std::min(search, surface.restClearanceMm));
         list.pairs.clear();
         list.wider.clear();
@@ -461,9 +466,9 @@ bool UpdateContactList(ContactList& list, const ContactSurface& surface, const B
     list.wider.clear();
     for (const ContactPair& pair : near) {
         const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr));
-        if (d < 1.4 * reach) pairs.push_back(pair);
+        if (d < kListReaches * reach) pairs.push_back(pair);
         else clearance = std::min(clearance, d);
-        if (d < 1.8 * reach) list.wider.push_back(pair);
+        if (d < kPatternReaches * reach) list.wider.push_back(pair);
     }
     setBuilt(clearance);
     if (pairs == list.pairs) return false;

@@ -184,7 +184,6 @@ HessianPattern::HessianPattern(const HessianPattern& base, const ShellProblem& p
 }
 
 void HessianPattern::PlaceContactAndTop(const ShellProblem& p, const std::vector<int>& top) {
-    contactSlots.clear();
     contactSlots.reserve(144 * contactPairs.size());
     for (const auto& c : contactPairs) {
         const auto u = UnknownsOfVertices(p, c.vertices);

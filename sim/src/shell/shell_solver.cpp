@@ -94,8 +94,15 @@ struct Workspace {
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
           places(VertexBlockPlaces(p)), withoutContact(p), pattern(withoutContact), exactPattern(withoutContact) {}
     bool Fits(const ShellProblem& p) const {
-        return pattern.contactPairs.empty() && unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
+        return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
                caps == p.caps && hinges == p.hinges;
+    }
+    // A new pattern for both Hessians: the factors' analysis was for the old one.
+    void Use(const HessianPattern& next) {
+        pattern = next;
+        exactPattern = next;
+        factor = Factor();
+        exactFactor = Factor();
     }
 };
 
@@ -104,7 +111,10 @@ thread_local std::unique_ptr<Workspace> tLastWorkspace;
 
 std::unique_ptr<Workspace> TakeWorkspace(const ShellProblem& p) {
     std::unique_ptr<Workspace> w = std::move(tLastWorkspace);
-    if (w && w->Fits(p)) return w;
+    if (w && w->Fits(p)) {
+        if (!w->pattern.contactPairs.empty()) w->Use(w->withoutContact);  // the last solve's walls touched
+        return w;
+    }
     return std::make_unique<Workspace>(p);
 }
 
@@ -158,10 +168,7 @@ struct Solver {
         UpdateContactList(contactList, *problem.contact, problem.barrier, x);
         const auto& held = pattern.contactPairs;
         if (std::includes(held.begin(), held.end(), contactList.pairs.begin(), contactList.pairs.end())) return;
-        workspace->pattern = HessianPattern(workspace->withoutContact, problem, contactList.wider);
-        workspace->exactPattern = workspace->pattern;
-        workspace->factor = Factor();
-        workspace->exactFactor = Factor();
+        workspace->Use(HessianPattern(workspace->withoutContact, problem, contactList.wider));
         preconditioner = false;
         refresh = false;
         direct = false;
