@@ -259,13 +259,20 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
     auto plots = MakePlots(1024, 640);
     render::LinePlot plot;
     plot.xLabel = "gauge pressure (kPa)";
-    plot.yLabel = "contraction (percent, positive = shorter)";
     plot.zeroLine = true;
-    // The curve starts at rest: zero pressure, zero contraction.
-    render::LineSeries curve{"equilibrium at each load step", {0.0}, {0.0}, {0.13f, 0.35f, 0.75f}, true};
-    for (size_t k = 0; k < o.curvePressureKpa.size() && k < o.curveContractionPercent.size(); ++k) {
+    // A blocked test holds the top clamp: its curve is the force on it (the contraction is the held
+    // stroke at every step). Else the contraction, from rest: zero pressure, zero contraction.
+    const bool held = std::isfinite(o.strokeForceN) && o.curveForceN.size() == o.curvePressureKpa.size();
+    const std::vector<double>& along = held ? o.curveForceN : o.curveContractionPercent;
+    plot.yLabel = held ? "force on the held top clamp (N, + pulls on the supports)" : "contraction (percent, positive = shorter)";
+    render::LineSeries curve{"equilibrium at each load step", {}, {}, {0.13f, 0.35f, 0.75f}, true};
+    if (!held || o.displacementMm == 0) {  // held at its rest place: no force at no pressure
+        curve.x.push_back(0.0);
+        curve.y.push_back(0.0);
+    }
+    for (size_t k = 0; k < o.curvePressureKpa.size() && k < along.size(); ++k) {
         curve.x.push_back(o.curvePressureKpa[k]);
-        curve.y.push_back(o.curveContractionPercent[k]);
+        curve.y.push_back(along[k]);
     }
     plot.series.push_back(curve);
     if (std::isfinite(o.collapsePressureKpa) && curve.y.size() > 1) {
@@ -285,11 +292,11 @@ render::Image PressureCurveImage(const std::string& title, const sim::SimResult&
         plot.highlightLabel = fmt::format("limit point: pressure maximum {:.3g} kPa", o.limitPressureKpa);
     } else if (curve.x.size() > 1) {
         plot.highlight = std::pair{curve.x.back(), curve.y.back()};
-        plot.highlightLabel = std::isfinite(r.contractionPercent)
-                                  ? fmt::format("{:.2f} % at {:.3g} kPa ({})", r.contractionPercent, o.targetPressureKpa, sim::Name(r.status))
-                                  : std::string("last converged step (") + sim::Name(r.status) + ")";
+        plot.highlightLabel = !std::isfinite(r.contractionPercent) ? std::string("last converged step (") + sim::Name(r.status) + ")"
+                              : held ? fmt::format("{:.3g} N at {:.3g} kPa ({})", o.strokeForceN, o.targetPressureKpa, sim::Name(r.status))
+                                     : fmt::format("{:.2f} % at {:.3g} kPa ({})", r.contractionPercent, o.targetPressureKpa, sim::Name(r.status));
     }
-    return plots->RenderLines(title + "  -  contraction against pressure", {plot});
+    return plots->RenderLines(title + (held ? "  -  force on the held clamp against pressure" : "  -  contraction against pressure"), {plot});
 }
 
 render::Image TensileCurveImage(const TensileFigure& f) {
