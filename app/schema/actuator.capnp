@@ -123,6 +123,7 @@ struct ShellDef {
   contact @46 :Text;                # self-contact: "on" or "off"; "" (records before it) is off, with the defaults below
   contactGapFraction @47 :Float64;  # the barrier's reach beyond a wall thickness, over it
   contactStiffness @48 :Float64;    # the barrier's kappa over mu h
+  heldPushDiameters @49 :Float64;   # a compressed held state's push, tube diameters; 0: not pushed (every record before it)
 }
 
 struct FibreBand {

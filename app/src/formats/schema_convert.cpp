@@ -225,6 +225,7 @@ void SetShellDef(schema::ShellDef::Builder s, const sim::ShellDef& def) {
     s.setMaxIterations(Count(v.maxIterations));
     s.setMaxBisections(Count(v.maxBisections));
     s.setNewtonBudget(Count(v.newtonBudget));
+    s.setHeldPushDiameters(v.heldPushDiameters);
     s.setSelfContact(v.selfContact);
     const sim::FibreDef& f = def.fibres;
     s.setFibres(sim::Name(f.layout));
@@ -289,6 +290,7 @@ sim::ShellDef GetShellDef(schema::ShellDef::Reader s) {
     v.maxIterations = Count(s.getMaxIterations());
     v.maxBisections = Count(s.getMaxBisections());
     v.newtonBudget = Count(s.getNewtonBudget());
+    v.heldPushDiameters = s.getHeldPushDiameters();
     v.selfContact = s.getSelfContact();
     sim::FibreDef& f = def.fibres;
     const std::string layout = s.getFibres();

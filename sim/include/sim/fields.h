@@ -123,6 +123,8 @@ void VisitFields(Def& s, Visitor&& v) requires std::is_same_v<std::remove_const_
     v.Integer("max_iterations", s.maxIterations, "Newton iterations per load step", 1, 10000);
     v.Integer("max_bisections", s.maxBisections, "times a failed load step may be halved", 0, 30);
     v.Integer("newton_budget", s.newtonBudget, "Newton iterations for the whole evaluation, past which it is budget-exceeded (0: none)", 0, 10000000);
+    v.Number("held_push_diameters", s.heldPushDiameters, "a held state pushing on its clamps is pushed this many tube diameters sideways and "
+                                                         "minimised again; a lower (bowed) state found so is reported (0: not pushed)", 0, 10);
 }
 
 namespace detail {

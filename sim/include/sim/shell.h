@@ -179,6 +179,10 @@ struct SolverDef {
                                // 0: no budget. Chosen from the shipped searches' distribution
                                // (docs/performance.md, per-evaluation budget).
     bool selfContact = true;   // check every converged state for self-intersection
+    double heldPushDiameters = 1;  // a stable held state that pushes on its clamps is pushed this many tube
+                                   // diameters (2 R) along its softest direction and minimised again, and
+                                   // a lower state found so (a bowed tube) is reported; 0: not pushed
+                                   // (docs/models/shell.md section 12, held states that bow)
 };
 
 // The top clamp as a bench fixture holds it (docs/models/shell.md section 12): the axial motion is

@@ -677,6 +677,25 @@ struct Solver {
         }
         return moved ? ExactInertia(q, load, exact) : negative;  // q's factor again, for what follows
     }
+
+    // The direction in which a stable state is softest: the eigenvector of the exact Hessian's
+    // smallest eigenvalue, by inverse iteration on its factor (exactFactor, positive definite) from
+    // an equal move of every unknown, so the same on every run; scaled to 1 at its largest. Empty
+    // when exactFactor is not positive definite.
+    static constexpr int kSoftestIterations = 8;  // 2 to 30 find the same bowed state of the +/-70 deg braid
+    Eigen::VectorXd SoftestDirection() {
+        if (!(exactFactor->SmallestPivot() > 0)) return {};
+        Eigen::VectorXd d = Eigen::VectorXd::Ones(problem.unknowns);
+        for (int k = 0; k < kSoftestIterations; ++k) {
+            HoldGradient(d);
+            d = exactFactor->Solve(d);
+            HoldGradient(d);
+            const double largest = d.lpNorm<Eigen::Infinity>();
+            if (!d.allFinite() || !(largest > 0)) return {};
+            d /= largest;
+        }
+        return d;
+    }
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -819,6 +838,19 @@ struct TubeEvaluation {
         }
         return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
     }
+    // The state q with its top clamp moved to u: the free wall stretched along the axis with it, each
+    // vertex by the fraction of the free length below it at rest. Moving the clamp alone crushes
+    // or pulls the ring beside it by the whole move (millimetres), and Newton can come down from
+    // there into a folded state (the +/-70 deg braid held at its rest length from half its stroke,
+    // 60 x 59: through itself).
+    Eigen::VectorXd StretchedTo(const Eigen::VectorXd& from, double u) {
+        PositionsOf(problem, from, x);
+        const double move = u - from[problem.axial], bottom = def.geometry.clampMm, free = length - 2 * def.geometry.clampMm;
+        for (int v = 0; v < x.Size(); ++v) x.z[v] += move * std::clamp((problem.rest.z[v] - bottom) / free, 0.0, 1.0);
+        Eigen::VectorXd q = UnknownsOf(problem, x);
+        q[problem.axial] = u;
+        return q;
+    }
     // Where Newton stops as Runaway after a state of this volume (a force load has no such limit).
     double VolumeLimitAfter(double volume) const {
         return load.kind == ShellLoad::Force ? std::numeric_limits<double>::infinity() : kRunawayVolume * volume;
@@ -844,6 +876,49 @@ struct TubeEvaluation {
         return l;
     }
 };
+
+// A compressed held state pushed sideways (docs/models/shell.md section 12, held states). A coarse
+// mesh can hold a compressed tube straight far past the load at which a finer one, and the bench,
+// bow it sideways: the +/-70 deg braid held at its rest length at 3 kPa is straight (-0.172 N) and
+// stable at 30 x 30, where 60 x 332 finds it bowed 25 mm (-0.041 N), and on every mesh the bowed state
+// has the far lower energy. Its Hessian there is positive definite, so no inertia check sees it;
+// a push does. The stable held state `held` (its exact factor in solver.exactFactor, its assembly
+// in *exact) is moved SolverDef::heldPushDiameters tube diameters along its softest direction (at
+// its largest; on the braid at 30 x 30, 3 mm comes back straight and 5 to 20 mm bow it) and
+// minimised again: a stable state of lower energy found so replaces it, with its assembly in
+// *exact. True when it did; otherwise `held` and *exact stand (exactFactor may then be another
+// state's). A tube in tension does not bow, so a held state that pulls is left as it is.
+bool PushCompressedHeldState(TubeEvaluation& t, Eigen::VectorXd& held, const LoadTerms& load, EnergyResult* exact) {
+    if (!(exact->axialForce < 0) || !(t.def.solver.heldPushDiameters > 0)) return false;
+    Eigen::VectorXd push = t.solver.SoftestDirection();
+    if (push.size() == 0) return false;
+    push *= t.def.solver.heldPushDiameters * 2 * t.def.geometry.radiusMm;
+    PositionsOf(t.problem, held, t.x);
+    const double volumeLimit = t.VolumeLimitAfter(EnclosedVolume(t.problem, t.x));
+    Eigen::VectorXd pushed = held + t.solver.ImpactFree(held, push) * push;
+    const NewtonEnd end = t.solver.Minimise(pushed, load, volumeLimit);
+    // Back where it was (most pushes), or higher: no need to look at its stability.
+    const auto lower = [&](double energy) { return energy < exact->energy - 1e-9 * std::fabs(exact->energy); };
+    if (end != NewtonEnd::Converged || !lower(AssembleEnergy(t.problem, pushed, load, t.solver.terms, false, nullptr, HessianKind::Projected).energy))
+        return false;
+    EnergyResult reached;
+    if (t.solver.StableState(pushed, load, volumeLimit, &reached) != 0 || !lower(reached.energy)) return false;
+    PositionsOf(t.problem, pushed, t.x);
+    if (t.def.solver.selfContact && SelfIntersects(t.problem, t.x)) return false;
+    held = std::move(pushed);
+    *exact = std::move(reached);
+    return true;
+}
+
+// A held test's recorded point on its way to the target, pushed as its end state is
+// (SettleOnStableState) when it pushes on its clamps, so that the force-pressure curve follows the
+// bowed branch from where the tube bows. True when the state moved.
+bool PushHeldPoint(TubeEvaluation& t, double s) {
+    const LoadTerms load = t.LoadAt(s);
+    if (!(AssembleEnergy(t.problem, t.q, load, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce < 0)) return false;  // pulls: nothing to factorise
+    EnergyResult exact;
+    return t.solver.ExactInertia(t.q, load, &exact) == 0 && PushCompressedHeldState(t, t.q, load, &exact);
+}
 
 // Stage: the load path in load.steps steps to the target, each point recorded on the curve. Volume
 // control steps the enclosed volume; the others step the load, each step tried whole from the
@@ -948,6 +1023,10 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 t.q = std::move(trial);
                 if (beforeCollapse && !collapsed) volumePerLoad = (volume - lastVolume) / (next - reached);
                 reached = next;
+                if (load.kind == ShellLoad::Blocked && next == goal && goal < 1 && PushHeldPoint(t, next)) {
+                    PositionsOf(t.problem, t.q, t.x);
+                    volume = EnclosedVolume(t.problem, t.x);
+                }
                 lastVolume = volume;
                 if (collapsed) increment = goal - reached;  // past the snap: the rest of the load step whole again
                 if (predict) {
@@ -992,6 +1071,7 @@ int SettleOnStableState(TubeEvaluation& t, const LoadTerms& finalLoad) {
     if (t.load.kind == ShellLoad::Volume) return t.solver.ExactInertia(t.q, finalLoad, &exact);  // volume control holds a state past the maximum
     bool escaped = false;
     const int negative = t.solver.StableState(t.q, finalLoad, t.VolumeLimitAfter(t.out.curveVolumeMm3.back()), &exact, &escaped);
+    if (negative == 0 && t.load.kind == ShellLoad::Blocked && PushCompressedHeldState(t, t.q, finalLoad, &exact)) escaped = true;
     if (escaped) {
         ShellOutputs& out = t.out;
         PositionsOf(t.problem, t.q, t.x);
@@ -1082,8 +1162,10 @@ void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::V
         Positions heldPositions;
         PositionsOf(problem, held, heldPositions);
         EnergyResult heldExact;
-        if (t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0)
+        if (t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0) {
+            PushCompressedHeldState(t, held, finalLoad, &heldExact);
             t.out.blockingForceN = heldExact.axialForce;
+        }
     }
     t.solver.holdAxial = false;
 }
@@ -1131,8 +1213,7 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
     for (double fraction : order) {
         IsobaricPoint point;
         point.strokePercent = fraction * freeContractionPercent;
-        Eigen::VectorXd held = t.q;
-        held[problem.axial] = fraction * freeU;
+        Eigen::VectorXd held = t.StretchedTo(t.q, fraction * freeU);
         const Counters before = t.solver.counters;
         if (const NewtonEnd end = t.solver.Minimise(held, finalLoad); end != NewtonEnd::Converged) {
             point.status = StatusOf(end);
@@ -1141,6 +1222,7 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
             PositionsOf(problem, held, x);
             EnergyResult exact;
             const int negative = t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, x)), &exact);
+            if (negative == 0) PushCompressedHeldState(t, held, finalLoad, &exact);
             PositionsOf(problem, held, x);
             if (negative != 0) point.status = Status::LimitPoint;
             else if (t.def.solver.selfContact && SelfIntersects(problem, x)) point.status = Status::SelfIntersection;
