@@ -28,6 +28,8 @@ nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refin
         const double refinedForce = fine.status == sim::Status::Ok ? fine.shell.blockingForceN : NAN;
         check["blocking_force_n"] = number(refinedForce);
         check["blocking_force_difference_percent"] = number(100 * std::fabs(refinedForce - coarseBlockingForceN) / std::fabs(refinedForce));
+        check["blocking_force_converged"] = ForceWithinMeshRule(coarseBlockingForceN, refinedForce);
+        check["blocking_force_rule"] = kForceMeshRule;
     }
     return check;
 }
@@ -39,6 +41,11 @@ MeshChange ChangeOf(double coarse, double fine) {
     c.relativePercent = 100 * c.points / std::max(std::fabs(fine), 1e-12);
     c.within = std::fabs(fine) < 1 ? c.points <= 0.05 : c.relativePercent <= 5;
     return c;
+}
+
+bool ForceWithinMeshRule(double coarseN, double fineN) {
+    const double apart = std::fabs(fineN - coarseN);  // NaN (a failed state) is within nothing
+    return std::fabs(fineN) < 0.02 ? apart <= 0.001 : apart <= 0.05 * std::fabs(fineN);
 }
 
 }  // namespace app

@@ -23,14 +23,19 @@ struct MeshChange {
     bool within = false;
 };
 MeshChange ChangeOf(double coarse, double fine);
+// The same rule for a held state's force: within 5 %, except that forces under 20 mN are compared in
+// absolute terms (1 mN, what a bench's load cell for soft muscles resolves).
+bool ForceWithinMeshRule(double coarseN, double fineN);
 inline constexpr const char* kMeshRule =
     "within 5 % of the same design meshed twice as finely in both directions; under 1 % contraction, within 0.05 percentage points";
+inline constexpr const char* kForceMeshRule = "the held force within 5 % of the same at twice the mesh; under 20 mN, within 1 mN";
 
 // The check as simulate and the searches report it ("mesh_check"): the refined mesh, its status and
 // contraction, the difference from `coarseContraction` in points and percent, the verdict and the rule;
-// with a held state's force on both meshes (`coarseBlockingForceN` finite), that force refined and how
-// far it moved, in percent: a held state's stability can depend on the mesh (docs/models/shell.md
-// section 2), and this is where it shows.
+// with a held state's force on both meshes (`coarseBlockingForceN` finite), that force refined, how
+// far it moved in percent and its own verdict: a held state's stability can depend on the mesh, and a
+// bowed held state converges only at first order (docs/models/shell.md section 12), so a contraction
+// that has converged says nothing of its held force.
 nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine, double coarseBlockingForceN = NAN);
 
 }  // namespace app

@@ -505,6 +505,8 @@ TEST_F(ShellCli, MeshCheckReportsTheSameDesignAtTwiceTheMeshAgainstTheRule) {
     const double coarseForce = json["blocking_force_n"].get<double>(), fineForce = fine["blocking_force_n"].get<double>();
     EXPECT_EQ(check["blocking_force_n"], fine["blocking_force_n"]);
     EXPECT_NEAR(check["blocking_force_difference_percent"].get<double>(), 100 * std::fabs(fineForce - coarseForce) / std::fabs(fineForce), 1e-9);
+    EXPECT_EQ(check["blocking_force_converged"].get<bool>(),
+              std::fabs(fineForce) < 0.02 ? std::fabs(fineForce - coarseForce) <= 0.001 : 100 * std::fabs(fineForce - coarseForce) / std::fabs(fineForce) <= 5);
     EXPECT_FALSE(nlohmann::json::parse(Run(design + " --ring-vertices 12 --rings 16 --edge-spacing-mm 2").out).contains("mesh_check")) << "only when asked";
     ExpectRefused("simulate --model thesis --mesh-check", "--mesh-check");
 }
