@@ -4,7 +4,7 @@
 // Fibres' cost (issue 11) on the same sine and on two of the GA's fibre designs, each beside the same
 // design without fibres; one assembly with and without the fibre terms. The counters give the
 // Newton iterations and factorisations per evaluation. Self-contact's cost with no wall near another
-// and on a collapsed tube.
+// and on a collapsed tube; a compressed held state's sideways push.
 //   build/tests/shell_bench --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
@@ -110,6 +110,21 @@ void BM_Assembly(benchmark::State& state, bool hessian, bool fibres) {
     }
 }
 
+// A held state that pushes on its clamps, pushed a tube's diameter sideways (docs/models/shell.md
+// section 12): the +/-70 deg braid on the plain tube (the fitted Ecoflex 00-30, 3 kPa) inflated, its
+// blocking force with the push (it bows) and without (straight), and a contracting design whose
+// held state pulls (the +/-30 deg braid: no push).
+void BM_HeldPush(benchmark::State& state, double angleDeg, double pushDiameters) {
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Shell);
+    job.shape = sim::CylinderShape{};
+    job.Shell().fibres.layout = sim::FibreLayout::Braid;
+    job.Shell().fibres.angleDeg = angleDeg;
+    job.Shell().solver.heldPushDiameters = pushDiameters;
+    Measure(state, job);
+    state.counters["blocking_force_n"] = sim::Evaluate(job).shell.blockingForceN;
+}
+
 }  // namespace
 
 // Self-contact: the sine above with contact on, where no wall comes near another (what a search
@@ -142,6 +157,9 @@ BENCHMARK_CAPTURE(BM_GaDesign, S5_2F_best, 0, true)->Unit(benchmark::kMillisecon
 BENCHMARK_CAPTURE(BM_GaDesign, S5_2F_best_without_fibres, 0, false)->Unit(benchmark::kMillisecond)->MinTime(2);
 BENCHMARK_CAPTURE(BM_GaDesign, S5_4F_individual, 1, true)->Unit(benchmark::kMillisecond)->MinTime(3);
 BENCHMARK_CAPTURE(BM_GaDesign, S5_4F_individual_without_fibres, 1, false)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_HeldPush, braid70_pushed, 70.0, 1.0)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_HeldPush, braid70_not_pushed, 70.0, 0.0)->Unit(benchmark::kMillisecond)->MinTime(2);
+BENCHMARK_CAPTURE(BM_HeldPush, braid30_pulls, 30.0, 1.0)->Unit(benchmark::kMillisecond)->MinTime(2);
 BENCHMARK_CAPTURE(BM_Assembly, newton_braid, true, true)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Assembly, newton_without_fibres, true, false)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Assembly, gradient_braid, false, true)->Unit(benchmark::kMicrosecond);
