@@ -174,6 +174,7 @@ struct ShellOutputs {
   minGapMm @36 :Float64 = nan;      # contact on: the walls' smallest gap beyond a wall thickness
   contactForceN @37 :Float64 = nan; # contact on: the active pairs' normal forces summed
   collapsePressureKpa @38 :Float64 = nan;  # vacuum: where the wall collapsed
+  heldBowMm @39 :Float64 = nan;     # the held state's rings' centres' largest distance from the axis
 }
 
 struct EvalResult {

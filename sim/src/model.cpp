@@ -65,6 +65,7 @@ void ShellOutputList(const SimResult& r, const EvalJob& job, OutputVisitor& v) {
     if (job.Shell().load.pressureKpa < 0) v.Number("collapse_pressure_kpa", "kPa", s.collapsePressureKpa);
     v.Number("blocking_force_n", "N", s.blockingForceN);
     v.Number("stroke_force_n", "N", s.strokeForceN);
+    v.Number("held_bow_mm", "mm", s.heldBowMm);
     v.Number("axial_stiffness_n_per_mm", "N/mm", s.axialStiffnessNPerMm);
     v.Number("displacement_mm", "mm", s.displacementMm);
     v.Number("twist_deg", "deg", s.twistDeg);

@@ -348,6 +348,7 @@ void SetResultNumbers(schema::EvalResult::Builder r, const sim::SimResult& resul
     s.setTipTiltDeg(o.tipTiltDeg);
     s.setTipForceN(o.tipForceN);
     s.setTipMomentNMm(o.tipMomentNMm);
+    s.setHeldBowMm(o.heldBowMm);
     s.setSiliconeG(o.siliconeG);
     s.setRestMaxRadiusMm(o.restMaxRadiusMm);
     s.setContactPairs(static_cast<unsigned>(o.contactPairs));
@@ -398,6 +399,7 @@ void GetResultNumbers(schema::EvalResult::Reader r, sim::SimResult& result) {
     o.tipTiltDeg = s.getTipTiltDeg();
     o.tipForceN = s.getTipForceN();
     o.tipMomentNMm = s.getTipMomentNMm();
+    o.heldBowMm = s.getHeldBowMm();
     o.siliconeG = s.getSiliconeG();
     o.restMaxRadiusMm = s.getRestMaxRadiusMm();
     o.contactPairs = static_cast<int>(s.getContactPairs());

@@ -30,6 +30,8 @@ struct ShellOutputs {
     double collapsePressureKpa = NAN;              // vacuum: where the wall collapsed (snapped inward), bracketed within the smallest step
     double blockingForceN = NAN;                   // top clamp held at its rest place; + pulls on the supports
     double strokeForceN = NAN;                     // blocked: the top held at its stroke (the isobaric test's force), likewise
+    double heldBowMm = NAN;                        // the held state's bow: its rings' centres' largest distance from the axis,
+                                                   // mm (0: straight); the blocking force's state, or a blocked test's end state
     double axialStiffnessNPerMm = NAN;             // dF/du at the free equilibrium
     double restVolumeMm3 = NAN, volumeMm3 = NAN;   // enclosed, caps included
     double maxStretch = NAN;                       // largest principal stretch of the wall

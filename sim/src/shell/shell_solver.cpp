@@ -877,6 +877,22 @@ struct TubeEvaluation {
     }
 };
 
+// How far a held state bows: the largest distance of a ring's centre (the mean of its vertices) from
+// the axis, mm; 0 when straight.
+double BowMm(const TubeEvaluation& t, const Positions& x) {
+    const int perRing = t.def.geometry.ringVertices, rings = RingCount(t.def.geometry);
+    double bow = 0;
+    for (int j = 0; j < rings; ++j) {
+        double cx = 0, cy = 0;
+        for (int i = 0; i < perRing; ++i) {
+            cx += x.x[j * perRing + i];
+            cy += x.y[j * perRing + i];
+        }
+        bow = std::max(bow, std::hypot(cx, cy) / perRing);
+    }
+    return bow;
+}
+
 // A compressed held state pushed sideways (docs/models/shell.md section 12, held states). A coarse
 // mesh can hold a compressed tube straight far past the load at which a finer one, and the bench,
 // bow it sideways: the +/-70 deg braid held at its rest length at 3 kPa is straight (-0.172 N) and
@@ -1096,6 +1112,7 @@ void Measure(TubeEvaluation& t, SimResult& result) {
     out.volumeMm3 = EnclosedVolume(t.problem, t.x);
     MaxStretchAndStress(t.problem, t.x, &out.maxStretch, &out.maxStressKpa);
     out.maxStressKpa *= 1e3;
+    if (t.solver.holdAxial) out.heldBowMm = BowMm(t, t.x);  // a blocked test's end state, a held stroke's
     FibreOutputs(t.problem, t.x, t.length, out);
     if (t.problem.contact) {
         const ContactSummary contact = SummariseContact(*t.problem.contact, t.problem.barrier, t.x);
@@ -1165,6 +1182,8 @@ void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::V
         if (t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0) {
             PushCompressedHeldState(t, held, finalLoad, &heldExact);
             t.out.blockingForceN = heldExact.axialForce;
+            PositionsOf(problem, held, heldPositions);
+            t.out.heldBowMm = BowMm(t, heldPositions);
         }
     }
     t.solver.holdAxial = false;

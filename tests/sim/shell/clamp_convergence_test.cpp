@@ -196,18 +196,7 @@ HeldState BraidHeldAtRestLength(int ringVertices, int rings, double edgeSpacingM
     d.load.steps = 1;  // the end state alone: each recorded step's push costs as much again
     const sim::SimResult r = sim::Evaluate(job);
     EXPECT_EQ(r.status, sim::Status::Ok) << ringVertices << " x " << rings;
-    // The bow: the farthest a ring's centre lies from the axis.
-    double bow = 0;
-    const int H = sim::RingCount(d.geometry);
-    for (int j = 0; j < H; ++j) {
-        double x = 0, y = 0;
-        for (int i = 0; i < ringVertices; ++i) {
-            x += r.final.x[j * ringVertices + i] / ringVertices;
-            y += r.final.y[j * ringVertices + i] / ringVertices;
-        }
-        bow = std::max(bow, std::hypot(x, y));
-    }
-    return {r.shell.blockingForceN, bow};
+    return {r.shell.blockingForceN, r.shell.heldBowMm};
 }
 
 TEST(HeldStates, ACompressedBraidBowsSidewaysAtEveryMesh) {
@@ -233,11 +222,18 @@ TEST(HeldStates, EveryRouteToTheHeldBraidEndsBowed) {
     ASSERT_EQ(r.status, sim::Status::Ok);
     ASSERT_EQ(r.shell.isobaricForceN.size(), 3u);
     EXPECT_GT(r.shell.blockingForceN, -0.09) << "bowed";
+    EXPECT_GT(r.shell.heldBowMm, 15);
     EXPECT_NEAR(r.shell.isobaricForceN[0], r.shell.blockingForceN, 1e-6);
     job.Shell().load.kind = sim::ShellLoad::Blocked;
     const sim::SimResult blocked = sim::Evaluate(job);
     ASSERT_EQ(blocked.status, sim::Status::Ok);
     EXPECT_NEAR(blocked.shell.strokeForceN, r.shell.blockingForceN, 1e-6);
+    EXPECT_NEAR(blocked.shell.heldBowMm, r.shell.heldBowMm, 1e-3);
+    // Unpushed, the same held state is the straight one.
+    job.Shell().solver.heldPushDiameters = 0;
+    const sim::SimResult straight = sim::Evaluate(job);
+    EXPECT_NEAR(straight.shell.strokeForceN, -0.172, 0.002);
+    EXPECT_LT(straight.shell.heldBowMm, 1e-6);
 }
 
 }  // namespace
