@@ -686,10 +686,9 @@ struct Solver {
     Eigen::VectorXd SoftestDirection() {
         if (!(exactFactor->SmallestPivot() > 0)) return {};
         Eigen::VectorXd d = Eigen::VectorXd::Ones(problem.unknowns);
+        HoldGradient(d);
         for (int k = 0; k < kSoftestIterations; ++k) {
-            HoldGradient(d);
-            d = exactFactor->Solve(d);
-            HoldGradient(d);
+            d = exactFactor->Solve(d);  // the held unknown stays 0: HoldMatrix decoupled its row and column
             const double largest = d.lpNorm<Eigen::Infinity>();
             if (!d.allFinite() || !(largest > 0)) return {};
             d /= largest;
@@ -903,14 +902,12 @@ double BowMm(const TubeEvaluation& t, const Positions& x) {
 // its largest; on the braid at 30 x 30, 3 mm comes back straight and 5 to 20 mm bow it) and
 // minimised again: a stable state of lower energy found so replaces it, with its assembly in
 // *exact. True when it did; otherwise `held` and *exact stand (exactFactor may then be another
-// state's). A tube in tension does not bow, so a held state that pulls is left as it is.
-bool PushCompressedHeldState(TubeEvaluation& t, Eigen::VectorXd& held, const LoadTerms& load, EnergyResult* exact) {
-    if (!(exact->axialForce < 0) || !(t.def.solver.heldPushDiameters > 0)) return false;
+// state's). A free top, or a tube in tension, does not bow so: those are left as they are.
+bool PushCompressedHeldState(TubeEvaluation& t, Eigen::VectorXd& held, const LoadTerms& load, double volumeLimit, EnergyResult* exact) {
+    if (!t.solver.holdAxial || !(exact->axialForce < 0) || !(t.def.solver.heldPushDiameters > 0)) return false;
     Eigen::VectorXd push = t.solver.SoftestDirection();
     if (push.size() == 0) return false;
     push *= t.def.solver.heldPushDiameters * 2 * t.def.geometry.radiusMm;
-    PositionsOf(t.problem, held, t.x);
-    const double volumeLimit = t.VolumeLimitAfter(EnclosedVolume(t.problem, t.x));
     Eigen::VectorXd pushed = held + t.solver.ImpactFree(held, push) * push;
     const NewtonEnd end = t.solver.Minimise(pushed, load, volumeLimit);
     // Back where it was (most pushes), or higher: no need to look at its stability.
@@ -926,14 +923,25 @@ bool PushCompressedHeldState(TubeEvaluation& t, Eigen::VectorXd& held, const Loa
     return true;
 }
 
+// Solver::StableState, and then, for a held top, the push above: every held state a stage reports
+// goes through here. Returns StableState's count of unstable directions; *moved (if given) says
+// whether q changed.
+int SettleState(TubeEvaluation& t, Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit, EnergyResult* exact, bool* moved = nullptr) {
+    bool escaped = false;
+    const int negative = t.solver.StableState(q, load, volumeLimit, exact, &escaped);
+    const bool pushed = negative == 0 && PushCompressedHeldState(t, q, load, volumeLimit, exact);
+    if (moved) *moved = escaped || pushed;
+    return negative;
+}
+
 // A held test's recorded point on its way to the target, pushed as its end state is
 // (SettleOnStableState) when it pushes on its clamps, so that the force-pressure curve follows the
 // bowed branch from where the tube bows. True when the state moved.
-bool PushHeldPoint(TubeEvaluation& t, double s) {
+bool PushHeldPoint(TubeEvaluation& t, double s, double volumeLimit) {
     const LoadTerms load = t.LoadAt(s);
     if (!(AssembleEnergy(t.problem, t.q, load, t.solver.terms, true, nullptr, HessianKind::Exact).axialForce < 0)) return false;  // pulls: nothing to factorise
     EnergyResult exact;
-    return t.solver.ExactInertia(t.q, load, &exact) == 0 && PushCompressedHeldState(t, t.q, load, &exact);
+    return t.solver.ExactInertia(t.q, load, &exact) == 0 && PushCompressedHeldState(t, t.q, load, volumeLimit, &exact);
 }
 
 // Stage: the load path in load.steps steps to the target, each point recorded on the curve. Volume
@@ -1039,7 +1047,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 t.q = std::move(trial);
                 if (beforeCollapse && !collapsed) volumePerLoad = (volume - lastVolume) / (next - reached);
                 reached = next;
-                if (load.kind == ShellLoad::Blocked && next == goal && goal < 1 && PushHeldPoint(t, next)) {
+                if (load.kind == ShellLoad::Blocked && next == goal && goal < 1 && PushHeldPoint(t, next, t.VolumeLimitAfter(volume))) {
                     PositionsOf(t.problem, t.q, t.x);
                     volume = EnclosedVolume(t.problem, t.x);
                 }
@@ -1085,10 +1093,9 @@ Status FollowLoadPath(TubeEvaluation& t) {
 int SettleOnStableState(TubeEvaluation& t, const LoadTerms& finalLoad) {
     EnergyResult exact;
     if (t.load.kind == ShellLoad::Volume) return t.solver.ExactInertia(t.q, finalLoad, &exact);  // volume control holds a state past the maximum
-    bool escaped = false;
-    const int negative = t.solver.StableState(t.q, finalLoad, t.VolumeLimitAfter(t.out.curveVolumeMm3.back()), &exact, &escaped);
-    if (negative == 0 && t.load.kind == ShellLoad::Blocked && PushCompressedHeldState(t, t.q, finalLoad, &exact)) escaped = true;
-    if (escaped) {
+    bool moved = false;
+    const int negative = SettleState(t, t.q, finalLoad, t.VolumeLimitAfter(t.out.curveVolumeMm3.back()), &exact, &moved);
+    if (moved) {
         ShellOutputs& out = t.out;
         PositionsOf(t.problem, t.q, t.x);
         out.targetPressureKpa = t.GaugeKpa(1.0);  // status ok: the path reached its target
@@ -1179,8 +1186,7 @@ void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::V
         Positions heldPositions;
         PositionsOf(problem, held, heldPositions);
         EnergyResult heldExact;
-        if (t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0) {
-            PushCompressedHeldState(t, held, finalLoad, &heldExact);
+        if (SettleState(t, held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0) {
             t.out.blockingForceN = heldExact.axialForce;
             PositionsOf(problem, held, heldPositions);
             t.out.heldBowMm = BowMm(t, heldPositions);
@@ -1240,8 +1246,7 @@ std::vector<IsobaricPoint> HeldStrokes(TubeEvaluation& t, const LoadTerms& final
             Positions x;
             PositionsOf(problem, held, x);
             EnergyResult exact;
-            const int negative = t.solver.StableState(held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, x)), &exact);
-            if (negative == 0) PushCompressedHeldState(t, held, finalLoad, &exact);
+            const int negative = SettleState(t, held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, x)), &exact);
             PositionsOf(problem, held, x);
             if (negative != 0) point.status = Status::LimitPoint;
             else if (t.def.solver.selfContact && SelfIntersects(problem, x)) point.status = Status::SelfIntersection;
