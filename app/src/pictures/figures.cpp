@@ -566,7 +566,7 @@ std::vector<std::string> WriteDesignFigures(render::MeshRenderer& renderer, cons
     }
     if (f.job.model != sim::ModelKind::Thesis && f.inflated && !f.inflated->shell.curvePressureKpa.empty()) {
         const std::string name = f.prefix + "pressure_curve.png";
-        WritePng((folder / name).string(), PressureCurveImage(f.title, *f.inflated), figureLevel);
+        WritePng((folder / name).string(), PressureCurveImage(f.title, *f.inflated, f.job.Shell().load.kind == sim::ShellLoad::Blocked), figureLevel);
         written.push_back(name);
     }
     if (f.turntableFrames > 0 && f.inflated) {

@@ -254,15 +254,15 @@ render::Image HypervolumeImage(const PlotContext& e, const std::vector<std::pair
     return plots->RenderLines(e.title + "  -  hypervolume (reference point fixed at generation 0)", {plot});
 }
 
-render::Image PressureCurveImage(const std::string& title, const sim::SimResult& r) {
+render::Image PressureCurveImage(const std::string& title, const sim::SimResult& r, bool topHeld) {
     const sim::ShellOutputs& o = r.shell;
     auto plots = MakePlots(1024, 640);
     render::LinePlot plot;
     plot.xLabel = "gauge pressure (kPa)";
     plot.zeroLine = true;
-    // A blocked test holds the top clamp: its curve is the force on it (the contraction is the held
-    // stroke at every step). Else the contraction, from rest: zero pressure, zero contraction.
-    const bool held = std::isfinite(o.strokeForceN) && o.curveForceN.size() == o.curvePressureKpa.size();
+    // A blocked test (topHeld) holds the top clamp: its curve is the force on it (the contraction is
+    // the held stroke at every step). Else the contraction, from rest: zero pressure, zero contraction.
+    const bool held = topHeld && o.curveForceN.size() == o.curvePressureKpa.size();
     const std::vector<double>& along = held ? o.curveForceN : o.curveContractionPercent;
     plot.yLabel = held ? "force on the held top clamp (N, + pulls on the supports)" : "contraction (percent, positive = shorter)";
     render::LineSeries curve{"equilibrium at each load step", {}, {}, {0.13f, 0.35f, 0.75f}, true};

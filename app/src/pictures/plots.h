@@ -53,9 +53,10 @@ render::Image ParetoImage(const PlotContext& e, const std::vector<ParetoPoint>& 
 // The hypervolume of each run against its generation.
 render::Image HypervolumeImage(const PlotContext& e, const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>& runs);
 
-// A membrane or shell result's contraction-pressure curve at its load steps, the target pressure
-// and the limit point (the pressure maximum) marked when met.
-render::Image PressureCurveImage(const std::string& title, const sim::SimResult& result);
+// A membrane or shell result's contraction-pressure curve at its load steps (with the top held, a
+// blocked test's: the force on it against pressure), the target pressure and the limit point (the
+// pressure maximum) marked when met.
+render::Image PressureCurveImage(const std::string& title, const sim::SimResult& result, bool topHeld);
 
 // A muscle's characteristic curves (actuator characterize): the isobaric force against contraction,
 // one line per pressure (contraction[k], force[k] at pressures[k], NaN where a point failed); the
