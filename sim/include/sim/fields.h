@@ -218,6 +218,8 @@ inline FieldUse ShellFieldUse(const sim::ShellDef& def, std::string_view key) {
     if (key == "force_n") return unless(load != L::Blocked, "kind", "inflate, gas, volume or force", sim::Name(load));
     if (key == "stroke_percent" || key == "stroke_mm") return unless(load == L::Blocked, "kind", "blocked", sim::Name(load));
     if (key == "isobaric_points") return unless(load == L::Inflate, "kind", "inflate", sim::Name(load));
+    // The held states it pushes: the blocking force (inflate, gas), the held strokes, a blocked test.
+    if (key == "held_push_diameters") return unless(load == L::Inflate || load == L::Gas || load == L::Blocked, "kind", "inflate, gas or blocked", sim::Name(load));
     if (key == "torque_n_mm") return unless(def.ends.twist == sim::TwistEnd::Loaded, "twist", "loaded", sim::Name(def.ends.twist));
     // Sliding ends hold the tube's rotation by an anchor; only clamps turn.
     if (key == "twist" || key == "tip") return unless(def.geometry.ends == sim::EndCondition::Clamped, "ends", "clamped", sim::Name(def.geometry.ends));

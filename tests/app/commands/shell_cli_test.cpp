@@ -413,6 +413,7 @@ TEST_F(ShellCli, AnInflationWithIsobaricPointsGivesTheWorkOfAStroke) {
     EXPECT_TRUE(plain["work_per_stroke_mj"].is_null());
     EXPECT_EQ(plain["contraction_percent"], j["contraction_percent"]) << "the held strokes come after the free state is measured";
     ExpectRefused(braid + " --load blocked --isobaric-points 4", "--isobaric-points applies to --load inflate, not --load blocked");
+    ExpectRefused("simulate --model shell --load force --force-n 0.1 --held-push-diameters 2", "--held-push-diameters applies to --load inflate, gas or blocked, not --load force");
 
     const std::string study = R"({"id": "w", "seed": 5, "model": {"name": "membrane", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "fibres": "braid",
         "fibre_angle_deg": 30, "load": {"pressure_kpa": 5, "steps": 1LOAD}}, "optimizer": {"algorithm": "nsga2", "population": 8, "generations": 1,
