@@ -87,15 +87,18 @@ TEST(ClampInMillimetres, ATubeWithoutFreeLengthOrFreeRingsIsRefused) {
 // Convergence of the four designs of docs/models/shell.md section 2 on the thesis tube (R 5 mm, L 150
 // mm, 1 mm of Ecoflex 00-30, clamps 5.17 mm) at 1 kPa, on the graded family R x rings / edge spacing
 // 15 x 15 / 2 mm, 30 x 30 / 1 mm (the default), 60 x 59 / 0.5 mm (every length halved, the clamps
-// the same length): the differences shrink at the observed order (about 1 where the clamp's edge
-// dominates, 2 for the +/-70 deg braid). Against the first-order extrapolation 2 x fine - default
-// (the order section 2 measures on the finer family up to 120 x 117; for a second-order design it
-// overshoots, which only makes the check stricter) the default is as far off as section 2 says, and
-// nearer than the evenly spaced 30 x 30 it replaced. Had the clamp followed the ring count again,
-// each level would be another problem and the sequence would not converge to it.
+// the same length). The differences shrink at about second order (1.5-1.8 on these coarse levels,
+// 1.9-2.0 from 60 x 59 to 120 x 117): the hinge on each clamp's edge weighs its angle over the free
+// triangle alone (section 4). Over both triangles, as before, the plain tube and the sine converged at
+// order 0.7 and 1.0 and the default was 3.6 % and 2.8 % off. The default is within 2 % of the
+// converged answer, section 2's reference (the finer family up to 120 x 117, extrapolated), which
+// this family's own second-order extrapolation reproduces within 0.5 %, and nearer than the evenly
+// spaced 30 x 30 it replaced. Had the clamp followed the ring count again, each level would be
+// another problem and the sequence would not converge to it.
 struct Design {
     const char* name;
     sim::Shape shape;
+    double referencePercent;  // contraction at 1 kPa, docs/models/shell.md section 2
     sim::FibreLayout fibres = sim::FibreLayout::None;
     double fibreAngleDeg = 0;
 };
@@ -129,37 +132,44 @@ Convergence GradedFamily(const Design& design) {
     c.fine = ContractionAt1Kpa(design, 60, 59, 0.5);
     const double first = c.middle - c.coarse, second = c.fine - c.middle;
     c.order = std::log2(std::fabs(first / second));
-    c.extrapolated = 2 * c.fine - c.middle;
+    c.extrapolated = c.fine + (c.fine - c.middle) / 3;  // Richardson, second order
     return c;
 }
 
-void ExpectConverges(const Design& design, double lowestOrder, double highestOrder, double defaultError) {
-    const Convergence c = GradedFamily(design);
-    SCOPED_TRACE(::testing::Message() << design.name << ": " << c.coarse << ", " << c.middle << ", " << c.fine << " %, order " << c.order
-                                      << ", extrapolated to first order " << c.extrapolated << " %");
-    EXPECT_GT((c.middle - c.coarse) * (c.fine - c.middle), 0) << "monotone";
-    EXPECT_GE(c.order, lowestOrder);
-    EXPECT_LE(c.order, highestOrder);
-    const double defaultOff = std::fabs(c.middle / c.extrapolated - 1);
-    EXPECT_LT(defaultOff, defaultError) << "the default mesh";
-    const double evenlySpaced = ContractionAt1Kpa(design, 30, 30, 0);
-    EXPECT_GT(std::fabs(evenlySpaced / c.extrapolated - 1), defaultOff) << "evenly spaced 30 x 30: " << evenlySpaced << " %";
+void ExpectTheDefaultNearTheConvergedAnswer(const Design& design, const Convergence& c) {
+    EXPECT_LT(std::fabs(c.middle / design.referencePercent - 1), 0.02) << "the default mesh against the reference " << design.referencePercent << " %";
+    EXPECT_LT(std::fabs(c.extrapolated / design.referencePercent - 1), 0.005) << "the family's extrapolation against the reference";
 }
 
-TEST(MeshConvergence, ThePlainTube) { ExpectConverges({"plain tube", sim::CylinderShape{}}, 0.6, 1.6, 0.04); }
+void ExpectConvergesAtSecondOrder(const Design& design) {
+    const Convergence c = GradedFamily(design);
+    SCOPED_TRACE(::testing::Message() << design.name << ": " << c.coarse << ", " << c.middle << ", " << c.fine << " %, order " << c.order
+                                      << ", extrapolated " << c.extrapolated << " %");
+    EXPECT_GT((c.middle - c.coarse) * (c.fine - c.middle), 0) << "monotone";
+    EXPECT_GE(c.order, 1.3);
+    EXPECT_LE(c.order, 2.5);
+    ExpectTheDefaultNearTheConvergedAnswer(design, c);
+    const double evenlySpaced = ContractionAt1Kpa(design, 30, 30, 0);
+    EXPECT_GT(std::fabs(evenlySpaced / design.referencePercent - 1), std::fabs(c.middle / design.referencePercent - 1))
+        << "evenly spaced 30 x 30: " << evenlySpaced << " %";
+}
 
-TEST(MeshConvergence, TheSineOfAmplitude1_3) { ExpectConverges({"sine A = 1.3", sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}}, 0.6, 1.6, 0.035); }
+TEST(MeshConvergence, ThePlainTube) { ExpectConvergesAtSecondOrder({"plain tube", sim::CylinderShape{}, -0.655}); }
 
-TEST(MeshConvergence, TheBraidAt70Degrees) { ExpectConverges({"braid +/-70 deg", sim::CylinderShape{}, sim::FibreLayout::Braid, 70}, 1.5, 2.5, 0.02); }
+TEST(MeshConvergence, TheSineOfAmplitude1_3) { ExpectConvergesAtSecondOrder({"sine A = 1.3", sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, -0.771}); }
 
-// The +/-30 deg braid's fibres hold the wall's shape: the default and 60 x 59 / 0.5 mm agree within
-// 0.1 %, 15 x 15 / 2 mm within 1.2 %, and the 120 x 117 level of section 2 turns back within 0.1 %, so
-// there is no order to observe.
+TEST(MeshConvergence, TheBraidAt70Degrees) {
+    ExpectConvergesAtSecondOrder({"braid +/-70 deg", sim::CylinderShape{}, -3.075, sim::FibreLayout::Braid, 70});
+}
+
+// The +/-30 deg braid's fibres hold the wall's shape: the three levels agree within 1.4 %, and the
+// 120 x 117 level reads the same as 60 x 59 within 0.01 %, so there is no order to observe.
 TEST(MeshConvergence, TheBraidAt30Degrees) {
-    const Design braid{"braid +/-30 deg", sim::CylinderShape{}, sim::FibreLayout::Braid, 30};
+    const Design braid{"braid +/-30 deg", sim::CylinderShape{}, 3.093, sim::FibreLayout::Braid, 30};
     const Convergence c = GradedFamily(braid);
-    EXPECT_NEAR(c.middle / c.fine, 1, 0.005) << c.middle << " against " << c.fine;
-    EXPECT_LT(std::fabs(c.middle - c.fine), std::fabs(c.coarse - c.fine)) << c.coarse << ", " << c.middle << ", " << c.fine;
+    SCOPED_TRACE(::testing::Message() << c.coarse << ", " << c.middle << ", " << c.fine << " %");
+    EXPECT_LT(std::fabs(c.middle - c.fine), std::fabs(c.coarse - c.fine));
+    ExpectTheDefaultNearTheConvergedAnswer(braid, c);
 }
 
 // Held states at every mesh (docs/models/shell.md section 12): the +/-70 deg braid (it lengthens
