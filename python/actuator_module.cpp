@@ -27,6 +27,7 @@
 #include "support/errors.h"
 #include "evaluation/characterize.h"
 #include "evaluation/evaluator.h"
+#include "evaluation/mesh_check.h"
 #include "experiments/experiment.h"
 #include "experiments/experiment_runner.h"
 #include "formats/files.h"
@@ -560,6 +561,26 @@ PYBIND11_MODULE(actuator, m) {
                                            py::arg("field_data") = field);
             },
             "The deformed wall and its fields as a meshio.Mesh (needs meshio: apt-get install python3-meshio), the same arrays as to_vtu's file.")
+        .def(
+            "mesh_check",
+            [](const Evaluated& e) {
+                if (e.job.model == sim::ModelKind::Thesis)
+                    throw py::value_error("mesh_check: the thesis model's 30 x 30 helix is part of its definition; the check is for membrane and shell");
+                const sim::EvalJob refined = app::RefinedJob(e.job);
+                sim::SimResult fine;
+                {
+                    py::gil_scoped_release release;
+                    fine = sim::Evaluate(refined);
+                }
+                const bool ok = e.result.status == sim::Status::Ok;
+                const nlohmann::json check =
+                    app::MeshCheckJson(ok ? e.result.contractionPercent : NAN, refined, fine, ok ? e.result.shell.blockingForceN : NAN);
+                return py::module_::import("json").attr("loads")(check.dump());
+            },
+            "Evaluates the same design meshed twice as finely in both directions (the clamps keep their length) and returns what "
+            "`actuator simulate --mesh-check` reports as mesh_check: the refined mesh, its status and contraction, how far the "
+            "contraction moved (points and percent), 'converged' by docs/models/shell.md section 2's rule, and for a held state the "
+            "blocking force refined with its own verdict. Membrane and shell only; it costs about 5-8 evaluations' time.")
         .def_property_readonly("shell", &ModelOutputs,
                                "membrane and shell models: the pressure-contraction-volume curve (NumPy arrays) and the numbers at the "
                                "target pressure, named as in `actuator simulate`'s JSON, units in the names; {} for the thesis model")

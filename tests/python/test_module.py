@@ -623,3 +623,17 @@ def test_vacuum_with_contact_equals_the_command_line():
     assert 0 < ours.shell["min_gap_mm"] == cli["min_gap_mm"] < 0.1
     with pytest.raises(ValueError, match="contact_gap_fraction: has no effect: it applies when contact is on, not off"):
         actuator.evaluate(actuator.cylinder(), model="shell", contact=actuator.Contact(contact="off", contact_gap_fraction=0.05))
+
+
+def test_mesh_check_is_the_command_lines():
+    args = ["--model", "shell", "--shape", "sine", "--amplitude", "1.3", "--length-mm", "60", "--ring-vertices", "20", "--rings", "16",
+            "--pressure-kpa", "1", "--mesh-check"]
+    cli = simulate(*args)["mesh_check"]
+    ours = actuator.evaluate(actuator.sine(1.3), model="shell", geometry=actuator.Geometry(length_mm=60, ring_vertices=20, rings=16),
+                             load=actuator.Load(pressure_kpa=1)).mesh_check()
+    assert ours == cli
+    assert ours["status"] == "ok" and ours["mesh"].startswith("40 vertices per ring")
+    assert ours["converged"] == (ours["relative_difference_percent"] <= 5 or abs(ours["contraction_percent"]) < 1 and ours["difference_points"] <= 0.05)
+    assert ours["blocking_force_n"] < 0 and isinstance(ours["blocking_force_converged"], bool)
+    with pytest.raises(ValueError, match="mesh_check: the thesis model"):
+        actuator.evaluate(actuator.sine(4.1), model="thesis").mesh_check()
