@@ -75,15 +75,20 @@ std::string SummaryJson(const Experiment& e, const ExperimentOutcome& o) {
 static void CheckBestMesh(RunContext& c) {
     const sim::EvalJob fine = RefinedJob(*c.outcome.bestJob);
     const sim::SimResult r = c.recorder.EvaluateOne(fine, {Role::Figure, 0, -1, "mesh check of the best design"});
-    Json check = MeshCheckJson(c.outcome.bestFitness, fine, r);
+    Json check = MeshCheckJson(c.outcome.bestFitness, fine, r, c.outcome.bestBlockingForceN);
     // The report's line reads the verdict MeshCheckJson reached: a difference only where both meshes gave one.
-    c.outcome.details.push_back(
+    std::string line =
         check["difference_points"].is_number()
             ? fmt::format("mesh check of the best design: {:+.3f} % here, {:+.3f} % at twice the mesh ({}), {:.3f} points ({:.1f} %) apart: {}",
                           c.outcome.bestFitness, r.contractionPercent, check["mesh"].get<std::string>(), check["difference_points"].get<double>(),
                           check["relative_difference_percent"].get<double>(),
                           check["converged"].get<bool>() ? "converged by the mesh rule" : "outside the mesh rule, so not yet converged")
-            : fmt::format("mesh check of the best design: at twice the mesh it is {}", sim::Name(r.status)));
+            : fmt::format("mesh check of the best design: at twice the mesh it is {}", sim::Name(r.status));
+    if (check.contains("blocking_force_n") && check["blocking_force_n"].is_number())
+        line += fmt::format("; its held force {:.4g} N here, {:.4g} N at twice the mesh: {}", c.outcome.bestBlockingForceN,
+                            check["blocking_force_n"].get<double>(),
+                            check["blocking_force_converged"].get<bool>() ? "converged by the force rule" : "outside the force rule");
+    c.outcome.details.push_back(line);
     check["best_contraction_percent"] = std::isfinite(c.outcome.bestFitness) ? Json(c.outcome.bestFitness) : Json(nullptr);
     c.outcome.meshCheckJson = check.dump();
 }

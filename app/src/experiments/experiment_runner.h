@@ -38,6 +38,7 @@ struct ExperimentOutcome {
     std::vector<ComparisonRow> rows;
     std::optional<sim::EvalJob> bestJob;  // the best design found (sweeps and GA runs), with its fitness
     double bestFitness = NAN;
+    double bestBlockingForceN = NAN;  // membrane and shell: the best design's held force (NaN when it has none)
     std::vector<std::string> details;   // lines such as the best genome of each run
     std::string meshCheckJson;          // with RunOptions::meshCheck: the best design at twice the mesh, as JSON
     std::string tables;                 // markdown tables beside the rows (the thesis's designs against ours)

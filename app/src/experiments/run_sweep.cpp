@@ -252,6 +252,7 @@ void RunSweep(RunContext& c) {
         c.outcome.rows.push_back({"best fitness", fitness[static_cast<size_t>(best)], e.thesisResult.bestFitness});
         c.outcome.bestJob = grid[static_cast<size_t>(best)];
         c.outcome.bestFitness = fitness[static_cast<size_t>(best)];
+        c.outcome.bestBlockingForceN = c.recorder.ReadBack({static_cast<std::uint64_t>(best)}).at(0).result.shell.blockingForceN;
         for (const auto& axis : axes) {
             double thesis = NAN;
             for (const auto& [parameter, value] : e.thesisResult.best)

@@ -132,6 +132,7 @@ void RunSearch(RunContext& c) {
     if (best) {
         c.outcome.bestJob = best->job;
         c.outcome.bestFitness = best->value;
+        c.outcome.bestBlockingForceN = c.recorder.ReadBack({runs[bestRun]->Cache().Of(best->key).id}).at(0).result.shell.blockingForceN;
     }
     if (!e.render.figures) return;
 

@@ -513,7 +513,7 @@ TEST_F(ShellCli, MeshCheckReportsTheSameDesignAtTwiceTheMeshAgainstTheRule) {
 }
 
 // sweep --mesh-check: the best design again at twice the mesh, in summary.json and the report, equal
-// to simulating that design at that mesh; a thesis-model experiment is refused.
+// to simulating that design at that mesh, its held force included; a thesis-model experiment is refused.
 TEST_F(ShellCli, ASweepsMeshCheckIsItsBestDesignAtTwiceTheMesh) {
     Write("checked.json", R"({"id": "c", "model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 2}, "load": {"steps": 2},
         "fibres": "braid"}, "sweep": {"shape": {"family": "sine", "amplitude": 1, "phase": ["pi/2", "pi/2"]},
@@ -527,10 +527,18 @@ TEST_F(ShellCli, ASweepsMeshCheckIsItsBestDesignAtTwiceTheMesh) {
     for (const auto& row : summary["results"])
         if (row["quantity"] == "best fibre_angle_deg") bestAngle = row["ours"].get<double>();
     ASSERT_TRUE(std::isfinite(bestAngle));
-    const auto fine = nlohmann::json::parse(Run("simulate --model shell --shape sine --amplitude 1 --phase pi/2,pi/2 --fibres braid --steps 2 "
-                                                "--ring-vertices 24 --rings 31 --edge-spacing-mm 1 --fibre-angle-deg " + std::to_string(bestAngle)).out);
+    const std::string best = "simulate --model shell --shape sine --amplitude 1 --phase pi/2,pi/2 --fibres braid --steps 2 --fibre-angle-deg " + std::to_string(bestAngle);
+    const auto fine = nlohmann::json::parse(Run(best + " --ring-vertices 24 --rings 31 --edge-spacing-mm 1").out);
     EXPECT_EQ(check["contraction_percent"], fine["contraction_percent"]);
     EXPECT_THAT(check["mesh"].get<std::string>(), HasSubstr("24 vertices per ring x " + std::to_string(fine["model"]["rings_used"].get<int>()) + " rings"));
-    EXPECT_THAT(Slurp(dir_ / "checked" / "report.md"), HasSubstr("mesh check of the best design: "));
+    // The best design's held force, refined as simulate --mesh-check refines it.
+    const auto coarse = nlohmann::json::parse(Run(best + " --ring-vertices 12 --rings 16 --edge-spacing-mm 2 --mesh-check").out);
+    ASSERT_TRUE(fine["blocking_force_n"].is_number());
+    EXPECT_EQ(check["blocking_force_n"], fine["blocking_force_n"]);
+    EXPECT_EQ(check["blocking_force_converged"], coarse["mesh_check"]["blocking_force_converged"]);
+    EXPECT_EQ(check["blocking_force_difference_percent"], coarse["mesh_check"]["blocking_force_difference_percent"]);
+    const std::string report = Slurp(dir_ / "checked" / "report.md");
+    EXPECT_THAT(report, HasSubstr("mesh check of the best design: "));
+    EXPECT_THAT(report, HasSubstr("its held force "));
     ExpectRefused("sweep 4.1_amplitude_sweep --out " + Path("thesis") + " --mesh-check", "--mesh-check");
 }
