@@ -976,18 +976,31 @@ Status FollowLoadPath(TubeEvaluation& t) {
         const double smallest = increment / std::pow(2.0, t.def.solver.maxBisections);
         while (reached < goal - 1e-15 && status == Status::Ok) {
             const double next = std::min(goal, reached + increment);
-            Eigen::VectorXd trial = t.q;
-            if (predict && tangent.size() == t.q.size()) {
-                const Eigen::VectorXd predicted = (next - reached) * load.pressureKpa * 1e-3 * tangent;
-                trial += t.solver.ImpactFree(t.q, predicted) * predicted;
-            }
-            if (load.kind == ShellLoad::Blocked) trial[t.problem.axial] = t.HeldAxialAt(next);
+            const bool predicted = predict && tangent.size() == t.q.size();
+            auto start = [&](bool withTangent) {
+                Eigen::VectorXd from = t.q;
+                if (withTangent) {
+                    const Eigen::VectorXd move = (next - reached) * load.pressureKpa * 1e-3 * tangent;
+                    from += t.solver.ImpactFree(t.q, move) * move;
+                }
+                if (load.kind == ShellLoad::Blocked) from[t.problem.axial] = t.HeldAxialAt(next);
+                return from;
+            };
+            Eigen::VectorXd trial = start(predicted);
             // Vacuum: a collapse is bracketed by halving the step, so a trial that is collapsing is
             // stopped as soon as it has lost that much (the smallest step may collapse in full).
             const bool beforeCollapse = collapsing && std::isnan(out.collapsePressureKpa);
             const double collapsedBelow = lastVolume - kCollapseDrop * t.problem.restVolume;
             const double floor = beforeCollapse && increment > smallest ? collapsedBelow : -std::numeric_limits<double>::infinity();
-            const NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor);
+            NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor);
+            // A held tube bowed sideways can turn its bow about the axis at almost no cost, and the
+            // tangent taken beside that direction predicts a move without bound: Newton runs away
+            // from it at any increment, where from the last state it converges. The blocked test
+            // tries the increment from the last state before halving it.
+            if (predicted && load.kind == ShellLoad::Blocked && (end == NewtonEnd::Runaway || end == NewtonEnd::NonFinite || end == NewtonEnd::NotConverged)) {
+                trial = start(false);
+                end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor);
+            }
             if (end == NewtonEnd::OverBudget) {  // halving the step would only spend more
                 status = Status::BudgetExceeded;
                 break;
@@ -1186,9 +1199,12 @@ void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::V
         Positions heldPositions;
         PositionsOf(problem, held, heldPositions);
         EnergyResult heldExact;
-        if (SettleState(t, held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact) == 0) {
+        const int negative = SettleState(t, held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact);
+        PositionsOf(problem, held, heldPositions);
+        // A held state through itself (a big bulb bowed onto its neighbour) has no force to report,
+        // as a blocked test's end state or a held stroke there has none.
+        if (negative == 0 && !(t.def.solver.selfContact && SelfIntersects(problem, heldPositions))) {
             t.out.blockingForceN = heldExact.axialForce;
-            PositionsOf(problem, held, heldPositions);
             t.out.heldBowMm = BowMm(t, heldPositions);
         }
     }
