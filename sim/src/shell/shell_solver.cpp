@@ -1201,7 +1201,7 @@ void BlockingForce(TubeEvaluation& t, const LoadTerms& finalLoad, const Eigen::V
         EnergyResult heldExact;
         const int negative = SettleState(t, held, finalLoad, t.VolumeLimitAfter(EnclosedVolume(problem, heldPositions)), &heldExact);
         PositionsOf(problem, held, heldPositions);
-        // A held state through itself (a big bulb bowed onto its neighbour) has no force to report,
+        // A held state through itself (big bulbs pushed into one another) has no force to report,
         // as a blocked test's end state or a held stroke there has none.
         if (negative == 0 && !(t.def.solver.selfContact && SelfIntersects(problem, heldPositions))) {
             t.out.blockingForceN = heldExact.axialForce;
