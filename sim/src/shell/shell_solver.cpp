@@ -406,13 +406,13 @@ struct Solver {
         return Eigen::VectorXd();
     }
 
-    // Minimises the total energy at `load` from q (in place), in at most def.maxIterations
-    // iterations; Runaway once the volume passes `volumeLimit` or falls below `volumeFloor`.
+    // Minimises the total energy at `load` from q (in place), in at most `maxIterations` iterations
+    // (def.maxIterations when 0); Runaway once the volume passes `volumeLimit` or falls below `volumeFloor`.
     NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity(),
-                       double volumeFloor = -std::numeric_limits<double>::infinity()) {
+                       double volumeFloor = -std::numeric_limits<double>::infinity(), int maxIterations = 0) {
         // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
-        for (int iteration = 0; iteration < def.maxIterations; ++iteration) {
+        for (int iteration = 0; iteration < (maxIterations > 0 ? maxIterations : def.maxIterations); ++iteration) {
             if (SpendIteration()) return NewtonEnd::OverBudget;
             if (!std::isfinite(r.energy) || !r.gradient.allFinite()) return NewtonEnd::NonFinite;
             if (r.volume > volumeLimit || r.volume < volumeFloor) return NewtonEnd::Runaway;
@@ -992,7 +992,12 @@ Status FollowLoadPath(TubeEvaluation& t) {
             const bool beforeCollapse = collapsing && std::isnan(out.collapsePressureKpa);
             const double collapsedBelow = lastVolume - kCollapseDrop * t.problem.restVolume;
             const double floor = beforeCollapse && increment > smallest ? collapsedBelow : -std::numeric_limits<double>::infinity();
-            NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor);
+            // The smallest increment that collapses snaps through to a distant folded state, and
+            // Newton can need more than a load step's iterations to get there (an SV5.2 design took
+            // 300): the snap may spend the evaluation's budget, or ten load steps' without one.
+            const int snapIterations = t.def.solver.newtonBudget > 0 ? t.def.solver.newtonBudget : 10 * t.def.solver.maxIterations;
+            const int iterations = beforeCollapse && increment <= smallest ? snapIterations : 0;
+            NewtonEnd end = t.solver.Minimise(trial, t.LoadAt(next), t.VolumeLimitAfter(lastVolume), floor, iterations);
             // A held tube bowed sideways can turn its bow about the axis at almost no cost, and the
             // tangent taken beside that direction predicts a move without bound: Newton runs away
             // from it at any increment, where from the last state it converges. The blocked test
