@@ -572,10 +572,7 @@ PYBIND11_MODULE(actuator, m) {
                     py::gil_scoped_release release;
                     fine = sim::Evaluate(refined);
                 }
-                const bool ok = e.result.status == sim::Status::Ok;
-                const nlohmann::json check =
-                    app::MeshCheckJson(ok ? e.result.contractionPercent : NAN, refined, fine, ok ? e.result.shell.blockingForceN : NAN);
-                return py::module_::import("json").attr("loads")(check.dump());
+                return py::module_::import("json").attr("loads")(app::MeshCheckJson(e.result, refined, fine).dump());
             },
             "Evaluates the same design meshed twice as finely in both directions (the clamps keep their length) and returns what "
             "`actuator simulate --mesh-check` reports as mesh_check: the refined mesh, its status and contraction, how far the "

@@ -113,10 +113,7 @@ static int RunSimulate(int argc, char** argv, int first) {
     out["shape"] = ShapeJson(job.shape);
     out["model"] = ModelJson(job);
     if (cli.Given("--from")) out["from"] = Json{{"archive", from}, {"index", index}};
-    if (meshCheck) {
-        const bool ok = result.status == sim::Status::Ok;
-        out["mesh_check"] = MeshCheckJson(ok ? result.contractionPercent : NAN, jobs.back(), results.back(), ok ? result.shell.blockingForceN : NAN);
-    }
+    if (meshCheck) out["mesh_check"] = MeshCheckJson(result, jobs.back(), results.back());
     std::cout << out.dump() << "\n";
     return 0;
 }

@@ -34,6 +34,11 @@ nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refin
     return check;
 }
 
+nlohmann::json MeshCheckJson(const sim::SimResult& coarse, const sim::EvalJob& refined, const sim::SimResult& fine) {
+    const bool ok = coarse.status == sim::Status::Ok;
+    return MeshCheckJson(ok ? coarse.contractionPercent : NAN, refined, fine, ok ? coarse.shell.blockingForceN : NAN);
+}
+
 MeshChange ChangeOf(double coarse, double fine) {
     MeshChange c;
     if (!std::isfinite(coarse) || !std::isfinite(fine)) return c;

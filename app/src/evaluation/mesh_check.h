@@ -37,5 +37,8 @@ inline constexpr const char* kForceMeshRule = "the held force within 5 % of the 
 // bowed held state converges only at first order (docs/models/shell.md section 12), so a contraction
 // that has converged says nothing of its held force.
 nlohmann::json MeshCheckJson(double coarseContraction, const sim::EvalJob& refined, const sim::SimResult& fine, double coarseBlockingForceN = NAN);
+// The same for a design's own result in hand (simulate, Python): its contraction and held force
+// count only when it ended ok.
+nlohmann::json MeshCheckJson(const sim::SimResult& coarse, const sim::EvalJob& refined, const sim::SimResult& fine);
 
 }  // namespace app
