@@ -1,5 +1,6 @@
 // Fibre-reinforced walls (docs/models/shell.md section 7): each wall triangle's fibre directions from the fibre
 // def, the tension-only fibre energy, and the fibres' state in a deformed wall.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -41,6 +42,66 @@ void MeridianAndHoop(const Eigen::Vector3d& normal, Eigen::Vector3d& meridian, E
     const Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
     meridian = (axis - axis.dot(normal) * normal).normalized();
     hoop = normal.cross(meridian);  // right-handed about the outward normal: +alpha winds one way
+}
+
+// A triangle's deformed fibre vector F a for family k as weights on its corners: F a = sum_a x_a (g_a . a).
+std::array<double, 3> CornerWeights(const ShellProblem& p, int t, int k) {
+    const MembraneRest& r = p.membrane[t];
+    const double* a = &p.fibreDirections[t][2 * k];
+    return {r.g[0][0] * a[0] + r.g[0][1] * a[1], r.g[1][0] * a[0] + r.g[1][1] * a[1], r.g[2][0] * a[0] + r.g[2][1] * a[1]};
+}
+
+// Pairs each wall triangle with the next when they share an edge and their fibres run alike (the
+// same families within 10 degrees at rest; a band's or sector's border keeps its triangles apart):
+// the staggered tube's two triangles of a strip cell. Why (docs/models/shell.md section 7): two
+// families of nearly inextensible fibres put two constraints on each linear triangle, four per
+// vertex against its two in-plane freedoms, and a wall held where its fibres are just taut then
+// locks; one reading per two triangles leaves the continuum's ratio, as a quadrilateral's one-point
+// rule for the stiff term does. A homogeneous strain reads the same either way.
+void PairFibreCells(ShellProblem& p) {
+    p.fibreCells.clear();
+    p.fibreCellOf.assign(p.wall.size(), -1);
+    for (size_t t = 0; t + 1 < p.wall.size(); t += 2) {
+        const int families = p.fibreFamilies[t];
+        if (families == 0 || p.fibreFamilies[t + 1] != families) continue;
+        const auto& A = p.wall[t];
+        const auto& B = p.wall[t + 1];
+        int opposite = -1, shared = 0;
+        for (int v : B) {
+            if (std::find(A.begin(), A.end(), v) != A.end()) ++shared;
+            else opposite = v;
+        }
+        if (shared != 2) continue;
+        FibreCell cell;
+        cell.vertices = {A[0], A[1], A[2], opposite};
+        cell.triangles = {static_cast<int>(t), static_cast<int>(t) + 1};
+        cell.families = families;
+        cell.area = p.membrane[t].area + p.membrane[t + 1].area;
+        bool alike = true;
+        for (int k = 0; k < families && alike; ++k) {
+            std::array<double, 4> w{};
+            Eigen::Vector3d restOf[2];
+            for (int side = 0; side < 2; ++side) {
+                const int tri = static_cast<int>(t) + side;
+                const std::array<double, 3> c = CornerWeights(p, tri, k);
+                restOf[side].setZero();
+                for (int a = 0; a < 3; ++a) {
+                    const int v = p.wall[tri][a];
+                    const int corner = static_cast<int>(std::find(cell.vertices.begin(), cell.vertices.end(), v) - cell.vertices.begin());
+                    w[corner] += p.membrane[tri].area / cell.area * c[a];
+                    restOf[side] += c[a] * At(p.rest, v);
+                }
+            }
+            alike = restOf[0].dot(restOf[1]) > std::cos(10 * kDegree);
+            Eigen::Vector3d rest = Eigen::Vector3d::Zero();
+            for (int v = 0; v < 4; ++v) rest += w[v] * At(p.rest, cell.vertices[v]);
+            for (double& weight : w) weight /= rest.norm();
+            cell.weights[k] = w;
+        }
+        if (!alike) continue;
+        p.fibreCellOf[t] = p.fibreCellOf[t + 1] = static_cast<int>(p.fibreCells.size());
+        p.fibreCells.push_back(cell);
+    }
 }
 
 }  // namespace
@@ -93,6 +154,8 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
     if (error) error->clear();
     p.fibreDirections.assign(p.wall.size(), {0, 0, 0, 0});
     p.fibreFamilies.assign(p.wall.size(), 0);
+    p.fibreCells.clear();
+    p.fibreCellOf.assign(p.wall.size(), -1);
     p.fibreStiffness = f.stiffnessNPerMm;
     if (f.layout == FibreLayout::None) return;
     for (size_t t = 0; t < p.wall.size(); ++t) {
@@ -126,6 +189,19 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
         }
         p.fibreFamilies[t] = static_cast<int>(angles.size());
     }
+    PairFibreCells(p);
+}
+
+Eigen::Vector3d FibreVector(const ShellProblem& p, int t, int k, const Positions& x) {
+    const int c = p.fibreCellOf.empty() ? -1 : p.fibreCellOf[t];
+    if (c >= 0) {
+        const FibreCell& cell = p.fibreCells[c];
+        Eigen::Vector3d d = Eigen::Vector3d::Zero();
+        for (int v = 0; v < 4; ++v) d += cell.weights[k][v] * At(x, cell.vertices[v]);
+        return d;
+    }
+    const Matrix32 F = DeformationGradient(p, t, x);
+    return F.col(0) * p.fibreDirections[t][2 * k] + F.col(1) * p.fibreDirections[t][2 * k + 1];
 }
 
 FibreState FibreStates(const ShellProblem& p, const Positions& x) {
@@ -133,13 +209,12 @@ FibreState FibreStates(const ShellProblem& p, const Positions& x) {
     for (size_t t = 0; t < p.wall.size(); ++t) {
         if (p.fibreFamilies.empty() || p.fibreFamilies[t] == 0) continue;
         const auto& tri = p.wall[t];
-        const Matrix32 F = DeformationGradient(p, static_cast<int>(t), x);
         const Eigen::Vector3d centroid = (At(x, tri[0]) + At(x, tri[1]) + At(x, tri[2])) / 3;
         const Eigen::Vector3d radial = Eigen::Vector3d(centroid.x(), centroid.y(), 0).normalized();
         const Eigen::Vector3d around = Eigen::Vector3d::UnitZ().cross(radial);
         const double restHeight = (p.rest.z[tri[0]] + p.rest.z[tri[1]] + p.rest.z[tri[2]]) / 3;
         for (int k = 0; k < p.fibreFamilies[t]; ++k) {
-            const Eigen::Vector3d d = F.col(0) * p.fibreDirections[t][2 * k] + F.col(1) * p.fibreDirections[t][2 * k + 1];
+            const Eigen::Vector3d d = FibreVector(p, static_cast<int>(t), k, x);
             s.stretch.push_back(d.norm());
             s.angleDeg.push_back(std::atan2(std::fabs(d.dot(around)), std::fabs(d.z())) / kDegree);
             s.restHeightMm.push_back(restHeight);

@@ -107,6 +107,7 @@ HessianPattern::HessianPattern(const ShellProblem& p, const std::vector<ContactP
     for (const auto& t : p.wall) ForEachEntryOf(p, top, t.data(), 3, add);
     for (const auto& t : p.caps) ForEachEntryOf(p, top, t.data(), 3, add);
     for (const auto& h : p.hinges) ForEachEntryOf(p, top, h.data(), 4, add);
+    for (const auto& cell : p.fibreCells) ForEachEntryOf(p, top, cell.vertices.data(), 4, add);
     for (const auto& c : contactPairs) ForEachEntryOf(p, top, c.vertices.data(), 4, add);
     std::vector<int> anchored;
     for (int v : p.anchor.vertices)
@@ -128,10 +129,12 @@ HessianPattern::HessianPattern(const ShellProblem& p, const std::vector<ContactP
     for (const auto& t : p.wall) slots(UnknownsOfVertices(p, t).data(), 9, wallSlots);
     for (const auto& t : p.caps) slots(UnknownsOfVertices(p, t).data(), 9, capSlots);
     for (const auto& h : p.hinges) slots(UnknownsOfVertices(p, h).data(), 12, hingeSlots);
+    for (const auto& cell : p.fibreCells) slots(UnknownsOfVertices(p, cell.vertices).data(), 12, fibreCellSlots);
     slots(anchored.data(), static_cast<int>(anchored.size()), anchorSlots);
     for (const auto& t : p.wall) wallTurned.push_back(Turned(p, t.data(), 3));
     for (const auto& t : p.caps) capTurned.push_back(Turned(p, t.data(), 3));
     for (const auto& h : p.hinges) hingeTurned.push_back(Turned(p, h.data(), 4));
+    for (const auto& cell : p.fibreCells) fibreCellTurned.push_back(Turned(p, cell.vertices.data(), 4));
     PlaceContactAndTop(p, top);
 }
 
@@ -140,8 +143,9 @@ HessianPattern::HessianPattern(const ShellProblem& p, const std::vector<ContactP
 // Listing the wall's elements again (hundreds of thousands of entries through a sort) cost a
 // third of a collapsing tube's solve, whose list changes at most steps.
 HessianPattern::HessianPattern(const HessianPattern& base, const ShellProblem& p, const std::vector<ContactPair>& contact)
-    : wallSlots(base.wallSlots), hingeSlots(base.hingeSlots), capSlots(base.capSlots), anchorSlots(base.anchorSlots), contactPairs(contact),
-      wallTurned(base.wallTurned), capTurned(base.capTurned), hingeTurned(base.hingeTurned) {
+    : wallSlots(base.wallSlots), hingeSlots(base.hingeSlots), capSlots(base.capSlots), fibreCellSlots(base.fibreCellSlots),
+      anchorSlots(base.anchorSlots), contactPairs(contact), wallTurned(base.wallTurned), capTurned(base.capTurned),
+      hingeTurned(base.hingeTurned), fibreCellTurned(base.fibreCellTurned) {
     const int n = p.unknowns;
     const std::vector<int> top = TopCoupledUnknowns(p);
     // The contact blocks' entries, bucketed by column, then sorted and made unique in each.
@@ -177,7 +181,7 @@ HessianPattern::HessianPattern(const HessianPattern& base, const ShellProblem& p
     }
     const std::vector<double> values(inner.size(), 0.0);
     matrix = Eigen::Map<const Eigen::SparseMatrix<double>>(n, n, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), values.data());
-    for (auto* slots : {&wallSlots, &hingeSlots, &capSlots, &anchorSlots})
+    for (auto* slots : {&wallSlots, &hingeSlots, &capSlots, &fibreCellSlots, &anchorSlots})
         for (int& s : *slots)
             if (s >= 0) s = moved[s];
     PlaceContactAndTop(p, top);
@@ -329,7 +333,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     const bool withFibres = terms.fibres && !p.fibreFamilies.empty();
     if (terms.membrane || withFibres) {
         for (size_t t = 0; t < p.wall.size(); ++t) {
-            const int families = withFibres ? p.fibreFamilies[t] : 0;
+            const int families = withFibres && p.fibreCellOf[t] < 0 ? p.fibreFamilies[t] : 0;  // a cell's fibres come below
             if (!terms.membrane && families == 0) continue;
             const auto& tri = p.wall[t];
             const MembraneRest& rest = p.membrane[t];
@@ -370,6 +374,37 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
                                 local[(3 * a + i) * 9 + 3 * b + j] = rest.area * sum;
                             }
                 addHessian(&hessian->wallSlots[81 * t], local, 9, tri.data(), hessian->wallTurned[t]);
+            }
+        }
+    }
+    // Fibre cells: A (k/4)(|d|^2 - 1)^2 per cell and taut family, d = sum_v w_v x_v.
+    if (withFibres) {
+        for (size_t c = 0; c < p.fibreCells.size(); ++c) {
+            const FibreCell& cell = p.fibreCells[c];
+            for (int k = 0; k < cell.families; ++k) {
+                const auto& w = cell.weights[k];
+                Eigen::Vector3d d = Eigen::Vector3d::Zero();
+                for (int v = 0; v < 4; ++v) d += w[v] * At(x, cell.vertices[v]);
+                const double I4 = d.squaredNorm(), excess = I4 - 1, scale = cell.area * p.fibreStiffness;
+                const bool taut = I4 > 1;
+                // At the kink Newton's matrix takes the taut side, as a triangle's fibres do (FibreDensity).
+                const bool kinkHessian = hessian && kind != HessianKind::Exact && !taut && I4 > 1 - 1e-12;
+                if (!taut && !kinkHessian) continue;
+                if (taut) energy.Add(0.25 * scale * excess * excess);
+                if (wantGradient && taut)
+                    for (int v = 0; v < 4; ++v)
+                        for (int i = 0; i < 3; ++i) addGradient(r.gradient, cell.vertices[v], i, scale * excess * w[v] * d[i], &axialForce);
+                if (hessian) {
+                    // A k w_u w_v (2 d d^T + (I4 - 1) 1): positive semi-definite where taut.
+                    double local[144];
+                    for (int u = 0; u < 4; ++u)
+                        for (int i = 0; i < 3; ++i)
+                            for (int v = 0; v < 4; ++v)
+                                for (int j = 0; j < 3; ++j)
+                                    local[(3 * u + i) * 12 + 3 * v + j] =
+                                        scale * w[u] * w[v] * (2 * d[i] * d[j] + (taut && i == j ? excess : 0.0));
+                    addHessian(&hessian->fibreCellSlots[144 * c], local, 12, cell.vertices.data(), hessian->fibreCellTurned[c]);
+                }
             }
         }
     }

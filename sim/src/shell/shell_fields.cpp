@@ -47,9 +47,8 @@ ShellFields ShellFieldValues(const ShellDef& def, const Shape& shape, bool bendi
         for (int a = 0; a < 3; ++a) x[a] = {deformed.x[tri[a]], deformed.y[tri[a]], deformed.z[tri[a]]};
         const Eigen::Vector3d centroid = (x[0] + x[1] + x[2]) / 3, normal = (x[1] - x[0]).cross(x[2] - x[0]).normalized();
         const double edge = ((x[1] - x[0]).norm() + (x[2] - x[1]).norm() + (x[0] - x[2]).norm()) / 3;
-        const Matrix32 F = DeformationGradient(problem, static_cast<int>(t), deformed);
         for (int k = 0; k < problem.fibreFamilies[t]; ++k) {
-            const Eigen::Vector3d d = F.col(0) * problem.fibreDirections[t][2 * k] + F.col(1) * problem.fibreDirections[t][2 * k + 1];
+            const Eigen::Vector3d d = FibreVector(problem, static_cast<int>(t), k, deformed);
             FibreDash dash;
             const Eigen::Vector3d centre = centroid + 0.5 * problem.material.thicknessMm * normal, along = d.normalized();
             for (int c = 0; c < 3; ++c) {
@@ -101,7 +100,7 @@ WallCells WallCellValues(const ShellDef& def, const Shape& shape, bool bending, 
         for (int k = 0; !problem.fibreFamilies.empty() && k < problem.fibreFamilies[t]; ++k) {
             // The same stretch as the model's fibre outputs (FibreStates); the tension is the
             // energy (k/4)(lambda^2 - 1)^2's derivative in lambda.
-            const Eigen::Vector3d d = F.col(0) * problem.fibreDirections[t][2 * k] + F.col(1) * problem.fibreDirections[t][2 * k + 1];
+            const Eigen::Vector3d d = FibreVector(problem, static_cast<int>(t), k, deformed);
             const double stretch = d.norm();
             const Eigen::Vector3d unit = d / stretch;
             cells.fibreDirection[k][t] = {unit.x(), unit.y(), unit.z()};

@@ -101,6 +101,17 @@ struct Anchor {
     double stiffness = 0;  // N/mm
 };
 
+// Two wall triangles that share an edge, whose fibres are read together: per family, the deformed
+// fibre vector d = sum_v w_v x_v over the cell's four corners is the area-weighted mean of the two
+// triangles' F a, its weights scaled so that |d| = 1 at rest.
+struct FibreCell {
+    std::array<int, 4> vertices{};
+    std::array<int, 2> triangles{};
+    int families = 0;
+    std::array<std::array<double, 4>, 2> weights{};  // per family, per corner
+    double area = 0;                                 // both triangles' rest area, mm^2
+};
+
 struct ShellProblem {
     Positions rest;                                // the as-moulded shape
     Positions held;                                // values of fixed coordinates (rest, or prescribed)
@@ -135,6 +146,11 @@ struct ShellProblem {
     std::vector<std::array<double, 4>> fibreDirections;
     std::vector<int> fibreFamilies;                // per wall triangle: 0, 1 or 2
     double fibreStiffness = 0;                     // N/mm per family
+    // Fibre cells: pairs of wall triangles that share an edge and whose fibres run alike. Their fibres'
+    // stretch is read from one deformed fibre vector per cell and family (FibreCell), not per triangle
+    // (docs/models/shell.md section 7, "Fibre cells").
+    std::vector<FibreCell> fibreCells;
+    std::vector<int> fibreCellOf;                  // per wall triangle: its cell, or -1 (its own F a)
     // Self-contact on (docs/models/shell.md section 8): the surface that may touch (wall and caps) and
     // the barrier that keeps it a wall thickness apart; null when contact is off.
     std::shared_ptr<const ContactSurface> contact;
@@ -220,12 +236,13 @@ public:
     HessianPattern(const HessianPattern& withoutContact, const ShellProblem& problem, const std::vector<ContactPair>& contactPairs);
     Eigen::SparseMatrix<double> matrix;  // full symmetric pattern, values overwritten by Assemble
     std::vector<int> wallSlots, hingeSlots, capSlots;  // per element: 81, 144 or 81 value indices (-1: none)
+    std::vector<int> fibreCellSlots;                   // per fibre cell: 144 value indices
     std::vector<int> anchorSlots;                      // the anchor's dense block
     int twistSlot = -1;                                // (theta, theta): the clamp's turn's own curvature
     std::vector<ContactPair> contactPairs;             // the contact pairs it holds, sorted
     std::vector<int> contactSlots;                     // per contact pair: 144 value indices
     std::vector<char> contactTurned;
-    std::vector<char> wallTurned, capTurned, hingeTurned;  // per element: a corner rides on the clamp's turn (1)
+    std::vector<char> wallTurned, capTurned, hingeTurned, fibreCellTurned;  // per element: a corner rides on the clamp's turn (1)
                                                            // or on the rigid top (2, tip free)
     // Tip free: the top parameters' couplings. Per parameter with an unknown, the (row, slot of
     // (row, it), slot of (it, row)) of every other unknown it meets; and the parameters' own block.
@@ -281,7 +298,11 @@ void SetFibres(ShellProblem& problem, const FibreDef& fibres, double lengthMm, s
 // An error when walls that are not neighbours are already closer than a wall thickness at rest.
 void SetContact(ShellProblem& problem, const ContactDef& def, std::string* error);
 
-// Per wall triangle and family: the fibre's stretch (|F a|) and its angle to the axis (degrees) at
+// A wall triangle's deformed fibre vector for family k at positions x: its cell's (fibre cells) or
+// its own F a. Its length is the fibre's stretch.
+Eigen::Vector3d FibreVector(const ShellProblem& problem, int triangle, int family, const Positions& x);
+
+// Per wall triangle and family: the fibre's stretch (|d|, FibreVector) and its angle to the axis (degrees) at
 // positions x.
 struct FibreState {
     std::vector<double> stretch, angleDeg, restHeightMm;

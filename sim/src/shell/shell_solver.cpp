@@ -81,6 +81,7 @@ struct Workspace {
     std::vector<int> dofOf, anchored;
     std::vector<std::array<int, 3>> wall, caps;
     std::vector<std::array<int, 4>> hinges;
+    std::vector<std::array<int, 4>> fibreCells;  // their corners
     int unknowns = 0, axial = -1;
 
     std::vector<int> places;      // each unknown's place in the factors' vertex blocks
@@ -92,10 +93,15 @@ struct Workspace {
 
     explicit Workspace(const ShellProblem& p)
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
-          places(VertexBlockPlaces(p)), withoutContact(p), pattern(withoutContact), exactPattern(withoutContact) {}
+          fibreCells(FibreCellCorners(p)), places(VertexBlockPlaces(p)), withoutContact(p), pattern(withoutContact), exactPattern(withoutContact) {}
+    static std::vector<std::array<int, 4>> FibreCellCorners(const ShellProblem& p) {
+        std::vector<std::array<int, 4>> corners;
+        for (const FibreCell& cell : p.fibreCells) corners.push_back(cell.vertices);
+        return corners;
+    }
     bool Fits(const ShellProblem& p) const {
         return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
-               caps == p.caps && hinges == p.hinges;
+               caps == p.caps && hinges == p.hinges && fibreCells == FibreCellCorners(p);
     }
     // A new pattern for both Hessians: the factors' analysis was for the old one.
     void Use(const HessianPattern& next) {

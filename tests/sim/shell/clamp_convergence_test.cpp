@@ -158,8 +158,20 @@ TEST(MeshConvergence, ThePlainTube) { ExpectConvergesAtSecondOrder({"plain tube"
 
 TEST(MeshConvergence, TheSineOfAmplitude1_3) { ExpectConvergesAtSecondOrder({"sine A = 1.3", sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, -0.771}); }
 
+// The +/-70 deg braid's nearly inextensible threads are a constraint, read once per fibre cell (two
+// triangles; docs/models/shell.md section 7). Read per triangle they locked the wall: evenly spaced
+// 30 x 30 was 7.9 % short of the reference and the graded family converged from 1.1 % short. With
+// cells the default and evenly spaced 30 x 30 are within 0.05 %, 60 x 59 / 0.5 mm and 120 x 117 /
+// 0.25 mm within 0.2 % (-3.0800, -3.0793 %: no order to observe; those levels, whose held states
+// bow, cost 20 s and are left to docs/models/shell.md section 2's table).
 TEST(MeshConvergence, TheBraidAt70Degrees) {
-    ExpectConvergesAtSecondOrder({"braid +/-70 deg", sim::CylinderShape{}, -3.075, sim::FibreLayout::Braid, 70});
+    const Design braid{"braid +/-70 deg", sim::CylinderShape{}, -3.075, sim::FibreLayout::Braid, 70};
+    const double coarse = ContractionAt1Kpa(braid, 15, 15, 2.0), middle = ContractionAt1Kpa(braid, 30, 30, 1.0);
+    SCOPED_TRACE(::testing::Message() << "15 x 15 / 2 mm " << coarse << " %, default " << middle << " %");
+    EXPECT_LT(std::fabs(middle / braid.referencePercent - 1), 0.005);
+    EXPECT_LT(std::fabs(middle - braid.referencePercent), std::fabs(coarse - braid.referencePercent));
+    const double evenlySpaced = ContractionAt1Kpa(braid, 30, 30, 0);
+    EXPECT_LT(std::fabs(evenlySpaced / braid.referencePercent - 1), 0.005) << "evenly spaced 30 x 30: " << evenlySpaced << " % (locked: 7.9 % short)";
 }
 
 // The +/-30 deg braid's fibres hold the wall's shape: the three levels agree within 1.4 %, and the
@@ -173,13 +185,13 @@ TEST(MeshConvergence, TheBraidAt30Degrees) {
 }
 
 // Held states at every mesh (docs/models/shell.md section 12): the +/-70 deg braid (it lengthens
-// under pressure) held at its rest length at 3 kPa pushes on its clamps. Straight, it reads -0.172 N
-// at 30 x 30 and 60 x 59 alike, and its exact Hessian is positive definite there; but bowed sideways
-// it has far lower energy, and a fine mesh (60 x 332) finds the bow by itself (-0.041 N, 25 mm off
-// the axis). Every mesh must report the bowed state, its force converging as the mesh refines, about
-// first order (30 x 30 / 1 mm, 60 x 59 / 0.5 mm, 60 x 117 / 0.25 mm, 60 x 332 evenly spaced: -0.071,
-// -0.054, -0.046, -0.041 N); a check that looked at the straight state's inertia alone, or pushed it
-// 3 mm, would leave 30 x 30 straight.
+// under pressure) held at its rest length at 3 kPa pushes on its clamps, and bowed sideways it has
+// far lower energy than straight. Every mesh must report the bowed state, its force the same within
+// the mesh error. With the fibres read per triangle the wall locked: the straight state (-0.172 N)
+// was stable at 30 x 30 and 60 x 59, and once pushed to the bow its force converged at first order
+// (30 x 30 / 1 mm, 60 x 59 / 0.5 mm, 60 x 117 / 0.25 mm: -0.071, -0.054, -0.046 N). Read per fibre
+// cell (docs/models/shell.md section 7) Newton finds the bow by itself and the force reads -0.040 N at
+// 30 x 30 and -0.039 N at 60 x 60 / 0.5 mm.
 struct HeldState {
     double forceN, bowMm;
 };
@@ -218,8 +230,8 @@ TEST(HeldStates, ACompressedBraidBowsSidewaysAtEveryMesh) {
         EXPECT_LT(held.forceN, 0);                                 // it still pushes,
         EXPECT_GT(held.forceN, -0.09);                             // far less than straight (-0.172 N)
     }
-    EXPECT_LT(coarse.forceN, fine.forceN) << "pushing less at 60 x 59, as the finer meshes do";
-    EXPECT_NEAR(coarse.bowMm, fine.bowMm, 0.2 * fine.bowMm);
+    EXPECT_NEAR(coarse.forceN, fine.forceN, 0.1 * std::fabs(fine.forceN)) << "the same force within the mesh error (locked: 31 % apart)";
+    EXPECT_NEAR(coarse.bowMm, fine.bowMm, 0.1 * fine.bowMm);
 }
 
 // Three routes to the braid held at its rest length end at the same bowed state: the blocking force
@@ -239,11 +251,6 @@ TEST(HeldStates, EveryRouteToTheHeldBraidEndsBowed) {
     ASSERT_EQ(blocked.status, sim::Status::Ok);
     EXPECT_NEAR(blocked.shell.strokeForceN, r.shell.blockingForceN, 1e-6);
     EXPECT_NEAR(blocked.shell.heldBowMm, r.shell.heldBowMm, 1e-3);
-    // Unpushed, the same held state is the straight one.
-    job.Shell().solver.heldPushDiameters = 0;
-    const sim::SimResult straight = sim::Evaluate(job);
-    EXPECT_NEAR(straight.shell.strokeForceN, -0.172, 0.002);
-    EXPECT_LT(straight.shell.heldBowMm, 1e-6);
 }
 
 }  // namespace
