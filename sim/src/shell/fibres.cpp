@@ -51,19 +51,20 @@ std::array<double, 3> CornerWeights(const ShellProblem& p, int t, int k) {
     return {r.g[0][0] * a[0] + r.g[0][1] * a[1], r.g[1][0] * a[0] + r.g[1][1] * a[1], r.g[2][0] * a[0] + r.g[2][1] * a[1]};
 }
 
-// Pairs each wall triangle with the next when they share an edge and their fibres run alike (the
-// same families within 10 degrees at rest; a band's or sector's border keeps its triangles apart):
+// Pairs each wall triangle with the next when they share an edge and their fibres are laid alike (the
+// same families at the same angles to the meridian; a band's or sector's border keeps its triangles
+// apart):
 // the staggered tube's two triangles of a strip cell. Why (docs/models/shell.md section 7): two
 // families of nearly inextensible fibres put two constraints on each linear triangle, four per
 // vertex against its two in-plane freedoms, and a wall held where its fibres are just taut then
 // locks; one reading per two triangles leaves the continuum's ratio, as a quadrilateral's one-point
 // rule for the stiff term does. A homogeneous strain reads the same either way.
-void PairFibreCells(ShellProblem& p) {
+void PairFibreCells(ShellProblem& p, const std::vector<std::array<double, 2>>& anglesDeg) {
     p.fibreCells.clear();
     p.fibreCellOf.assign(p.wall.size(), -1);
     for (size_t t = 0; t + 1 < p.wall.size(); t += 2) {
         const int families = p.fibreFamilies[t];
-        if (families == 0 || p.fibreFamilies[t + 1] != families) continue;
+        if (families == 0 || p.fibreFamilies[t + 1] != families || anglesDeg[t] != anglesDeg[t + 1]) continue;
         const auto& A = p.wall[t];
         const auto& B = p.wall[t + 1];
         int opposite = -1, shared = 0;
@@ -77,28 +78,23 @@ void PairFibreCells(ShellProblem& p) {
         cell.triangles = {static_cast<int>(t), static_cast<int>(t) + 1};
         cell.families = families;
         cell.area = p.membrane[t].area + p.membrane[t + 1].area;
-        bool alike = true;
-        for (int k = 0; k < families && alike; ++k) {
+        for (int k = 0; k < families; ++k) {
             std::array<double, 4> w{};
-            Eigen::Vector3d restOf[2];
             for (int side = 0; side < 2; ++side) {
                 const int tri = static_cast<int>(t) + side;
                 const std::array<double, 3> c = CornerWeights(p, tri, k);
-                restOf[side].setZero();
                 for (int a = 0; a < 3; ++a) {
-                    const int v = p.wall[tri][a];
-                    const int corner = static_cast<int>(std::find(cell.vertices.begin(), cell.vertices.end(), v) - cell.vertices.begin());
+                    const int corner = static_cast<int>(std::find(cell.vertices.begin(), cell.vertices.end(), p.wall[tri][a]) - cell.vertices.begin());
                     w[corner] += p.membrane[tri].area / cell.area * c[a];
-                    restOf[side] += c[a] * At(p.rest, v);
                 }
             }
-            alike = restOf[0].dot(restOf[1]) > std::cos(10 * kDegree);
+            // The two facets' rest directions differ by the facets' turn (6 deg at 30 vertices a
+            // ring), so their mean is a little shorter than 1.
             Eigen::Vector3d rest = Eigen::Vector3d::Zero();
             for (int v = 0; v < 4; ++v) rest += w[v] * At(p.rest, cell.vertices[v]);
             for (double& weight : w) weight /= rest.norm();
             cell.weights[k] = w;
         }
-        if (!alike) continue;
         p.fibreCellOf[t] = p.fibreCellOf[t + 1] = static_cast<int>(p.fibreCells.size());
         p.fibreCells.push_back(cell);
     }
@@ -158,6 +154,7 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
     p.fibreCellOf.assign(p.wall.size(), -1);
     p.fibreStiffness = f.stiffnessNPerMm;
     if (f.layout == FibreLayout::None) return;
+    std::vector<std::array<double, 2>> anglesDeg(p.wall.size(), {0, 0});  // per triangle and family, to the meridian
     for (size_t t = 0; t < p.wall.size(); ++t) {
         const auto& tri = p.wall[t];
         const Eigen::Vector3d x0 = At(p.rest, tri[0]), x1 = At(p.rest, tri[1]), x2 = At(p.rest, tri[2]);
@@ -188,8 +185,9 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
             p.fibreDirections[t][2 * k + 1] = a.dot(t2);
         }
         p.fibreFamilies[t] = static_cast<int>(angles.size());
+        for (size_t k = 0; k < angles.size(); ++k) anglesDeg[t][k] = angles[k];
     }
-    PairFibreCells(p);
+    PairFibreCells(p, anglesDeg);
 }
 
 Eigen::Vector3d FibreVector(const ShellProblem& p, int t, int k, const Positions& x) {

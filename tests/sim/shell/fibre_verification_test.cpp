@@ -220,6 +220,7 @@ TEST(FibreDerivatives, AFibreReinforcedTubesEnergyMatchesCentralDifferences) {
     std::string error;
     const sim::ShellProblem p = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.6, 2.4}, false, &error);
     ASSERT_TRUE(error.empty()) << error;
+    ASSERT_EQ(2 * p.fibreCells.size(), p.wall.size()) << "every triangle in a fibre cell: the cells' terms are what is checked";
     // Stretched 10 % so that most fibres are taut, then shaken.
     Eigen::VectorXd q = sim::UnknownsOf(p, p.rest) * 1.1;
     std::mt19937 random(3);
@@ -240,4 +241,53 @@ TEST(FibreDerivatives, AFibreReinforcedTubesEnergyMatchesCentralDifferences) {
         EXPECT_NEAR((ep.energy - em.energy) / (2 * h), r.gradient[k], 1e-6 * std::max(1.0, r.gradient.lpNorm<Eigen::Infinity>()));
         EXPECT_LT(((ep.gradient - em.gradient) / (2 * h) - H.col(k)).lpNorm<Eigen::Infinity>(), 1e-5 * std::max(1.0, H.lpNorm<Eigen::Infinity>()));
     }
+}
+
+// Fibre cells (docs/models/shell.md section 7): a cell reads the same stretch as its triangles under
+// a homogeneous strain, a curved rest surface included (|d| = 1 at rest, though the two facets' rest
+// directions differ by 13 deg at 12 vertices a ring), and a band's border keeps the triangles on
+// either side apart.
+TEST(FibreCells, ACellReadsWhatItsTrianglesReadUnderAHomogeneousStrain) {
+    sim::ShellDef def;
+    def.geometry.ringVertices = 12;
+    def.geometry.rings = 12;
+    def.fibres.layout = sim::FibreLayout::Braid;
+    def.fibres.angleDeg = 40;
+    std::string error;
+    const sim::ShellProblem p = sim::BuildTubeProblem(def, sim::CylinderShape{}, false, &error);
+    ASSERT_TRUE(error.empty()) << error;
+    ASSERT_EQ(2 * p.fibreCells.size(), p.wall.size());
+    // Swollen 20 % about the axis and stretched 10 % along it: every cell's fibre reads the tube's
+    // stretch, as a triangle's own F a does, up to the facets' turn (each reads a facet, not the
+    // cylinder: 0.23 % apart at 12 vertices a ring, the cell the nearer).
+    sim::Positions x = p.rest;
+    for (int v = 0; v < x.Size(); ++v) {
+        x.x[v] *= 1.2;
+        x.y[v] *= 1.2;
+        x.z[v] *= 1.1;
+    }
+    for (const sim::FibreCell& cell : p.fibreCells)
+        for (int k = 0; k < 2; ++k) {
+            const double rest = sim::FibreVector(p, cell.triangles[0], k, p.rest).norm();
+            EXPECT_NEAR(rest, 1, 1e-12);
+            const sim::Matrix32 F = sim::DeformationGradient(p, cell.triangles[0], x);
+            const double own = (F.col(0) * p.fibreDirections[cell.triangles[0]][2 * k] + F.col(1) * p.fibreDirections[cell.triangles[0]][2 * k + 1]).norm();
+            const double tube = std::hypot(1.1 * Cos(40), 1.2 * Sin(40));
+            EXPECT_NEAR(own, tube, 2e-3 * tube);
+            EXPECT_NEAR(sim::FibreVector(p, cell.triangles[0], k, x).norm(), tube, 2e-3 * tube);
+            EXPECT_EQ(sim::FibreVector(p, cell.triangles[0], k, x), sim::FibreVector(p, cell.triangles[1], k, x));
+        }
+    // Bands at 20 and 60 degrees: no cell straddles the border.
+    def.fibres.bands = {{0, 0.5, 20}, {0.5, 1, 60}};
+    const sim::ShellProblem banded = sim::BuildTubeProblem(def, sim::CylinderShape{}, false, &error);
+    ASSERT_TRUE(error.empty()) << error;
+    int alone = 0;
+    for (size_t t = 0; t < banded.wall.size(); ++t) alone += banded.fibreCellOf[t] < 0;
+    EXPECT_LE(alone, 2 * def.geometry.ringVertices) << "one strip at the border at most";
+    auto upperBand = [&](int t) {
+        double z = 0;
+        for (int v : banded.wall[t]) z += banded.rest.z[v] / 3;
+        return z > 0.5 * def.geometry.lengthMm;
+    };
+    for (const sim::FibreCell& cell : banded.fibreCells) EXPECT_EQ(upperBand(cell.triangles[0]), upperBand(cell.triangles[1]));
 }
