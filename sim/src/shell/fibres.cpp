@@ -2,6 +2,7 @@
 // def, the tension-only fibre energy, and the fibres' state in a deformed wall.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -51,52 +52,64 @@ std::array<double, 3> CornerWeights(const ShellProblem& p, int t, int k) {
     return {r.g[0][0] * a[0] + r.g[0][1] * a[1], r.g[1][0] * a[0] + r.g[1][1] * a[1], r.g[2][0] * a[0] + r.g[2][1] * a[1]};
 }
 
-// Pairs each wall triangle with the next when they share an edge and their fibres are laid alike (the
-// same families at the same angles to the meridian; a band's or sector's border keeps its triangles
-// apart):
-// the staggered tube's two triangles of a strip cell. Why (docs/models/shell.md section 7): two
-// families of nearly inextensible fibres put two constraints on each linear triangle, four per
-// vertex against its two in-plane freedoms, and a wall held where its fibres are just taut then
-// locks; one reading per two triangles leaves the continuum's ratio, as a quadrilateral's one-point
-// rule for the stiff term does. A homogeneous strain reads the same either way.
+// Fibre cells (docs/models/shell.md section 7). Two families of nearly inextensible fibres put two
+// constraints on each linear triangle, four per vertex against its two in-plane freedoms, and a wall
+// held where its fibres are just taut then locks; one reading per two triangles leaves the
+// continuum's ratio, as a quadrilateral's one-point rule for the stiff term does. A staggered strip
+// pairs its triangles two ways, into parallelograms leaning either way, mirror images of each other:
+// a family at +alpha is read on one, at -alpha on the other, so that a braid is as mirror-symmetric
+// as its mesh (one way for both turned a +-35 deg braid's top 1.4 deg). A family along the meridian
+// or the hoop is its own mirror image and keeps its triangles' own readings, as do triangles whose
+// neighbour across the edge is laid differently (a band's or a sector's border).
 void PairFibreCells(ShellProblem& p, const std::vector<std::array<double, 2>>& anglesDeg) {
     p.fibreCells.clear();
-    p.fibreCellOf.assign(p.wall.size(), -1);
-    for (size_t t = 0; t + 1 < p.wall.size(); t += 2) {
-        const int families = p.fibreFamilies[t];
-        if (families == 0 || p.fibreFamilies[t + 1] != families || anglesDeg[t] != anglesDeg[t + 1]) continue;
-        const auto& A = p.wall[t];
-        const auto& B = p.wall[t + 1];
-        int opposite = -1, shared = 0;
-        for (int v : B) {
-            if (std::find(A.begin(), A.end(), v) != A.end()) ++shared;
-            else opposite = v;
+    p.fibreCellOf.assign(p.wall.size(), {-1, -1});
+    std::map<std::pair<int, int>, std::vector<int>> trianglesOfEdge;
+    for (size_t t = 0; t < p.wall.size(); ++t)
+        for (int e = 0; e < 3; ++e) {
+            const int a = p.wall[t][e], b = p.wall[t][(e + 1) % 3];
+            trianglesOfEdge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(t));
         }
-        if (shared != 2) continue;
-        FibreCell cell;
-        cell.vertices = {A[0], A[1], A[2], opposite};
-        cell.triangles = {static_cast<int>(t), static_cast<int>(t) + 1};
-        cell.families = families;
-        cell.area = p.membrane[t].area + p.membrane[t + 1].area;
-        for (int k = 0; k < families; ++k) {
-            std::array<double, 4> w{};
-            for (int side = 0; side < 2; ++side) {
-                const int tri = static_cast<int>(t) + side;
+    // The triangle across edge (corner e, corner e + 1) of triangle t, or -1.
+    auto across = [&](int t, int e) {
+        const int a = p.wall[t][e], b = p.wall[t][(e + 1) % 3];
+        for (int u : trianglesOfEdge[{std::min(a, b), std::max(a, b)}])
+            if (u != t) return u;
+        return -1;
+    };
+    for (size_t first = 0; first < p.wall.size(); ++first) {
+        const int t = static_cast<int>(first);
+        for (int k = 0; k < p.fibreFamilies[t]; ++k) {
+            const double angle = anglesDeg[t][k];
+            if (angle == 0 || std::fabs(angle) == 90) continue;
+            // A strip's (j,i) (j,i+1) (j+1,i) pairs across its edge 1-2 with (j,i+1) (j+1,i+1) (j+1,i)
+            // (leaning one way); that one across its edge 0-1 with the next cell's first (the other).
+            const bool leansForward = angle > 0;
+            if (t % 2 != (leansForward ? 0 : 1)) continue;
+            const int u = across(t, leansForward ? 1 : 0);
+            if (u < 0 || p.fibreFamilies[u] != p.fibreFamilies[t] || anglesDeg[u] != anglesDeg[t] || p.fibreCellOf[u][k] >= 0) continue;
+            FibreCell cell;
+            cell.triangles = {t, u};
+            cell.family = k;
+            cell.vertices = {p.wall[t][0], p.wall[t][1], p.wall[t][2], -1};
+            for (int v : p.wall[u])
+                if (std::find(p.wall[t].begin(), p.wall[t].end(), v) == p.wall[t].end()) cell.vertices[3] = v;
+            cell.area = p.membrane[t].area + p.membrane[u].area;
+            for (int tri : cell.triangles) {
                 const std::array<double, 3> c = CornerWeights(p, tri, k);
                 for (int a = 0; a < 3; ++a) {
                     const int corner = static_cast<int>(std::find(cell.vertices.begin(), cell.vertices.end(), p.wall[tri][a]) - cell.vertices.begin());
-                    w[corner] += p.membrane[tri].area / cell.area * c[a];
+                    cell.weights[corner] += p.membrane[tri].area / cell.area * c[a];
                 }
             }
             // The two facets' rest directions differ by the facets' turn (6 deg at 30 vertices a
             // ring), so their mean is a little shorter than 1.
             Eigen::Vector3d rest = Eigen::Vector3d::Zero();
-            for (int v = 0; v < 4; ++v) rest += w[v] * At(p.rest, cell.vertices[v]);
-            for (double& weight : w) weight /= rest.norm();
-            cell.weights[k] = w;
+            for (int v = 0; v < 4; ++v) rest += cell.weights[v] * At(p.rest, cell.vertices[v]);
+            for (double& weight : cell.weights) weight /= rest.norm();
+            p.fibreCellOf[t][k] = p.fibreCellOf[u][k] = static_cast<int>(p.fibreCells.size());
+            p.fibreCells.push_back(cell);
         }
-        p.fibreCellOf[t] = p.fibreCellOf[t + 1] = static_cast<int>(p.fibreCells.size());
-        p.fibreCells.push_back(cell);
     }
 }
 
@@ -151,7 +164,7 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
     p.fibreDirections.assign(p.wall.size(), {0, 0, 0, 0});
     p.fibreFamilies.assign(p.wall.size(), 0);
     p.fibreCells.clear();
-    p.fibreCellOf.assign(p.wall.size(), -1);
+    p.fibreCellOf.assign(p.wall.size(), {-1, -1});
     p.fibreStiffness = f.stiffnessNPerMm;
     if (f.layout == FibreLayout::None) return;
     std::vector<std::array<double, 2>> anglesDeg(p.wall.size(), {0, 0});  // per triangle and family, to the meridian
@@ -191,11 +204,11 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
 }
 
 Eigen::Vector3d FibreVector(const ShellProblem& p, int t, int k, const Positions& x) {
-    const int c = p.fibreCellOf.empty() ? -1 : p.fibreCellOf[t];
+    const int c = p.fibreCellOf.empty() ? -1 : p.fibreCellOf[t][k];
     if (c >= 0) {
         const FibreCell& cell = p.fibreCells[c];
         Eigen::Vector3d d = Eigen::Vector3d::Zero();
-        for (int v = 0; v < 4; ++v) d += cell.weights[k][v] * At(x, cell.vertices[v]);
+        for (int v = 0; v < 4; ++v) d += cell.weights[v] * At(x, cell.vertices[v]);
         return d;
     }
     const Matrix32 F = DeformationGradient(p, t, x);

@@ -333,7 +333,7 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     const bool withFibres = terms.fibres && !p.fibreFamilies.empty();
     if (terms.membrane || withFibres) {
         for (size_t t = 0; t < p.wall.size(); ++t) {
-            const int families = withFibres && p.fibreCellOf[t] < 0 ? p.fibreFamilies[t] : 0;  // a cell's fibres come below
+            const int families = withFibres ? p.fibreFamilies[t] : 0;
             if (!terms.membrane && families == 0) continue;
             const auto& tri = p.wall[t];
             const MembraneRest& rest = p.membrane[t];
@@ -345,7 +345,8 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             double density = terms.membrane ? MembraneDensity(p.material, F, gradientOfF, hessianOfF) : 0.0;
             // The fibres' part is positive semi-definite where taut and zero where slack.
             for (int k = 0; k < families; ++k)
-                density += FibreDensity(F, &p.fibreDirections[t][2 * k], p.fibreStiffness, gradientOfF, hessianOfF, kind != HessianKind::Exact);
+                if (p.fibreCellOf[t][k] < 0)  // else read with its cell's, below
+                    density += FibreDensity(F, &p.fibreDirections[t][2 * k], p.fibreStiffness, gradientOfF, hessianOfF, kind != HessianKind::Exact);
             energy.Add(rest.area * density);
             if (wantGradient || hessian) {
                 // dE/dx_a = A0 sum_alpha g_a[alpha] dPsi/df_alpha.
@@ -377,34 +378,32 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
             }
         }
     }
-    // Fibre cells: A (k/4)(|d|^2 - 1)^2 per cell and taut family, d = sum_v w_v x_v.
+    // Fibre cells: A (k/4)(|d|^2 - 1)^2 per taut cell, d = sum_v w_v x_v.
     if (withFibres) {
         for (size_t c = 0; c < p.fibreCells.size(); ++c) {
             const FibreCell& cell = p.fibreCells[c];
-            for (int k = 0; k < cell.families; ++k) {
-                const auto& w = cell.weights[k];
-                Eigen::Vector3d d = Eigen::Vector3d::Zero();
-                for (int v = 0; v < 4; ++v) d += w[v] * At(x, cell.vertices[v]);
-                const double I4 = d.squaredNorm(), excess = I4 - 1, scale = cell.area * p.fibreStiffness;
-                const bool taut = I4 > 1;
-                // At the kink Newton's matrix takes the taut side, as a triangle's fibres do (FibreDensity).
-                const bool kinkHessian = hessian && kind != HessianKind::Exact && !taut && I4 > 1 - 1e-12;
-                if (!taut && !kinkHessian) continue;
-                if (taut) energy.Add(0.25 * scale * excess * excess);
-                if (wantGradient && taut)
-                    for (int v = 0; v < 4; ++v)
-                        for (int i = 0; i < 3; ++i) addGradient(r.gradient, cell.vertices[v], i, scale * excess * w[v] * d[i], &axialForce);
-                if (hessian) {
-                    // A k w_u w_v (2 d d^T + (I4 - 1) 1): positive semi-definite where taut.
-                    double local[144];
-                    for (int u = 0; u < 4; ++u)
-                        for (int i = 0; i < 3; ++i)
-                            for (int v = 0; v < 4; ++v)
-                                for (int j = 0; j < 3; ++j)
-                                    local[(3 * u + i) * 12 + 3 * v + j] =
-                                        scale * w[u] * w[v] * (2 * d[i] * d[j] + (taut && i == j ? excess : 0.0));
-                    addHessian(&hessian->fibreCellSlots[144 * c], local, 12, cell.vertices.data(), hessian->fibreCellTurned[c]);
-                }
+            const auto& w = cell.weights;
+            Eigen::Vector3d d = Eigen::Vector3d::Zero();
+            for (int v = 0; v < 4; ++v) d += w[v] * At(x, cell.vertices[v]);
+            const double I4 = d.squaredNorm(), excess = I4 - 1, scale = cell.area * p.fibreStiffness;
+            const bool taut = I4 > 1;
+            // At the kink Newton's matrix takes the taut side, as a triangle's fibres do (FibreDensity).
+            const bool kinkHessian = hessian && kind != HessianKind::Exact && !taut && I4 > 1 - 1e-12;
+            if (!taut && !kinkHessian) continue;
+            if (taut) energy.Add(0.25 * scale * excess * excess);
+            if (wantGradient && taut)
+                for (int v = 0; v < 4; ++v)
+                    for (int i = 0; i < 3; ++i) addGradient(r.gradient, cell.vertices[v], i, scale * excess * w[v] * d[i], &axialForce);
+            if (hessian) {
+                // A k w_u w_v (2 d d^T + (I4 - 1) 1): positive semi-definite where taut.
+                double local[144];
+                for (int u = 0; u < 4; ++u)
+                    for (int i = 0; i < 3; ++i)
+                        for (int v = 0; v < 4; ++v)
+                            for (int j = 0; j < 3; ++j)
+                                local[(3 * u + i) * 12 + 3 * v + j] =
+                                    scale * w[u] * w[v] * (2 * d[i] * d[j] + (taut && i == j ? excess : 0.0));
+                addHessian(&hessian->fibreCellSlots[144 * c], local, 12, cell.vertices.data(), hessian->fibreCellTurned[c]);
             }
         }
     }

@@ -101,15 +101,15 @@ struct Anchor {
     double stiffness = 0;  // N/mm
 };
 
-// Two wall triangles that share an edge, whose fibres are read together: per family, the deformed
+// Two wall triangles that share an edge, whose fibre family `family` is read together: the deformed
 // fibre vector d = sum_v w_v x_v over the cell's four corners is the area-weighted mean of the two
 // triangles' F a, its weights scaled so that |d| = 1 at rest.
 struct FibreCell {
     std::array<int, 4> vertices{};
     std::array<int, 2> triangles{};
-    int families = 0;
-    std::array<std::array<double, 4>, 2> weights{};  // per family, per corner
-    double area = 0;                                 // both triangles' rest area, mm^2
+    int family = 0;                   // the family's index in both triangles
+    std::array<double, 4> weights{};  // per corner
+    double area = 0;                  // both triangles' rest area, mm^2
 };
 
 struct ShellProblem {
@@ -146,11 +146,11 @@ struct ShellProblem {
     std::vector<std::array<double, 4>> fibreDirections;
     std::vector<int> fibreFamilies;                // per wall triangle: 0, 1 or 2
     double fibreStiffness = 0;                     // N/mm per family
-    // Fibre cells: pairs of wall triangles that share an edge and whose fibres run alike. Their fibres'
-    // stretch is read from one deformed fibre vector per cell and family (FibreCell), not per triangle
+    // Fibre cells: pairs of wall triangles that share an edge and are laid alike, whose family's
+    // stretch is read from one deformed fibre vector (FibreCell), not per triangle
     // (docs/models/shell.md section 7, "Fibre cells").
     std::vector<FibreCell> fibreCells;
-    std::vector<int> fibreCellOf;                  // per wall triangle: its cell, or -1 (its own F a)
+    std::vector<std::array<int, 2>> fibreCellOf;   // per wall triangle and family: its cell, or -1 (its own F a)
     // Self-contact on (docs/models/shell.md section 8): the surface that may touch (wall and caps) and
     // the barrier that keeps it a wall thickness apart; null when contact is off.
     std::shared_ptr<const ContactSurface> contact;

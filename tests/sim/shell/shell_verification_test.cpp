@@ -584,7 +584,7 @@ TEST(ShellSolver, AnUnstableEndStateGivesWayToTheStableOneWhateverTheBudget) {
 // unstable path is followed to the stable state however far it lies. This fibre design (reproduce
 // part 2's GA, S5.2F: one family at +48.2 deg) reaches 1 kPa on a saddle; steps on the projected
 // Hessian walked off it too slowly for any budget (1,000 iterations), and the design was called a
-// limit point though its volume rises smoothly to the target. Its stable state (-4.99 %; -4.67 % with
+// limit point though its volume rises smoothly to the target. Its stable state (-4.94 %; -4.67 % with
 // the fibres read per triangle, before fibre cells) is the same with twice the budget.
 TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) {
     sim::EvalJob job = PartTwoDesign({3, 4, 8, 3, 5, 6, 2, 2, 0, 7, 0, 0});
@@ -596,7 +596,7 @@ TEST(ShellSolver, NegativeCurvatureIsFollowedToTheStableStateWhateverTheBudget) 
                             "--model shell --material ecoflex-00-30-datasheet --pressure-kpa 1 --fibres single --fibre-angle-deg -48.20305967865278 --twist held";
     const sim::SimResult base = sim::Evaluate(job);
     ASSERT_EQ(base.status, sim::Status::Ok) << how;  // ok: the exact Hessian is positive definite there
-    EXPECT_NEAR(base.contractionPercent, -4.989, 0.01) << how;
+    EXPECT_NEAR(base.contractionPercent, -4.937, 0.01) << how;
     sim::EvalJob longer = job;
     longer.Shell().solver.maxIterations *= 2;
     const sim::SimResult twice = sim::Evaluate(longer);
