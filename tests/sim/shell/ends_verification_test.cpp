@@ -216,7 +216,7 @@ TEST(EndsClosedForms, TheHoldingTorqueAppliedUndoesTheTwist) {
 
 // Tondu and Lopez (2000): the ideal muscle's force at contraction eps of its length at pressure p,
 // F = pi r0^2 p (3 (1 - eps)^2 / tan^2 a0 - 1 / sin^2 a0); at eps = 0 Chou and Hannaford's. Held at
-// 0, 25, 50 and 75 % of its free stroke.
+// 0, 50 and 75 % of its free stroke (each held stroke of this near-inextensible braid costs 3-4 s).
 TEST(EndsClosedForms, TheIsobaricForceOfABraidedMuscleIsTonduAndLopezs) {
     const double angle = 30;
     sim::EvalJob freeJob = Braided(angle, 0);
@@ -225,7 +225,7 @@ TEST(EndsClosedForms, TheIsobaricForceOfABraidedMuscleIsTonduAndLopezs) {
     ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(freeJob);
     ASSERT_GT(free.contractionPercent, 20) << "an ideal muscle from 30 deg shortens by a third";
     double previous = INFINITY;
-    for (double fraction : {0.0, 0.25, 0.5, 0.75}) {
+    for (double fraction : {0.0, 0.5, 0.75}) {
         const sim::EvalJob job = Braided(angle, fraction * free.contractionPercent);
         const sim::SimResult r = sim::Evaluate(job);
         ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
