@@ -191,3 +191,8 @@ def test_bad_field_outputs_are_refused_and_write_nothing(tmp_path):
     result = run("simulate", "--model", "shell", "--save-pvd", str(tmp_path / "full"), check=False)
     assert result.returncode == 2 and "not an empty folder" in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["full"] and (tmp_path / "full" / "keep.txt").read_text() == "mine"
+    # A field file that exists is refused before anything runs, and left as it was.
+    (tmp_path / "mine.vtu").write_text("mine")
+    result = run("simulate", "--model", "shell", "--save-vtu", str(tmp_path / "mine.vtu"), check=False)
+    assert result.returncode == 2 and "already exists" in result.stderr and result.stdout == ""
+    assert (tmp_path / "mine.vtu").read_text() == "mine"

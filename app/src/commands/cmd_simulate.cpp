@@ -81,6 +81,10 @@ static int RunSimulate(int argc, char** argv, int first) {
     CheckMeshPath(cli, "--save-mesh", saveMesh, ".obj");
     CheckMeshPath(cli, "--save-initial", saveInitial, ".obj");
     CheckMeshPath(cli, "--save-vtu", saveVtu, ".vtu");
+    // A field file is a result (docs/guide/fields.md): never written over. (An OBJ is a mesh to work
+    // on: --save-mesh stretched.obj, then --mesh stretched.obj, again and again.)
+    if (cli.Given("--save-vtu") && std::filesystem::exists(std::filesystem::symlink_status(saveVtu)))
+        throw UsageError("--save-vtu: " + Quote(saveVtu) + " already exists; remove it or give another name");
     const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
     if (cli.Given("--save-mesh")) RefuseOutputThatIsInput(saveMesh, "--save-mesh", inputs);
     if (cli.Given("--save-initial")) RefuseOutputThatIsInput(saveInitial, "--save-initial", inputs);
