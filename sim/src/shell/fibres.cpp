@@ -139,7 +139,7 @@ double FibreDensity(const Matrix32& F, const double a[2], double stiffness, Vect
         // takes the taut side: the first step from rest then sees the threads it would stretch
         // (without it, a braided tube's first step overshoots 16-fold and its solve takes twice the
         // factorisations). Anywhere else this would slow convergence: a slack thread has no stiffness.
-        if (hessian && tautAtKink && I4 > 1 - 1e-12)
+        if (hessian && tautAtKink && AtTheKink(I4))
             for (int al = 0; al < 2; ++al)
                 for (int i = 0; i < 3; ++i)
                     for (int be = 0; be < 2; ++be)
@@ -205,14 +205,15 @@ void SetFibres(ShellProblem& p, const FibreDef& f, double lengthMm, std::string*
 
 Eigen::Vector3d FibreVector(const ShellProblem& p, int t, int k, const Positions& x) {
     const int c = p.fibreCellOf.empty() ? -1 : p.fibreCellOf[t][k];
-    if (c >= 0) {
-        const FibreCell& cell = p.fibreCells[c];
-        Eigen::Vector3d d = Eigen::Vector3d::Zero();
-        for (int v = 0; v < 4; ++v) d += cell.weights[v] * At(x, cell.vertices[v]);
-        return d;
-    }
+    if (c >= 0) return FibreVector(p.fibreCells[c], x);
     const Matrix32 F = DeformationGradient(p, t, x);
     return F.col(0) * p.fibreDirections[t][2 * k] + F.col(1) * p.fibreDirections[t][2 * k + 1];
+}
+
+Eigen::Vector3d FibreVector(const FibreCell& cell, const Positions& x) {
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    for (int v = 0; v < 4; ++v) d += cell.weights[v] * At(x, cell.vertices[v]);
+    return d;
 }
 
 FibreState FibreStates(const ShellProblem& p, const Positions& x) {

@@ -383,12 +383,11 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         for (size_t c = 0; c < p.fibreCells.size(); ++c) {
             const FibreCell& cell = p.fibreCells[c];
             const auto& w = cell.weights;
-            Eigen::Vector3d d = Eigen::Vector3d::Zero();
-            for (int v = 0; v < 4; ++v) d += w[v] * At(x, cell.vertices[v]);
+            const Eigen::Vector3d d = FibreVector(cell, x);
             const double I4 = d.squaredNorm(), excess = I4 - 1, scale = cell.area * p.fibreStiffness;
             const bool taut = I4 > 1;
             // At the kink Newton's matrix takes the taut side, as a triangle's fibres do (FibreDensity).
-            const bool kinkHessian = hessian && kind != HessianKind::Exact && !taut && I4 > 1 - 1e-12;
+            const bool kinkHessian = hessian && kind != HessianKind::Exact && AtTheKink(I4);
             if (!taut && !kinkHessian) continue;
             if (taut) energy.Add(0.25 * scale * excess * excess);
             if (wantGradient && taut)

@@ -81,7 +81,7 @@ struct Workspace {
     std::vector<int> dofOf, anchored;
     std::vector<std::array<int, 3>> wall, caps;
     std::vector<std::array<int, 4>> hinges;
-    std::vector<std::array<int, 4>> fibreCells;  // their corners
+    std::vector<std::array<int, 4>> fibreCellCorners;
     int unknowns = 0, axial = -1;
 
     std::vector<int> places;      // each unknown's place in the factors' vertex blocks
@@ -93,15 +93,14 @@ struct Workspace {
 
     explicit Workspace(const ShellProblem& p)
         : dofOf(p.dofOf), anchored(p.anchor.vertices), wall(p.wall), caps(p.caps), hinges(p.hinges), unknowns(p.unknowns), axial(p.axial),
-          fibreCells(FibreCellCorners(p)), places(VertexBlockPlaces(p)), withoutContact(p), pattern(withoutContact), exactPattern(withoutContact) {}
-    static std::vector<std::array<int, 4>> FibreCellCorners(const ShellProblem& p) {
-        std::vector<std::array<int, 4>> corners;
-        for (const FibreCell& cell : p.fibreCells) corners.push_back(cell.vertices);
-        return corners;
+          places(VertexBlockPlaces(p)), withoutContact(p), pattern(withoutContact), exactPattern(withoutContact) {
+        for (const FibreCell& cell : p.fibreCells) fibreCellCorners.push_back(cell.vertices);
     }
     bool Fits(const ShellProblem& p) const {
+        const auto sameCorners = [](const std::array<int, 4>& corners, const FibreCell& cell) { return corners == cell.vertices; };
         return unknowns == p.unknowns && axial == p.axial && dofOf == p.dofOf && anchored == p.anchor.vertices && wall == p.wall &&
-               caps == p.caps && hinges == p.hinges && fibreCells == FibreCellCorners(p);
+               caps == p.caps && hinges == p.hinges &&
+               std::equal(fibreCellCorners.begin(), fibreCellCorners.end(), p.fibreCells.begin(), p.fibreCells.end(), sameCorners);
     }
     // A new pattern for both Hessians: the factors' analysis was for the old one.
     void Use(const HessianPattern& next) {
