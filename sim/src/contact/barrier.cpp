@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "contact/contact.h"
 #include "contact/second_order.h"
@@ -32,13 +33,18 @@ double EdgeEdgeMollifier(double crossSquared, double threshold) {
 
 namespace {
 
-// c = |e_a x e_b|^2 over the edge-edge pair's 12 coordinates.
-SecondOrder<12> CrossSquared(const Vector12& x) {
-    using Number = SecondOrder<12>;
+// c = |e_a x e_b|^2 over the edge-edge pair's 12 coordinates, as a plain number or (Number =
+// SecondOrder<12>) with its derivatives: one formula, so both give the same bits for c.
+template <typename Number>
+Number CrossSquared(const Vector12& x) {
+    const auto input = [&](int index) {
+        if constexpr (std::is_same_v<Number, double>) return x[index];
+        else return Number::Input(x[index], index);
+    };
     Number e[2][3];
     for (int k = 0; k < 3; ++k) {
-        e[0][k] = Number::Input(x[3 + k], 3 + k) - Number::Input(x[k], k);
-        e[1][k] = Number::Input(x[9 + k], 9 + k) - Number::Input(x[6 + k], 6 + k);
+        e[0][k] = input(3 + k) - input(k);
+        e[1][k] = input(9 + k) - input(6 + k);
     }
     const Number cx = e[0][1] * e[1][2] - e[0][2] * e[1][1];
     const Number cy = e[0][2] * e[1][0] - e[0][0] * e[1][2];
@@ -72,13 +78,17 @@ double PairBarrierEnergy(PairKind kind, const Vector12& x, double mollifierThres
         if (hessian) hb = b2 * gd * gd.transpose() + b1 * (h2 / (2 * d) - g2 * g2.transpose() / (4 * d * d * d));
     }
     double energy = b;
+    // The mollifier acts on nearly parallel edges only. Most pairs are not, and the cross
+    // product's derivatives (a 12 x 12 Hessian carried through the formula) are taken only where it
+    // acts: taken for every edge-edge pair, they were a quarter of a collapsed tube's time.
     if (kind == PairKind::EdgeEdge) {
-        const SecondOrder<12> c = CrossSquared(x);
-        if (c.value < mollifierThreshold) {
-            const double r = c.value / mollifierThreshold;
-            const double m = EdgeEdgeMollifier(c.value, mollifierThreshold);
+        const double cross = CrossSquared<double>(x);
+        if (cross < mollifierThreshold) {
+            const double r = cross / mollifierThreshold;
+            const double m = EdgeEdgeMollifier(cross, mollifierThreshold);
             energy = m * b;
             if (derivatives) {
+                const SecondOrder<12> c = CrossSquared<SecondOrder<12>>(x);
                 const double m1 = (2 - 2 * r) / mollifierThreshold;  // dm/dc
                 const double m2 = -2 / (mollifierThreshold * mollifierThreshold);
                 const Vector12 gm = m1 * c.gradient;

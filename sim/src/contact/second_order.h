@@ -19,6 +19,9 @@ struct SecondOrder {
 
     SecondOrder() = default;
     SecondOrder(double v) : value(v) {}  // a constant (implicit: constants mix with variables)
+    // For results every entry of which is written next: no zeros written first.
+    struct Uninitialised {};
+    explicit SecondOrder(Uninitialised) : gradient(), hessian() {}
     // Input number `index` with value v: its gradient is the index-th unit vector.
     static SecondOrder Input(double v, int index) {
         SecondOrder x(v);
@@ -27,32 +30,37 @@ struct SecondOrder {
     }
 };
 
+// The operators below are written out entry by entry: Eigen's expressions made temporaries (the
+// outer products) and the results' zeros, which were most of a contact pair's cost. Each entry is
+// summed in the order of the formulas in the comments, so the bits are those of those formulas.
+
 template <int N>
 SecondOrder<N> operator+(const SecondOrder<N>& a, const SecondOrder<N>& b) {
-    SecondOrder<N> r;
+    SecondOrder<N> r{typename SecondOrder<N>::Uninitialised{}};
     r.value = a.value + b.value;
-    r.gradient = a.gradient + b.gradient;
-    r.hessian = a.hessian + b.hessian;
+    for (int i = 0; i < N; ++i) r.gradient[i] = a.gradient[i] + b.gradient[i];
+    for (int k = 0; k < N * N; ++k) r.hessian.data()[k] = a.hessian.data()[k] + b.hessian.data()[k];
     return r;
 }
 
 template <int N>
 SecondOrder<N> operator-(const SecondOrder<N>& a, const SecondOrder<N>& b) {
-    SecondOrder<N> r;
+    SecondOrder<N> r{typename SecondOrder<N>::Uninitialised{}};
     r.value = a.value - b.value;
-    r.gradient = a.gradient - b.gradient;
-    r.hessian = a.hessian - b.hessian;
+    for (int i = 0; i < N; ++i) r.gradient[i] = a.gradient[i] - b.gradient[i];
+    for (int k = 0; k < N * N; ++k) r.hessian.data()[k] = a.hessian.data()[k] - b.hessian.data()[k];
     return r;
 }
 
 // (ab)'' = a'' b + a b'' + a' b'^T + b' a'^T
 template <int N>
 SecondOrder<N> operator*(const SecondOrder<N>& a, const SecondOrder<N>& b) {
-    SecondOrder<N> r;
+    SecondOrder<N> r{typename SecondOrder<N>::Uninitialised{}};
     r.value = a.value * b.value;
-    r.gradient = b.value * a.gradient + a.value * b.gradient;
-    const auto cross = a.gradient * b.gradient.transpose();
-    r.hessian = b.value * a.hessian + a.value * b.hessian + cross + cross.transpose();
+    for (int i = 0; i < N; ++i) r.gradient[i] = b.value * a.gradient[i] + a.value * b.gradient[i];
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i)
+            r.hessian(i, j) = ((b.value * a.hessian(i, j) + a.value * b.hessian(i, j)) + a.gradient[i] * b.gradient[j]) + a.gradient[j] * b.gradient[i];
     return r;
 }
 
