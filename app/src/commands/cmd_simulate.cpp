@@ -37,6 +37,7 @@ static int RunSimulate(int argc, char** argv, int first) {
     std::string from, saveMesh, saveInitial, saveVtu, savePvd;
     int index = 0;
     bool meshCheck = false;
+    bool overwrite = false;
     AddShapeOptions(cli, shape);
     AddModelOptions(cli, model);
     cli.Group("Design from an archive");
@@ -57,6 +58,7 @@ static int RunSimulate(int argc, char** argv, int first) {
     cli.Text("--save-pvd", savePvd, "membrane and shell: write every load step as DIR/step_NNN.vtu (fields as --save-vtu) and DIR/series.pvd, "
                                     "the series ParaView opens; DIR must be new or empty")
         ->type_name("DIR");
+    cli.Flag("--overwrite", overwrite, "replace the files --save-mesh, --save-initial and --save-vtu name when they exist (without it they are refused)");
     cli.Examples(
         "  actuator simulate --model thesis --shape sine --amplitude 4.1 --phase 0.5,pi-0.5\n"
         "  actuator simulate --model thesis --shape abs-sine --amplitude 4 --phase 0,4pi\n"
@@ -81,16 +83,16 @@ static int RunSimulate(int argc, char** argv, int first) {
     CheckMeshPath(cli, "--save-mesh", saveMesh, ".obj");
     CheckMeshPath(cli, "--save-initial", saveInitial, ".obj");
     CheckMeshPath(cli, "--save-vtu", saveVtu, ".vtu");
-    // A field file is a result (docs/guide/fields.md): never written over. (An OBJ is a mesh to work
-    // on: --save-mesh stretched.obj, then --mesh stretched.obj, again and again.)
-    if (cli.Given("--save-vtu") && std::filesystem::exists(std::filesystem::symlink_status(saveVtu)))
-        throw UsageError("--save-vtu: " + Quote(saveVtu) + " already exists; remove it or give another name");
     const std::vector<std::string> inputs{shape.meshFile, shape.offsets, from};
     if (cli.Given("--save-mesh")) RefuseOutputThatIsInput(saveMesh, "--save-mesh", inputs);
     if (cli.Given("--save-initial")) RefuseOutputThatIsInput(saveInitial, "--save-initial", inputs);
     if (cli.Given("--save-vtu")) RefuseOutputThatIsInput(saveVtu, "--save-vtu", inputs);
     if (cli.Given("--save-mesh") && cli.Given("--save-initial") && saveMesh == saveInitial)
         throw UsageError("--save-mesh and --save-initial name the same file");
+    // A saved mesh or field file is a result: written over only when asked to.
+    for (const auto& [option, path] : {std::pair<const char*, const std::string*>{"--save-mesh", &saveMesh}, {"--save-initial", &saveInitial}, {"--save-vtu", &saveVtu}})
+        if (cli.Given(option) && !overwrite && std::filesystem::exists(std::filesystem::symlink_status(*path)))
+            throw UsageError(std::string(option) + ": " + Quote(*path) + " already exists; add --overwrite to replace it, or give another name");
     if (meshCheck && !sim::ModelOf(job).physical)
         throw UsageError("--mesh-check: the thesis model's 30 x 30 helix is part of its definition; the check is for membrane and shell");
     if (cli.Given("--save-pvd")) {

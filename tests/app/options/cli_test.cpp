@@ -83,6 +83,28 @@ TEST_F(Cli, SavedMeshesRoundTripExactly) {
     EXPECT_THAT(obj, HasSubstr("\nf 1 32 2\n"));
 }
 
+// A saved mesh is a result: the same command again is refused (exit 2) and leaves it as it was;
+// --overwrite replaces it.
+TEST_F(Cli, SavedMeshesAreWrittenOverOnlyWhenAsked) {
+    const std::string save = "simulate --model thesis --shape sine --iterations 300 --save-initial " + Path("initial.obj") + " --save-mesh " + Path("final.obj");
+    ASSERT_EQ(Run(save + " --amplitude 4.1").exitCode, 0);
+    const std::string initial = Slurp(Path("initial.obj")), final = Slurp(Path("final.obj"));
+    for (const std::string other : {std::string(" --amplitude 2"), " --amplitude 2 --save-vtu " + Path("wall.vtu")}) {
+        const Result again = Run(save + other);
+        EXPECT_EQ(again.exitCode, 2) << other;
+        EXPECT_THAT(again.err, HasSubstr("already exists"));
+        EXPECT_THAT(again.err, HasSubstr("--overwrite"));
+        EXPECT_EQ(again.out, "");
+        EXPECT_EQ(Slurp(Path("initial.obj")), initial);
+        EXPECT_EQ(Slurp(Path("final.obj")), final);
+        EXPECT_FALSE(std::filesystem::exists(Path("wall.vtu"))) << "nothing of a refused command is written";
+    }
+    const Result replaced = Run(save + " --amplitude 2 --overwrite");
+    ASSERT_EQ(replaced.exitCode, 0) << replaced.err;
+    EXPECT_NE(Slurp(Path("initial.obj")), initial);
+    EXPECT_NE(Slurp(Path("final.obj")), final);
+}
+
 TEST_F(Cli, BadInputIsRefusedWithOneLineAndExitCode2) {
     ExpectRefused("simulate --model thesis --shape banana", "banana");
     ExpectRefused("simulate --model thesis --shape bspline --control-points 1,2,3", "at least 4");
