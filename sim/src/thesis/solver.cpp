@@ -173,11 +173,11 @@ SpringForceView<Real> ViewOf(const World<Real>& w, const std::array<Buffer<Real>
 // Inflation is the cross product of the edges one turn up and one step along the helix: its length
 // is the area of the patch the vertex pushes on, and it points outward on the bare cylinder.
 //
-// One coordinate at a time: a loop over all three read 24 spring-force streams, 9 position streams
-// and wrote 3, more pointers than registers, and spent its time reloading them (45 % of an
-// evaluation). The inflation force is computed first into its own arrays; each coordinate then
-// gathers its springs, adds it and moves. Each vertex's sum is the same expression in the same
-// order as before, so the results keep their bits.
+// One coordinate at a time: a loop over all three would read 24 spring-force streams and 9 position
+// streams and write 3, more pointers than there are registers, and spend its time reloading them.
+// The inflation force is computed first into its own arrays; each coordinate then gathers its
+// springs, adds it and moves. Each vertex's sum keeps the formula's order (springs, then inflation),
+// so the split does not change a bit.
 template <typename Real>
 ACTUATOR_KERNEL void InflationRange(int begin, int end, int resolution, Real pressureScale, const Real* __restrict x,
                                     const Real* __restrict y, const Real* __restrict z, Real* __restrict ix,
