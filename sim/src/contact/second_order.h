@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <functional>
 
 namespace sim {
 
@@ -34,22 +35,22 @@ struct SecondOrder {
 // outer products) and the results' zeros, which were most of a contact pair's cost. Each entry is
 // summed in the order of the formulas in the comments, so the bits are those of those formulas.
 
-template <int N>
-SecondOrder<N> operator+(const SecondOrder<N>& a, const SecondOrder<N>& b) {
+// a + b and a - b: the operation on the values and on each entry of the derivatives.
+template <int N, typename Operation>
+SecondOrder<N> EntryWise(const SecondOrder<N>& a, const SecondOrder<N>& b, Operation operation) {
     SecondOrder<N> r{typename SecondOrder<N>::Uninitialised{}};
-    r.value = a.value + b.value;
-    for (int i = 0; i < N; ++i) r.gradient[i] = a.gradient[i] + b.gradient[i];
-    for (int k = 0; k < N * N; ++k) r.hessian.data()[k] = a.hessian.data()[k] + b.hessian.data()[k];
+    r.value = operation(a.value, b.value);
+    for (int i = 0; i < N; ++i) r.gradient[i] = operation(a.gradient[i], b.gradient[i]);
+    for (int k = 0; k < N * N; ++k) r.hessian.data()[k] = operation(a.hessian.data()[k], b.hessian.data()[k]);
     return r;
 }
-
+template <int N>
+SecondOrder<N> operator+(const SecondOrder<N>& a, const SecondOrder<N>& b) {
+    return EntryWise(a, b, std::plus<>());
+}
 template <int N>
 SecondOrder<N> operator-(const SecondOrder<N>& a, const SecondOrder<N>& b) {
-    SecondOrder<N> r{typename SecondOrder<N>::Uninitialised{}};
-    r.value = a.value - b.value;
-    for (int i = 0; i < N; ++i) r.gradient[i] = a.gradient[i] - b.gradient[i];
-    for (int k = 0; k < N * N; ++k) r.hessian.data()[k] = a.hessian.data()[k] - b.hessian.data()[k];
-    return r;
+    return EntryWise(a, b, std::minus<>());
 }
 
 // (ab)'' = a'' b + a b'' + a' b'^T + b' a'^T

@@ -64,18 +64,14 @@ std::array<double, 3> CornerWeights(const ShellProblem& p, int t, int k) {
 void PairFibreCells(ShellProblem& p, const std::vector<std::array<double, 2>>& anglesDeg) {
     p.fibreCells.clear();
     p.fibreCellOf.assign(p.wall.size(), {-1, -1});
-    std::map<std::pair<int, int>, std::vector<int>> trianglesOfEdge;
+    // Each directed edge (a, b) with its triangle: the triangle across (a, b) is the one of (b, a).
+    std::map<std::pair<int, int>, int> triangleOfEdge;
     for (size_t t = 0; t < p.wall.size(); ++t)
-        for (int e = 0; e < 3; ++e) {
-            const int a = p.wall[t][e], b = p.wall[t][(e + 1) % 3];
-            trianglesOfEdge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(t));
-        }
+        for (int e = 0; e < 3; ++e) triangleOfEdge[{p.wall[t][e], p.wall[t][(e + 1) % 3]}] = static_cast<int>(t);
     // The triangle across edge (corner e, corner e + 1) of triangle t, or -1.
-    auto across = [&](int t, int e) {
-        const int a = p.wall[t][e], b = p.wall[t][(e + 1) % 3];
-        for (int u : trianglesOfEdge[{std::min(a, b), std::max(a, b)}])
-            if (u != t) return u;
-        return -1;
+    const auto across = [&](int t, int e) {
+        const auto other = triangleOfEdge.find({p.wall[t][(e + 1) % 3], p.wall[t][e]});
+        return other == triangleOfEdge.end() ? -1 : other->second;
     };
     for (size_t first = 0; first < p.wall.size(); ++first) {
         const int t = static_cast<int>(first);

@@ -334,7 +334,8 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
     if (terms.membrane || withFibres) {
         for (size_t t = 0; t < p.wall.size(); ++t) {
             const int families = withFibres ? p.fibreFamilies[t] : 0;
-            if (!terms.membrane && families == 0) continue;
+            const bool ownFibres = families > 0 && (p.fibreCellOf[t][0] < 0 || (families > 1 && p.fibreCellOf[t][1] < 0));
+            if (!terms.membrane && !ownFibres) continue;  // a cell's fibres come below
             const auto& tri = p.wall[t];
             const MembraneRest& rest = p.membrane[t];
             const Matrix32 F = DeformationGradient(p, static_cast<int>(t), x);
