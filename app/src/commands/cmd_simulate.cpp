@@ -90,6 +90,8 @@ static int RunSimulate(int argc, char** argv, int first) {
     if (cli.Given("--save-mesh") && cli.Given("--save-initial") && saveMesh == saveInitial)
         throw UsageError("--save-mesh and --save-initial name the same file");
     // A saved mesh or field file is a result: written over only when asked to.
+    if (!cli.Given("--save-mesh") && !cli.Given("--save-initial") && !cli.Given("--save-vtu"))
+        cli.RefuseIfGiven("--overwrite", "goes with --save-mesh, --save-initial or --save-vtu (a --save-pvd folder must be new or empty)");
     for (const auto& [option, path] : {std::pair<const char*, const std::string*>{"--save-mesh", &saveMesh}, {"--save-initial", &saveInitial}, {"--save-vtu", &saveVtu}})
         if (cli.Given(option) && !overwrite && std::filesystem::exists(std::filesystem::symlink_status(*path)))
             throw UsageError(std::string(option) + ": " + Quote(*path) + " already exists; add --overwrite to replace it, or give another name");

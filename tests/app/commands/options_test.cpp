@@ -286,8 +286,7 @@ TEST_F(OptionsHaveAnEffectOrAreRefused, Simulate) {
     modes.push_back({"membrane braid", Registered("simulate"), Joined({"--model", "membrane", "--fibres", "braid"}, kSmallShell), {"--model"}});
     modes.push_back({"from an archive", Registered("simulate"), {"--from", archive, "--index", "0"}, {"--from", "--index"}});
     // Newton's bisections of a failed load step: they bind when a step fails, here for want of iterations.
-    // --overwrite replaces an output that exists; every run here writes new ones (Cli.SavedMeshesAreWrittenOverOnlyWhenAsked).
-    Check("simulate", modes, given, {{"--overwrite", "the outputs here are new"}}, false, {{"--max-bisections", {"--max-iterations", "1"}}});
+    Check("simulate", modes, given, {}, false, {{"--max-bisections", {"--max-iterations", "1"}}});
 }
 
 TEST_F(OptionsHaveAnEffectOrAreRefused, RenderAndExport) {

@@ -99,6 +99,8 @@ TEST_F(Cli, SavedMeshesAreWrittenOverOnlyWhenAsked) {
         EXPECT_EQ(Slurp(Path("final.obj")), final);
         EXPECT_FALSE(std::filesystem::exists(Path("wall.vtu"))) << "nothing of a refused command is written";
     }
+    ExpectRefused("simulate --model thesis --iterations 300 --overwrite", "--overwrite");  // nothing to write over
+    ExpectRefused("simulate --model membrane --save-pvd " + Path("steps") + " --overwrite", "--overwrite");
     const Result replaced = Run(save + " --amplitude 2 --overwrite");
     ASSERT_EQ(replaced.exitCode, 0) << replaced.err;
     EXPECT_NE(Slurp(Path("initial.obj")), initial);
