@@ -8,10 +8,6 @@
 #include <cstdint>
 #include <limits>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
-#include <Eigen/SVD>
-
 #include "contact/contact.h"
 
 namespace sim {
@@ -20,6 +16,42 @@ namespace {
 template <typename PointTriangle, typename EdgeEdge>
 void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
                       PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge);
+
+// ContactSurface::layer: breadth first along the edges from the bottom clamp's vertices (body 0),
+// or from the lowest point of each part of the surface that holds none of them.
+void LayerSurface(ContactSurface& s) {
+    const int n = s.rest.Size();
+    s.layer.assign(n, -1);
+    s.layerCount = 0;
+    std::vector<std::vector<int>> adjacent(n);
+    for (const auto& e : s.edges) {
+        adjacent[e[0]].push_back(e[1]);
+        adjacent[e[1]].push_back(e[0]);
+    }
+    std::vector<int> queue;
+    const auto spread = [&]() {
+        for (std::size_t k = 0; k < queue.size(); ++k)
+            for (int w : adjacent[queue[k]])
+                if (s.layer[w] < 0) {
+                    s.layer[w] = s.layer[queue[k]] + 1;
+                    queue.push_back(w);
+                }
+        for (int v : queue) s.layerCount = std::max(s.layerCount, s.layer[v] + 1);
+        queue.clear();
+    };
+    for (int v : s.points)
+        if (!s.body.empty() && s.body[v] == 0) {
+            s.layer[v] = 0;
+            queue.push_back(v);
+        }
+    spread();
+    for (int v : s.points)
+        if (s.layer[v] < 0) {
+            s.layer[v] = 0;
+            queue.push_back(v);
+            spread();
+        }
+}
 }  // namespace
 
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
@@ -39,6 +71,7 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     s.edges.erase(std::unique(s.edges.begin(), s.edges.end()), s.edges.end());
     std::sort(s.points.begin(), s.points.end());
     s.points.erase(std::unique(s.points.begin(), s.points.end()), s.points.end());
+    LayerSurface(s);
     if (neighbourMm <= 0) return s;
 
     // Distances along the edges, by Dijkstra from each vertex out to the radius: per vertex, the
@@ -387,93 +420,6 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
         });
     std::sort(pairs.begin(), pairs.end());
     return pairs;
-}
-
-double ContactList::ClearanceAt(const Positions& x) const {
-    constexpr double kNone = -std::numeric_limits<double>::infinity();
-    const int n = x.Size();
-    if (built.Size() != n || n == 0) return kNone;
-    // The moves u = x - built, and the least-squares affine motion u ~ A (built - c) + b.
-    const auto move = [&](int v) -> Eigen::Vector3d { return {x.x[v] - built.x[v], x.y[v] - built.y[v], x.z[v] - built.z[v]}; };
-    const auto offset = [&](int v) -> Eigen::Vector3d { return Eigen::Vector3d(built.x[v], built.y[v], built.z[v]) - builtCentre; };
-    Eigen::Vector3d meanMove = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d moveSpread = Eigen::Matrix3d::Zero();  // sum of u (built - c)^T
-    double largest = 0;
-    for (int v = 0; v < n; ++v) {
-        const Eigen::Vector3d u = move(v);
-        meanMove += u;
-        moveSpread += u * offset(v).transpose();
-        largest = std::max(largest, u.squaredNorm());
-    }
-    if (!std::isfinite(largest)) return kNone;
-    meanMove /= n;
-    const Eigen::Matrix3d strain = moveSpread * builtSpreadInverse;
-    double leftOver = 0;
-    for (int v = 0; v < n; ++v) leftOver = std::max(leftOver, (move(v) - strain * offset(v) - meanMove).squaredNorm());
-    // Any affine map F bounds the distances: |F(p) - F(q)| >= sigma_min(F) |p - q|, and moves of at
-    // most m beyond it bring two primitives at most 2 m nearer. The fitted map and the identity (the
-    // plain largest move) are both bounds; the larger one holds.
-    const double smallestStretch = Eigen::JacobiSVD<Eigen::Matrix3d>(Eigen::Matrix3d::Identity() + strain).singularValues()[2];
-    return std::max(clearanceMm - 2 * std::sqrt(largest), smallestStretch * clearanceMm - 2 * std::sqrt(leftOver));
-}
-
-namespace {
-constexpr double kListReaches = 1.4;     // the list's pairs: within this many reaches
-constexpr double kPatternReaches = 1.8;  // ContactList::wider: within this many
-}  // namespace
-
-bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x) {
-    if (list.Covers(x)) return false;
-    const auto setBuilt = [&](double clearanceMm) {
-        list.built = x;
-        list.reachMm = ContactReachMm(barrier);
-        list.clearanceMm = clearanceMm;
-        list.builtCentre.setZero();
-        for (int v = 0; v < x.Size(); ++v) list.builtCentre += Eigen::Vector3d(x.x[v], x.y[v], x.z[v]);
-        list.builtCentre /= std::max(1, x.Size());
-        Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
-        for (int v = 0; v < x.Size(); ++v) {
-            const Eigen::Vector3d r = Eigen::Vector3d(x.x[v], x.y[v], x.z[v]) - list.builtCentre;
-            spread += r * r.transpose();
-        }
-        // A pseudo-inverse: a flat or straight surface fits no motion across itself (any fit is a
-        // valid bound; this one is the smallest).
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(spread);
-        const Eigen::Vector3d values = eigen.eigenvalues();
-        Eigen::Vector3d inverse = Eigen::Vector3d::Zero();
-        for (int k = 0; k < 3; ++k)
-            if (values[k] > 1e-12 * values.cwiseAbs().maxCoeff()) inverse[k] = 1 / values[k];
-        list.builtSpreadInverse = eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
-    };
-    // The pairs within 1.4 reaches: a wider list is rebuilt less often but puts every pair in it into
-    // the Hessian's pattern (a collapsed tube: 36,000 pairs at twice the reach, where 2,000 touch).
-    // The pairs left out are searched to 2 reaches (a wall's neighbours are left out to there at
-    // rest, so on a wall far from contact none is found): the nearest of them sets how far the
-    // walls may move before one of them could come within the reach (0.2 to 0.5 reaches).
-    const double reach = ContactReachMm(barrier), search = 2 * reach;
-    // At rest the surface's own query has already looked this far: when the nearest pair it found is
-    // beyond the list's reach, the list is empty and that pair sets its clearance (a first list with
-    // no search of its own).
-    if (list.built.Size() == 0 && surface.neighbourMm >= search && surface.restClearanceMm >= kListReaches * reach && x == surface.rest) {
-        setBuilt(std::min(search, surface.restClearanceMm));
-        list.pairs.clear();
-        list.wider.clear();
-        return false;
-    }
-    const std::vector<ContactPair> near = ContactCandidates(surface, x, nullptr, search);
-    double clearance = search;
-    std::vector<ContactPair> pairs;
-    list.wider.clear();
-    for (const ContactPair& pair : near) {
-        const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr));
-        if (d < kListReaches * reach) pairs.push_back(pair);
-        else clearance = std::min(clearance, d);
-        if (d < kPatternReaches * reach) list.wider.push_back(pair);
-    }
-    setBuilt(clearance);
-    if (pairs == list.pairs) return false;
-    list.pairs = std::move(pairs);
-    return true;
 }
 
 }  // namespace sim

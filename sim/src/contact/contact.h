@@ -113,6 +113,11 @@ struct ContactSurface {
     // whose walls already touch), and its distance (infinite when none is).
     ContactPair restNearest;
     double restClearanceMm = std::numeric_limits<double>::infinity();
+    // Per vertex of the mesh, its layer: how many edges from the bottom clamp (from the surface's
+    // first point where there is none), -1 off the surface. The two ends of an edge are at most a
+    // layer apart, so a triangle's vertices lie in two consecutive layers. On a tube, a ring.
+    std::vector<int> layer;
+    int layerCount = 0;
 };
 ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::array<int, 3>>& triangles,
                                   const std::vector<int>& body, double neighbourMm);
@@ -137,6 +142,13 @@ inline double ContactReachMm(const BarrierDef& barrier) { return barrier.thickne
 // the moves by at most twice the largest. The same bound lets continuous collision detection look at
 // the list's pairs alone while the walls cannot have come nearer: a tube inflating far from contact
 // pays for a search now and then, not at every step.
+//
+// A tube that bows (a held state pushed sideways) moves no way an affine map fits, so while no wall
+// is near another (an empty list) the bound is also taken band by band: bands of the surface's
+// layers (rings), each pair of windows (two consecutive bands, which hold every primitive) fitted
+// with its own affine motion and bounded from its own distance at `built` (its bands' boxes apart,
+// at least clearanceMm). A bend fits each short stretch of tube, and stretches far apart need no
+// fit.
 struct ContactList {
     std::vector<ContactPair> pairs;
     // The candidates within 1.8 reaches of `built` (pairs included): what a Hessian pattern that is
@@ -144,16 +156,35 @@ struct ContactList {
     // fall inside the pattern, and the factors' analysis and the last factor carry over.
     std::vector<ContactPair> wider;
     Positions built;
-    double reachMm = 0;      // the list holds every pair within this while ClearanceAt is at least this
+    double reachMm = 0;      // the list holds every pair within this while Covers
     double clearanceMm = 0;  // every pair not in the list was at least this far apart at `built`
     // The built positions' centroid and the pseudo-inverse of their spread about it (sum of
     // (x - c)(x - c)^T): what fitting an affine motion to the moves since needs.
     Eigen::Vector3d builtCentre = Eigen::Vector3d::Zero();
     Eigen::Matrix3d builtSpreadInverse = Eigen::Matrix3d::Zero();
+    // The bands at `built`: their surface vertices, boxes, and centroids and spreads (as above).
+    struct Band {
+        std::vector<int> vertices;
+        Eigen::Vector3d lo, hi, centre;
+        Eigen::Matrix3d spread, spreadInverse;
+    };
+    // A pair of windows: its bands (-1 past the last), its centroid and spread's pseudo-inverse, and
+    // a lower bound on the distance at `built` of every pair left out whose primitives lie in it.
+    struct Windows {
+        std::array<int, 4> bands{};
+        Eigen::Vector3d centre;
+        Eigen::Matrix3d spreadInverse;
+        double distanceMm = 0;
+    };
+    std::vector<Band> bands;
+    std::vector<Windows> windows;
     // A lower bound on the distance at x of every pair not in the list (-infinity for positions the
-    // list was not built on or that are not finite).
+    // list was not built on or that are not finite), from the whole surface's affine fit alone.
     double ClearanceAt(const Positions& x) const;
-    bool Covers(const Positions& x) const { return ClearanceAt(x) >= reachMm; }
+    // True when no pair left out comes within needMm at any point of the straight move from `from`
+    // to `to` (the whole surface's bound at both ends first, then band by band).
+    bool StaysClear(const Positions& from, const Positions& to, double needMm) const;
+    bool Covers(const Positions& x) const { return StaysClear(x, x, reachMm); }
 };
 // Rebuilds the list at x when it does not cover x. True when its pairs changed.
 bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x);

@@ -171,6 +171,7 @@ struct Solver {
         Positions x;
         PositionsOf(problem, q, x);
         UpdateContactList(contactList, *problem.contact, problem.barrier, x);
+        sweptFrom.resize(0);
         const auto& held = pattern.contactPairs;
         if (std::includes(held.begin(), held.end(), contactList.pairs.begin(), contactList.pairs.end())) return;
         workspace->Use(HessianPattern(workspace->withoutContact, problem, contactList.wider));
@@ -178,14 +179,6 @@ struct Solver {
         refresh = false;
         direct = false;
         factorAge = 0;
-    }
-    // A lower bound on a distance along a straight move, from lower bounds at its two ends and the
-    // largest move m of any vertex: at a fraction t of the way it is at least startMm - 2 t m and
-    // endMm - 2 (1 - t) m; the least over t of the larger of the two.
-    static double StepClearance(double startMm, double endMm, double largestMoveMm) {
-        if (!(largestMoveMm > 0)) return std::min(startMm, endMm);
-        const double t = std::clamp((startMm - endMm + 2 * largestMoveMm) / (4 * largestMoveMm), 0.0, 1.0);
-        return std::max(startMm - 2 * t * largestMoveMm, endMm - 2 * (1 - t) * largestMoveMm);
     }
     // The largest fraction of the step from q that no wall crosses (1 with contact off): continuous
     // collision detection on the straight move of every vertex. When the list cannot vouch for the
@@ -201,26 +194,41 @@ struct Solver {
         PositionsOf(problem, q, from);
         PositionsOf(problem, q + step, end);
         to = end;  // becomes the move
-        double largestMove = 0;
         for (int v = 0; v < to.Size(); ++v) {
             to.x[v] -= from.x[v];
             to.y[v] -= from.y[v];
             to.z[v] -= from.z[v];
-            largestMove = std::max(largestMove, std::sqrt(to.x[v] * to.x[v] + to.y[v] * to.y[v] + to.z[v] * to.z[v]));
         }
         const double h = problem.barrier.thicknessMm;
-        // Pairs left out of the list are at least ClearanceAt apart at either end of the step, and
-        // come nearer between them by at most twice the largest move times the way from the nearer
-        // end: when even the lowest point of that is beyond a wall's thickness, the list's pairs are
-        // the only ones to check.
-        if (std::isfinite(largestMove) && StepClearance(contactList.ClearanceAt(from), contactList.ClearanceAt(end), largestMove) > h) {
+        // When no pair left out of the list can come within a wall's thickness on the way, the
+        // list's pairs are the only ones to check.
+        if (contactList.StaysClear(from, end, h)) {
             double free = 1;
             for (const ContactPair& pair : contactList.pairs)
                 free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, to), h, free));
             return free;
         }
+        if (sweptFrom.size() == q.size() && sweptStep.size() == step.size() && sweptFrom == q && sweptStep == step) return sweptFree;
         const double reach = ContactReachMm(problem.barrier), tolerance = kSweepTolerance * reach;
-        return ImpactFreeStep(*problem.contact, from, to, h, &contactSweep, reach + 2 * tolerance, tolerance);
+        sweptFree = ImpactFreeStep(*problem.contact, from, to, h, &contactSweep, reach + 2 * tolerance, tolerance);
+        sweptFrom = q;
+        sweptStep = step;
+        return sweptFree;
+    }
+    // The last swept query's step and answer, while the list it was asked beside stands (a line
+    // search that sweeps its step before judging it asks again after).
+    Eigen::VectorXd sweptFrom, sweptStep;
+    double sweptFree = 1;
+    // Before a line search judges its trial q + step: when the list does not cover the trial, the
+    // trial's assembly would search for its pairs and the accepted step be swept after; a step of
+    // moderate length is swept first instead, and the trial's assembly takes the sweep's pairs. (A
+    // run-away step, hundreds of millimetres that halving cuts back, is left to the search.)
+    static constexpr double kSweepFirstReaches = 20;
+    void SweepFirst(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
+        if (!problem.contact || !(step.lpNorm<Eigen::Infinity>() <= kSweepFirstReaches * ContactReachMm(problem.barrier))) return;
+        Positions next;
+        PositionsOf(problem, q + step, next);
+        if (!contactList.Covers(next)) ImpactFree(q, step);
     }
     ~Solver() { tLastWorkspace = std::move(workspace); }
     // Counts one Newton iteration; true (and overBudget) when the evaluation's budget is already spent.
@@ -415,7 +423,10 @@ struct Solver {
     // (def.maxIterations when 0); Runaway once the volume passes `volumeLimit` or falls below `volumeFloor`.
     NewtonEnd Minimise(Eigen::VectorXd& q, const LoadTerms& load, double volumeLimit = std::numeric_limits<double>::infinity(),
                        double volumeFloor = -std::numeric_limits<double>::infinity(), int maxIterations = 0) {
-        // The gradient at q; the Hessian is assembled only when a step is to be taken from q.
+        // The gradient at q; the Hessian is assembled only when a step is to be taken from q. The
+        // contact list first: the assembly would otherwise search for its pairs, and the list
+        // search again at the first step.
+        RefreshContact(q);
         EnergyResult r = AssembleEnergy(problem, q, load, terms, true, nullptr, HessianKind::Projected);
         for (int iteration = 0; iteration < (maxIterations > 0 ? maxIterations : def.maxIterations); ++iteration) {
             if (SpendIteration()) return NewtonEnd::OverBudget;
@@ -528,6 +539,7 @@ struct Solver {
             }
             for (int halving = 0; halving < 40 && !accepted; ++halving) {
                 next = q + alpha * step;
+                if (halving == 0) SweepFirst(q, alpha * step);
                 // With the gradient: the next iteration's (most steps are taken whole).
                 EnergyResult trial = AssembleEnergy(problem, next, load, terms, true, nullptr, HessianKind::Projected);
                 if (roundOff || (std::isfinite(trial.energy) && trial.energy <= r.energy + 1e-4 * alpha * slope)) {
