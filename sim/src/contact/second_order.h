@@ -65,14 +65,15 @@ SecondOrder<N> operator*(const SecondOrder<N>& a, const SecondOrder<N>& b) {
     return r;
 }
 
-// a / b = a * (1 / b), with (1/b)' = -b'/b^2 and (1/b)'' = -b''/b^2 + 2 b' b'^T / b^3.
+// a / b = a * (1 / b), with (1/b)' = -b'/b^2 and (1/b)'' = -b''/b^2 + (2 b'/b^3) b'^T.
 template <int N>
 SecondOrder<N> operator/(const SecondOrder<N>& a, const SecondOrder<N>& b) {
-    SecondOrder<N> inverse;
-    const double v = 1 / b.value;
+    SecondOrder<N> inverse{typename SecondOrder<N>::Uninitialised{}};
+    const double v = 1 / b.value, first = -v * v, second = 2 * v * v * v;
     inverse.value = v;
-    inverse.gradient = -v * v * b.gradient;
-    inverse.hessian = -v * v * b.hessian + (2 * v * v * v) * (b.gradient * b.gradient.transpose());
+    for (int i = 0; i < N; ++i) inverse.gradient[i] = first * b.gradient[i];
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) inverse.hessian(i, j) = first * b.hessian(i, j) + (second * b.gradient[i]) * b.gradient[j];
     SecondOrder<N> r = a * inverse;
     r.value = a.value / b.value;  // the same bits as the plain division the energy-only path does
     return r;
