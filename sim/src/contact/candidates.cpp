@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 
 #include "contact/contact.h"
@@ -13,7 +14,7 @@
 namespace sim {
 
 namespace {
-template <typename PointTriangle, typename EdgeEdge>
+template <bool kWithinReach = true, typename PointTriangle, typename EdgeEdge>
 void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
                       PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge);
 
@@ -121,36 +122,58 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
                 }
             }
         }
-        std::sort(near.begin() + nearBegin[source], near.end());
         for (int v : touched) distance[v] = std::numeric_limits<double>::infinity();
         touched.clear();
     }
     nearBegin[n] = static_cast<int>(near.size());
 
     // Neighbour pairs: closer than neighbourMm at rest (the hash's query, with no pair left out
-    // yet) and near along the wall (a vertex of one near a vertex of the other).
-    const auto nearAlong = [&](int a, int b) { return std::binary_search(near.begin() + nearBegin[a], near.begin() + nearBegin[a + 1], b); };
+    // yet) and near along the wall (a vertex of one near a vertex of the other). Most pairs near
+    // along the wall have two vertices closer than neighbourMm, and so are that close themselves:
+    // their distance is needed only when no two vertices are. What is near along the wall to the
+    // primitive asked about is stamped once per primitive (the hash gives its pairs one after another).
+    std::vector<int> nearStamp(n, -1);
+    int stamp = -1, markedPoint = -1, markedEdge = -1;
+    const auto markNear = [&](std::initializer_list<int> vertices) {
+        ++stamp;
+        for (int a : vertices)
+            for (int k = nearBegin[a]; k < nearBegin[a + 1]; ++k) nearStamp[near[k]] = stamp;
+    };
+    const auto nearAlong = [&](int b) { return nearStamp[b] == stamp; };
+    const double reachSquared = neighbourMm * neighbourMm;
+    const auto squaredDistance = [&](const ContactPair& pair) { return SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr); };
+    const auto within = [&](const ContactPair& pair) {
+        const int split = pair.kind == PairKind::PointTriangle ? 1 : 2;  // the first primitive's vertices
+        for (int i = 0; i < split; ++i)
+            for (int j = split; j < 4; ++j)
+                if ((at(pair.vertices[i]) - at(pair.vertices[j])).squaredNorm() < reachSquared) return true;
+        return squaredDistance(pair) < reachSquared;
+    };
     std::vector<std::vector<int>> closeTriangles(n), closeEdges(s.edges.size());
     // The others are walls apart along the wall that are this close at rest: the nearest is kept.
     const auto nearest = [&](const ContactPair& pair) {
-        const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr));
+        const double squared = squaredDistance(pair);
+        if (!(squared < reachSquared)) return;
+        const double d = std::sqrt(squared);
         if (d < s.restClearanceMm || (d == s.restClearanceMm && pair < s.restNearest)) {
             s.restClearanceMm = d;
             s.restNearest = pair;
         }
     };
-    ForEachCandidate(
+    ForEachCandidate<false>(
         s, rest, nullptr, neighbourMm,
         [&](int p, int t) {
             const auto& v = s.triangles[t];
-            if (nearAlong(p, v[0]) || nearAlong(p, v[1]) || nearAlong(p, v[2])) closeTriangles[p].push_back(t);
-            else nearest({PairKind::PointTriangle, {p, v[0], v[1], v[2]}});
+            const ContactPair pair{PairKind::PointTriangle, {p, v[0], v[1], v[2]}};
+            if (markedPoint != p) markNear({p}), markedPoint = p, markedEdge = -1;
+            if (!(nearAlong(v[0]) || nearAlong(v[1]) || nearAlong(v[2]))) nearest(pair);
+            else if (within(pair)) closeTriangles[p].push_back(t);
         },
         [&](int e, int f) {
-            bool nearEnds = false;
-            for (int a : s.edges[e])
-                for (int b : s.edges[f]) nearEnds = nearEnds || nearAlong(a, b);
-            if (!nearEnds) return nearest({PairKind::EdgeEdge, {s.edges[e][0], s.edges[e][1], s.edges[f][0], s.edges[f][1]}});
+            const ContactPair pair{PairKind::EdgeEdge, {s.edges[e][0], s.edges[e][1], s.edges[f][0], s.edges[f][1]}};
+            if (markedEdge != e) markNear({s.edges[e][0], s.edges[e][1]}), markedEdge = e, markedPoint = -1;
+            if (!(nearAlong(s.edges[f][0]) || nearAlong(s.edges[f][1]))) return nearest(pair);
+            if (!within(pair)) return;
             closeEdges[e].push_back(f);
             closeEdges[f].push_back(e);
         });
@@ -300,8 +323,9 @@ private:
 namespace {
 
 // Every candidate pair once: pointTriangle(p, t) with a point and a triangle's index, edgeEdge(e, f)
-// with two edges' indices (e < f); in no particular order.
-template <typename PointTriangle, typename EdgeEdge>
+// with two edges' indices (e < f); in no particular order. Without kWithinReach, every pair whose
+// boxes overlap: the caller tells those within the reach itself.
+template <bool kWithinReach, typename PointTriangle, typename EdgeEdge>
 void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
                       PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge) {
     // Boxes inflated by half the reach each way: two overlap whenever their primitives may be
@@ -380,7 +404,7 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
             const auto& t = surface.triangles[n];
             if (p == t[0] || p == t[1] || p == t[2] || !Overlap(box, triangleBoxes[n])) return;
             const ContactPair pair{PairKind::PointTriangle, {p, t[0], t[1], t[2]}};
-            if (movable(pair.vertices) && within(pair)) pointTriangle(p, n);
+            if (movable(pair.vertices) && (!kWithinReach || within(pair))) pointTriangle(p, n);
         });
     }
     // Each edge against the edges after it (one name per pair: the lower edge first).
@@ -398,7 +422,7 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
             const auto& ej = surface.edges[f];
             if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1] || !Overlap(box, edgeBoxes[f])) return;
             const ContactPair pair{PairKind::EdgeEdge, {ei[0], ei[1], ej[0], ej[1]}};
-            if (movable(pair.vertices) && within(pair)) edgeEdge(e, f);
+            if (movable(pair.vertices) && (!kWithinReach || within(pair))) edgeEdge(e, f);
         });
     }
 }
