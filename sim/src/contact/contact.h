@@ -170,14 +170,14 @@ struct ContactList {
     };
     // A pair of windows: its bands (-1 past the last), its centroid and spread's pseudo-inverse, and
     // a lower bound on the distance at `built` of every pair left out whose primitives lie in it.
-    struct Windows {
+    struct WindowPair {
         std::array<int, 4> bands{};
         Eigen::Vector3d centre;
         Eigen::Matrix3d spreadInverse;
         double distanceMm = 0;
     };
     std::vector<Band> bands;
-    std::vector<Windows> windows;
+    std::vector<WindowPair> windowPairs;
     // A lower bound on the distance at x of every pair not in the list (-infinity for positions the
     // list was not built on or that are not finite), from the whole surface's affine fit alone.
     double ClearanceAt(const Positions& x) const;

@@ -47,11 +47,11 @@ double SmallestStretch(const Eigen::Matrix3d& m) {
     return std::sqrt(std::max(0.0, eigen.eigenvalues()[0] - 1e-9 * gram.trace()));
 }
 
-// ContactList::bands and windows at `built`: bands of at most kMostBands layer ranges, and every
+// ContactList::bands and windowPairs at `built`: bands of at most kMostBands layer ranges, and every
 // pair of windows, each bounded by its boxes' distance.
 void BuildBands(ContactList& list, const ContactSurface& surface) {
     list.bands.clear();
-    list.windows.clear();
+    list.windowPairs.clear();
     const Positions& x = list.built;
     if (surface.layerCount == 0 || static_cast<int>(surface.layer.size()) != x.Size()) return;
     const int width = (surface.layerCount + kMostBands - 1) / kMostBands;
@@ -81,7 +81,7 @@ void BuildBands(ContactList& list, const ContactSurface& surface) {
     };
     for (int a = 0; a < count; ++a)
         for (int b = a; b < count; ++b) {
-            ContactList::Windows w;
+            ContactList::WindowPair w;
             w.bands = {a, a + 1 < count ? a + 1 : -1, b > a + 1 ? b : -1, b + 1 > a + 1 && b + 1 < count ? b + 1 : -1};
             double n = 0;
             w.centre.setZero();
@@ -104,7 +104,7 @@ void BuildBands(ContactList& list, const ContactSurface& surface) {
             windowBox(b, loB, hiB);
             const double apart = (loA - hiB).cwiseMax(loB - hiA).cwiseMax(0.0).norm();
             w.distanceMm = std::max(list.clearanceMm, apart);
-            list.windows.push_back(w);
+            list.windowPairs.push_back(w);
         }
 }
 
@@ -140,12 +140,12 @@ BandFit FitBand(const ContactList::Band& band, const Positions& built, const Pos
 // A pair of windows' affine fit from its bands' (the same least squares over their vertices), and
 // how far any vertex of it can be from the fit: a band's own residual, plus how far the two fits
 // part over the band's box (an affine difference is largest at a corner).
-struct WindowsFit {
+struct WindowPairFit {
     Eigen::Matrix3d strain;
     Eigen::Vector3d mean;
     double residualMm = 0;
 };
-WindowsFit FitWindows(const ContactList& list, const ContactList::Windows& w, const std::vector<BandFit>& fits) {
+WindowPairFit FitWindowPair(const ContactList& list, const ContactList::WindowPair& w, const std::vector<BandFit>& fits) {
     Eigen::Matrix3d moveSpread = Eigen::Matrix3d::Zero();
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     double n = 0;
@@ -157,7 +157,7 @@ WindowsFit FitWindows(const ContactList& list, const ContactList::Windows& w, co
             n += m;
         }
     mean /= n;
-    WindowsFit f;
+    WindowPairFit f;
     f.mean = mean;
     f.strain = moveSpread * w.spreadInverse;
     for (int k : w.bands) {
@@ -174,7 +174,7 @@ WindowsFit FitWindows(const ContactList& list, const ContactList::Windows& w, co
     return f;
 }
 // The same fit's residual taken vertex by vertex: tighter, and dearer.
-double ExactResidual(const ContactList& list, const ContactList::Windows& w, const WindowsFit& fit, const Positions& x) {
+double ExactResidual(const ContactList& list, const ContactList::WindowPair& w, const WindowPairFit& fit, const Positions& x) {
     double residual = 0;
     for (int k : w.bands)
         if (k >= 0)
@@ -229,7 +229,7 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
     // between equilibria that its steps' lengths decide (a quick SV4.1 design folds to 4.76 %
     // contraction with this bound there, 6.44 % without): the lists of walls in contact are
     // rebuilt where the whole surface's bound says so.
-    if (!pairs.empty() || windows.empty() || !std::isfinite(start) || !std::isfinite(end)) return false;
+    if (!pairs.empty() || windowPairs.empty() || !std::isfinite(start) || !std::isfinite(end)) return false;
 
     // Band by band. Along a straight move every vertex's move from `built` is a blend of its moves
     // at the two ends, and so is each fit: a vertex is no farther from the blended fit than the
@@ -239,12 +239,12 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
         fitsFrom[k] = FitBand(bands[k], built, from);
         fitsTo[k] = still ? fitsFrom[k] : FitBand(bands[k], built, to);
     }
-    for (const Windows& w : windows) {
+    for (const WindowPair& w : windowPairs) {
         double moved = 0;  // the largest move of a vertex in the pair of windows, at either end
         for (int k : w.bands)
             if (k >= 0) moved = std::max({moved, fitsFrom[k].largestMoveMm, fitsTo[k].largestMoveMm});
         if (w.distanceMm - 2 * moved >= needMm) continue;  // too far apart to need a fit
-        WindowsFit a = FitWindows(*this, w, fitsFrom), b = still ? a : FitWindows(*this, w, fitsTo);
+        WindowPairFit a = FitWindowPair(*this, w, fitsFrom), b = still ? a : FitWindowPair(*this, w, fitsTo);
         const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
         const double stretch = std::max(0.0, LowestAlong(SmallestStretch(identity + a.strain), SmallestStretch(identity + b.strain), (b.strain - a.strain).norm()));
         if (stretch * w.distanceMm - 2 * std::max(a.residualMm, b.residualMm) >= needMm) continue;
