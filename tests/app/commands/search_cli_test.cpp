@@ -222,7 +222,7 @@ TEST_F(SearchCli, EvolveResumedAfterAKillAtThreeMomentsEndsLikeAnUninterruptedRu
 TEST_F(SearchCli, OptimizerRunsGiveTheSameBytesWhateverTheThreadsAndResumeExactly) {
     for (const std::string algorithm : {"cmaes", "nsga2"}) {
         SCOPED_TRACE(algorithm);
-        const std::string experiment = SmallOptimizer(algorithm, 5, 2);
+        const std::string experiment = SmallOptimizer(algorithm, 4, 2);
         const Result whole = Run("evolve " + experiment + " --out " + Path(algorithm + "_whole") + " --threads 2");
         ASSERT_EQ(whole.exitCode, 0) << whole.err;
         const std::pair<const char*, std::function<bool(const fs::path&)>> moments[] = {
@@ -267,7 +267,7 @@ TEST_F(SearchCli, EveryAlgorithmResumesExactlyAfterAKillWhateverTheThreads) {
         SCOPED_TRACE(algorithm);
         const bool multi = algorithm == "moead";
         Write(algorithm + ".json", R"({"model": {"name": "thesis"}, "id": "k", "seed": 8, "sim": {"iterations": 3000}, "render": {"thumbnails": false},
-            "optimizer": {"algorithm": ")" + algorithm + R"(", "population": 12, "generations": 6, "objectives": )" +
+            "optimizer": {"algorithm": ")" + algorithm + R"(", "population": 12, "generations": 5, "objectives": )" +
                                        (multi ? R"(["thesis_fitness", "stretch_fitness"])" : R"(["thesis_fitness"])") + R"(,
                           "genome": {"family": "bspline", "splines": 1, "control_points": 6}}})");
         const fs::path whole = dir_ / (algorithm + "_whole"), killed = dir_ / (algorithm + "_killed");
