@@ -18,22 +18,17 @@ template <bool kWithinReach = true, typename PointTriangle, typename EdgeEdge>
 void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
                       PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge);
 
-// ContactSurface::layer: breadth first along the edges from the bottom clamp's vertices (body 0),
-// or from the lowest point of each part of the surface that holds none of them.
-void LayerSurface(ContactSurface& s) {
-    const int n = s.rest.Size();
-    s.layer.assign(n, -1);
+// ContactSurface::layer: breadth first along the edges (each vertex's neighbours are
+// adjacent[adjacentBegin[v]] to adjacent[adjacentBegin[v + 1]]) from the bottom clamp's vertices
+// (body 0), or from the lowest point of each part of the surface that holds none of them.
+void LayerSurface(ContactSurface& s, const std::vector<int>& adjacentBegin, const std::vector<std::pair<int, double>>& adjacent) {
+    s.layer.assign(s.rest.Size(), -1);
     s.layerCount = 0;
-    std::vector<std::vector<int>> adjacent(n);
-    for (const auto& e : s.edges) {
-        adjacent[e[0]].push_back(e[1]);
-        adjacent[e[1]].push_back(e[0]);
-    }
     std::vector<int> queue;
     const auto spread = [&]() {
         for (std::size_t k = 0; k < queue.size(); ++k)
-            for (int w : adjacent[queue[k]])
-                if (s.layer[w] < 0) {
+            for (int a = adjacentBegin[queue[k]]; a < adjacentBegin[queue[k] + 1]; ++a)
+                if (const int w = adjacent[a].first; s.layer[w] < 0) {
                     s.layer[w] = s.layer[queue[k]] + 1;
                     queue.push_back(w);
                 }
@@ -72,13 +67,10 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     s.edges.erase(std::unique(s.edges.begin(), s.edges.end()), s.edges.end());
     std::sort(s.points.begin(), s.points.end());
     s.points.erase(std::unique(s.points.begin(), s.points.end()), s.points.end());
-    LayerSurface(s);
-    if (neighbourMm <= 0) return s;
 
-    // Distances along the edges, by Dijkstra from each vertex out to the radius: per vertex, the
-    // vertices near it along the wall (nearBegin[v] to nearBegin[v + 1] in `near`, ascending).
+    // The edges from each vertex, with their lengths at rest.
     const int n = rest.Size();
-    const auto at = [&](int v) { return Eigen::Vector3d(rest.x[v], rest.y[v], rest.z[v]); };
+    const auto at = [&](int v) { return PointOf(rest, v); };
     std::vector<int> adjacentBegin(n + 1, 0);
     for (const auto& e : s.edges) {
         ++adjacentBegin[e[0] + 1];
@@ -94,6 +86,11 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
         adjacent[fill[e[1]]++] = {e[0], length};
         longest = std::max(longest, length);
     }
+    LayerSurface(s, adjacentBegin, adjacent);
+    if (neighbourMm <= 0) return s;
+
+    // Distances along the edges, by Dijkstra from each vertex out to the radius: per vertex, the
+    // vertices near it along the wall (nearBegin[v] to nearBegin[v + 1] in `near`).
     const double radius = neighbourMm + longest;
     std::vector<int> nearBegin(n + 1, 0), near;
     std::vector<double> distance(n, std::numeric_limits<double>::infinity());

@@ -59,6 +59,8 @@ double SquaredDistance(PairKind kind, const Vector12& x, Vector12* gradient, Mat
 
 // The pair's 12 coordinates at positions x.
 Vector12 PairCoordinates(const ContactPair& pair, const Positions& x);
+// Vertex v of positions x.
+inline Eigen::Vector3d PointOf(const Positions& x, int v) { return {x.x[v], x.y[v], x.z[v]}; }
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Barrier

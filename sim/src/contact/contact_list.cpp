@@ -16,8 +16,6 @@ constexpr double kListReaches = 1.4;     // the list's pairs: within this many r
 constexpr double kPatternReaches = 1.8;  // ContactList::wider: within this many
 constexpr int kMostBands = 32;           // the window pairs grow as its square
 
-Eigen::Vector3d At(const Positions& x, int v) { return {x.x[v], x.y[v], x.z[v]}; }
-
 // A pseudo-inverse of a spread: a flat or straight set of points fits no motion across itself (any
 // fit is a valid bound; this one is the smallest).
 Eigen::Matrix3d PseudoInverse(const Eigen::Matrix3d& spread) {
@@ -61,14 +59,14 @@ void BuildBands(ContactList& list, const ContactSurface& surface) {
         band.lo = band.hi = band.centre = Eigen::Vector3d::Zero();
         band.spread = band.spreadInverse = Eigen::Matrix3d::Zero();
         if (band.vertices.empty()) continue;
-        band.lo = band.hi = At(x, band.vertices[0]);
+        band.lo = band.hi = PointOf(x, band.vertices[0]);
         for (int v : band.vertices) {
-            band.lo = band.lo.cwiseMin(At(x, v));
-            band.hi = band.hi.cwiseMax(At(x, v));
-            band.centre += At(x, v);
+            band.lo = band.lo.cwiseMin(PointOf(x, v));
+            band.hi = band.hi.cwiseMax(PointOf(x, v));
+            band.centre += PointOf(x, v);
         }
         band.centre /= double(band.vertices.size());
-        for (int v : band.vertices) band.spread += (At(x, v) - band.centre) * (At(x, v) - band.centre).transpose();
+        for (int v : band.vertices) band.spread += (PointOf(x, v) - band.centre) * (PointOf(x, v) - band.centre).transpose();
         band.spreadInverse = PseudoInverse(band.spread);
     }
     const int count = static_cast<int>(list.bands.size());
@@ -120,16 +118,16 @@ BandFit FitBand(const ContactList::Band& band, const Positions& built, const Pos
     BandFit f;
     if (band.vertices.empty()) return f;
     for (int v : band.vertices) {
-        const Eigen::Vector3d u = At(x, v) - At(built, v);
+        const Eigen::Vector3d u = PointOf(x, v) - PointOf(built, v);
         f.mean += u;
-        f.moveSpread += u * (At(built, v) - band.centre).transpose();
+        f.moveSpread += u * (PointOf(built, v) - band.centre).transpose();
     }
     f.mean /= double(band.vertices.size());
     f.strain = f.moveSpread * band.spreadInverse;
     double residual = 0, largest = 0;
     for (int v : band.vertices) {
-        const Eigen::Vector3d u = At(x, v) - At(built, v);
-        residual = std::max(residual, (u - f.mean - f.strain * (At(built, v) - band.centre)).squaredNorm());
+        const Eigen::Vector3d u = PointOf(x, v) - PointOf(built, v);
+        residual = std::max(residual, (u - f.mean - f.strain * (PointOf(built, v) - band.centre)).squaredNorm());
         largest = std::max(largest, u.squaredNorm());
     }
     f.residualMm = std::sqrt(residual);
@@ -179,7 +177,7 @@ double ExactResidual(const ContactList& list, const ContactList::WindowPair& w, 
     for (int k : w.bands)
         if (k >= 0)
             for (int v : list.bands[k].vertices)
-                residual = std::max(residual, (At(x, v) - At(list.built, v) - fit.mean - fit.strain * (At(list.built, v) - w.centre)).squaredNorm());
+                residual = std::max(residual, (PointOf(x, v) - PointOf(list.built, v) - fit.mean - fit.strain * (PointOf(list.built, v) - w.centre)).squaredNorm());
     return std::sqrt(residual);
 }
 }  // namespace
@@ -220,7 +218,7 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
     const bool still = &from == &to;
     double largest = 0;
     if (!still)
-        for (int v = 0; v < n; ++v) largest = std::max(largest, (At(to, v) - At(from, v)).squaredNorm());
+        for (int v = 0; v < n; ++v) largest = std::max(largest, (PointOf(to, v) - PointOf(from, v)).squaredNorm());
     if (!std::isfinite(largest)) return false;
     const double start = ClearanceAt(from), end = still ? start : ClearanceAt(to);
     if (LowestAlong(start, end, 2 * std::sqrt(largest)) >= needMm) return true;
