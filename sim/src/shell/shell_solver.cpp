@@ -164,7 +164,13 @@ struct Solver {
     // list's pairs and those a little beyond (ContactList::wider), and is kept while each new list
     // falls inside it: walls sliding along each other change their list at most steps, and a new
     // pattern each time meant a fresh analysis and factor (SV4.1's best: 244 new patterns, 76 now,
-    // 1.45x faster). With no wall near another the list stays empty and the pattern as it is.
+    // 1.45x faster). With no wall near another the list stays empty and the pattern as it is. Nor
+    // does a list change the pattern while none of its pairs outside it is within the barrier's
+    // reach at q (every assembly with a Hessian follows a refresh at its own q): such pairs add no
+    // term, and a new pattern resets Newton's factors. A contracting wall brings points of itself
+    // within the list's reach (axially compressed rings) long before any touch, and each such list
+    // had made the factor denser (a McKibben muscle with contact on took twice as long, with no pair
+    // ever in reach; docs/performance.md).
     ContactList contactList;
     void RefreshContact(const Eigen::VectorXd& q) {
         if (!problem.contact) return;
@@ -173,7 +179,11 @@ struct Solver {
         UpdateContactList(contactList, *problem.contact, problem.barrier, x);
         sweptFrom.resize(0);
         const auto& held = pattern.contactPairs;
-        if (std::includes(held.begin(), held.end(), contactList.pairs.begin(), contactList.pairs.end())) return;
+        const double reachSquared = ContactReachMm(problem.barrier) * ContactReachMm(problem.barrier);
+        const bool outsideInReach = std::any_of(contactList.pairs.begin(), contactList.pairs.end(), [&](const ContactPair& pair) {
+            return !std::binary_search(held.begin(), held.end(), pair) && SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr) < reachSquared;
+        });
+        if (!outsideInReach) return;
         workspace->Use(HessianPattern(workspace->withoutContact, problem, contactList.wider));
         preconditioner = false;
         refresh = false;
