@@ -344,8 +344,9 @@ void RunSweep(RunContext& c) {
         key = "  (each cell: " + key + ": fitness)";
     }
     std::unique_ptr<render::MeshRenderer> sheetRenderer;
+    const char* loaded = sim::UnderVacuum(grid.front().def) ? "evacuated" : "inflated";
     WriteContactSheet(c.dir / "contact_sheet.png",
-                      ExperimentTitle(e) + (step > 1 ? fmt::format("  -  every {}th grid point, inflated", step) : std::string("  -  every grid point, inflated")) + key,
+                      ExperimentTitle(e) + (step > 1 ? fmt::format("  -  every {}th grid point, {}", step, loaded) : fmt::format("  -  every grid point, {}", loaded)) + key,
                       entries, grid.front(), sheetRenderer, sheetAxes);
     c.outcome.figures.push_back("contact_sheet.png");
 
