@@ -6,7 +6,9 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "sim/batch.h"
@@ -34,7 +36,10 @@ sim::EvalJob FibreTube(double muKpa, sim::FibreLayout layout, double angleDeg, d
     d.material = sim::MaterialDef{};
     d.material.muKpa = muKpa;
     d.material.elongationAtBreak = 100;  // the checks are of the fibres and ends, not of the rubber's limits
+    // Closed forms of tubes whose walls are not looked at: no self-intersection check and no contact
+    // (its steps take other paths through a held braid's fragile strokes; docs/performance.md).
     d.solver.selfContact = false;
+    d.contact.mode = sim::ContactMode::Off;
     d.fibres.layout = layout;
     d.fibres.angleDeg = angleDeg;
     d.fibres.stiffnessNPerMm = fibreStiffnessNPerMm;
@@ -52,17 +57,26 @@ sim::EvalJob SingleFamily(double angleDeg, sim::TwistEnd twist = sim::TwistEnd::
     return job;
 }
 
+// The command line of the same evaluation, every number to its last bit (a held braid's stroke
+// rounded to six digits can take another path: docs/performance.md).
 std::string Reproduce(const sim::EvalJob& job) {
     const sim::ShellDef& d = job.Shell();
-    std::string text = "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm " + std::to_string(d.geometry.radiusMm) +
-                       " --length-mm " + std::to_string(d.geometry.lengthMm) + " --material custom --mu-kpa " + std::to_string(d.material.muKpa) +
+    auto number = [](double x) {
+        std::ostringstream text;
+        text << std::setprecision(17) << x;
+        return text.str();
+    };
+    std::string text = "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm " + number(d.geometry.radiusMm) +
+                       " --length-mm " + number(d.geometry.lengthMm) + " --material custom --mu-kpa " + number(d.material.muKpa) +
                        " --elongation-at-break 100 --ring-vertices " + std::to_string(d.geometry.ringVertices) + " --rings 0 --steps " +
-                       std::to_string(d.load.steps) + " --load " + sim::Name(d.load.kind) + " --pressure-kpa " + std::to_string(d.load.pressureKpa) +
-                       " --twist " + sim::Name(d.ends.twist) + " --fibres " + sim::Name(d.fibres.layout) + " --fibre-angle-deg " +
-                       std::to_string(d.fibres.angleDeg) + " --fibre-stiffness-n-per-mm " + std::to_string(d.fibres.stiffnessNPerMm);
-    if (d.load.kind == sim::ShellLoad::Blocked) text += " --stroke-percent " + std::to_string(d.load.strokePercent);
-    if (d.ends.twist == sim::TwistEnd::Loaded) text += " --torque-n-mm " + std::to_string(d.ends.torqueNMm);
-    if (d.load.forceN != 0) text += " --force-n " + std::to_string(d.load.forceN);
+                       std::to_string(d.load.steps) + " --load " + sim::Name(d.load.kind) + " --pressure-kpa " + number(d.load.pressureKpa) +
+                       " --contact " + sim::Name(d.contact.mode) + " --fibres " + sim::Name(d.fibres.layout) + " --fibre-angle-deg " +
+                       number(d.fibres.angleDeg) + " --fibre-stiffness-n-per-mm " + number(d.fibres.stiffnessNPerMm);
+    if (d.geometry.ends == sim::EndCondition::Sliding) text += " --ends sliding";  // end plates: no twist to set
+    else text += std::string(" --twist ") + sim::Name(d.ends.twist);
+    if (d.load.kind == sim::ShellLoad::Blocked) text += " --stroke-percent " + number(d.load.strokePercent);
+    if (d.ends.twist == sim::TwistEnd::Loaded) text += " --torque-n-mm " + number(d.ends.torqueNMm);
+    if (d.load.forceN != 0) text += " --force-n " + number(d.load.forceN);
     return text;
 }
 
