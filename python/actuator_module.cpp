@@ -490,7 +490,7 @@ PYBIND11_MODULE(actuator, m) {
     BindDef<sim::FibreDef>(m, "Fibres", "Fibres on the membrane or shell wall (docs/models/shell.md section 7).", shell.fibres);
     BindDef<sim::EnvelopeDef>(m, "Envelope", "The bounds a bench puts on a design (docs/models/shell.md section 12, envelope): beyond one, the status is outside-envelope.",
                               shell.envelope);
-    BindDef<sim::ContactDef>(m, "Contact", "Self-contact (docs/models/shell.md section 8): contact='on' makes the walls touch (vacuum actuators need it).",
+    BindDef<sim::ContactDef>(m, "Contact", "Self-contact (docs/models/shell.md section 8): the walls touch by default (contact='on'; vacuum actuators need it); with contact='off' a state that passes through itself is the status self-intersection.",
                              shell.contact);
 
     py::class_<Evaluated>(m, "Result", "One evaluation: numbers, status, the meshes before and after, and the job that made it.")

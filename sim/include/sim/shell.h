@@ -209,7 +209,7 @@ enum class ContactMode {
     On,   // walls touch: a barrier keeps the mid-surfaces at least a wall thickness apart
 };
 struct ContactDef {
-    ContactMode mode = ContactMode::Off;
+    ContactMode mode = ContactMode::On;  // no design passes through itself; off is cheaper where walls never meet
     double gapFraction = 0.1;   // s_hat / h: walls closer than h (1 + this) push each other apart; in
                                 // contact they rest between h and that apart
     double stiffness = 1;       // kappa / (mu h): the barrier's strength against the wall's (IPC's kappa)

@@ -455,11 +455,11 @@ TEST_F(SearchCli, AResumeUnderOtherModelDefaultsIsRefused) {
     ASSERT_EQ(Run("sweep " + Path("shell.json") + " --out " + Path("shell")).exitCode, 0);
     const fs::path run = dir_ / "shell" / "run.json";
     nlohmann::ordered_json recorded = nlohmann::ordered_json::parse(Slurp(run));
-    ASSERT_EQ(recorded["model"]["contact"], "off");
+    ASSERT_EQ(recorded["model"]["contact"], "on");
     ASSERT_EQ(Run("sweep --resume " + Path("shell")).exitCode, 0);  // the same version resumes
-    recorded["model"]["contact"] = "on";  // as if another version had made contact the default
+    recorded["model"]["contact"] = "off";  // as a version without contact by default recorded it
     Write("shell/run.json", recorded.dump(2));
-    ExpectRefused("sweep --resume " + Path("shell"), "(contact: 'on' -> 'off')");
+    ExpectRefused("sweep --resume " + Path("shell"), "(contact: 'off' -> 'on')");
     recorded.erase("model");
     Write("shell/run.json", recorded.dump(2));
     EXPECT_EQ(Run("sweep --resume " + Path("shell")).exitCode, 0);
