@@ -643,7 +643,7 @@ void WriteContactSheet(const fs::path& path, const std::string& title, const std
     const int height = std::clamp(rows * cellHeight + 130 + (labelled ? 50 : 0) + (escaped ? 20 : 0), 450, 2600);
     // Body text 0.8 x 19 px = 15 px: captions readable at 100 %; rendered at twice the size and
     // filtered down like the main figures.
-    if (!renderer || renderer->Def().width != width || renderer->Def().height != height) renderer = MakeRenderer(width, height, 2, 0.8);
+    if (!renderer || !renderer->Resize(width, height)) renderer = MakeRenderer(width, height, 2, 0.8);
     if (escaped)
         scene.lines.push_back(fmt::format("! {} of {} meshes moved farther than their own size: not a physical state; camera and colour scale "
                                           "(98th percentile) are the other meshes'",

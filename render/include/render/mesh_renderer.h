@@ -22,6 +22,11 @@ public:
     virtual ~MeshRenderer() = default;
 
     virtual Image Render(const Scene& scene) = 0;
+    // Draws the next scenes width x height (the same supersampling, text and camera): a figure whose
+    // size follows its content (a contact sheet) reuses its renderer; a new one costs as much as a
+    // small figure (the GL context, shaders and font atlas). False when the text's size follows the
+    // height (textScale 0): then a new renderer is needed.
+    virtual bool Resize(int width, int height) = 0;
     virtual const RenderDef& Def() const = 0;
     virtual std::string Description() const = 0;  // the GL implementation and backend
 };

@@ -42,18 +42,18 @@ public:
             glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffers_[0]);
             glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers_[1]);
             if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) return false;
-            buffer_.assign(static_cast<size_t>(width) * height * 4, 0);
+            buffer_.resize(static_cast<size_t>(width) * height * 4);  // glReadPixels fills it
             width_ = width;
             height_ = height;
         }
         return true;
     }
 
-    const std::vector<std::uint8_t>& FinishAndGetPixels() override {
+    const std::uint8_t* FinishAndGetPixels() override {
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, buffer_.data());
-        return buffer_;
+        return buffer_.data();
     }
 
     const char* BackendLabel() const override { return "egl surfaceless"; }

@@ -17,9 +17,9 @@ public:
     virtual ~GlContext() = default;
     // Makes the context current on this thread with a width x height RGBA buffer (resized if needed).
     virtual bool MakeCurrent(int width, int height) = 0;
-    // The buffer's pixels after the frame: RGBA8, bottom row first (OpenGL's order). Valid until
-    // the next MakeCurrent with another size.
-    virtual const std::vector<std::uint8_t>& FinishAndGetPixels() = 0;
+    // The buffer's pixels after the frame: RGBA8, bottom row first (OpenGL's order), width x height
+    // of the last MakeCurrent. Valid until the next MakeCurrent.
+    virtual const std::uint8_t* FinishAndGetPixels() = 0;
     // E.g. "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (osmesa)". Read when the context was first made
     // current: later another context (a plot's) may be current on this thread, or none.
     std::string Description() const { return description_.empty() ? std::string("not yet made current (") + BackendLabel() + ")" : description_; }

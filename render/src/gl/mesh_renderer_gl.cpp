@@ -133,6 +133,12 @@ struct SurfaceVertex {
 class MeshRendererGl final : public MeshRenderer {
 public:
     Image Render(const Scene& scene) override;
+    bool Resize(int width, int height) override {
+        if (def.textScale <= 0 && height != def.height) return false;
+        def.width = width;
+        def.height = height;
+        return true;
+    }
     const RenderDef& Def() const override { return def; }
     std::string Description() const override { return context->Description(); }
 
@@ -532,7 +538,7 @@ Image MeshRendererGl::Render(const Scene& scene) {
         overlay.End();
     }
 
-    return BoxDownsample(context->FinishAndGetPixels().data(), width, height, def.supersample, /*bottomUp=*/true);
+    return BoxDownsample(context->FinishAndGetPixels(), width, height, def.supersample, /*bottomUp=*/true);
 }
 
 }  // namespace render

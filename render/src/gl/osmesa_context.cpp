@@ -2,6 +2,8 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <memory>
+
 #include "gl_context.h"
 
 namespace render {
@@ -16,27 +18,30 @@ public:
     ~OsMesaContext() override { OSMesaDestroyContext(context_); }
 
     bool MakeCurrent(int width, int height) override {
-        if (width != width_ || height != height_) {
-            buffer_.assign(static_cast<size_t>(width) * height * 4, 0);
-            width_ = width;
-            height_ = height;
+        // Grown, never shrunk, and not zeroed: every frame starts with a clear. A contact sheet's
+        // renderer changes size with each sheet, and zeroing a fresh buffer of up to 100 MB (its
+        // pages faulted in) cost more than drawing the sheet.
+        const size_t bytes = static_cast<size_t>(width) * height * 4;
+        if (bytes > capacity_) {
+            buffer_ = std::make_unique_for_overwrite<std::uint8_t[]>(bytes);
+            capacity_ = bytes;
         }
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) return false;
+        if (!OSMesaMakeCurrent(context_, buffer_.get(), GL_UNSIGNED_BYTE, width, height)) return false;
         RememberDescription();
         return true;
     }
 
-    const std::vector<std::uint8_t>& FinishAndGetPixels() override {
+    const std::uint8_t* FinishAndGetPixels() override {
         glFinish();
-        return buffer_;
+        return buffer_.get();
     }
 
     const char* BackendLabel() const override { return "osmesa"; }
 
 private:
     OSMesaContext context_;
-    std::vector<std::uint8_t> buffer_;
-    int width_ = 0, height_ = 0;
+    std::unique_ptr<std::uint8_t[]> buffer_;
+    size_t capacity_ = 0;
 };
 
 }  // namespace

@@ -126,7 +126,7 @@ public:
     }
     Image End() {
         overlay.End();
-        return BoxDownsample(context->FinishAndGetPixels().data(), width * kSupersample, height * kSupersample, kSupersample, true);
+        return BoxDownsample(context->FinishAndGetPixels(), width * kSupersample, height * kSupersample, kSupersample, true);
     }
 };
 
