@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string>
+#include <vector>
+
+#include "render/plot.h"
+
 namespace {
 render::Image Gradient(int w, int h) {
     render::Image image{w, h, std::vector<std::uint8_t>(static_cast<size_t>(w) * h * 4)};
@@ -90,4 +96,32 @@ TEST(Image, TheTileBoundSeesAConcentratedMarkThatTheFractionBoundMisses) {
     EXPECT_FALSE(r.matches);
     EXPECT_EQ(r.maxDifferingInTile, 16);
     EXPECT_TRUE(render::CompareImages(a, scattered, tiled).matches);
+}
+
+// A colour bar labels both its ends and nice ticks between them; no two labels read the same. The
+// S5.4F design's stretch scale ran to 1.1048 and showed "1.10" at its top and again just below it.
+TEST(Image, AColourBarsLabelsNeverRepeatAndKeepClearOfItsEnds) {
+    const auto texts = [](const std::vector<render::ScaleTick>& ticks) {
+        std::vector<std::string> all;
+        for (const auto& t : ticks) all.push_back(t.text);
+        return all;
+    };
+    EXPECT_EQ(texts(render::ColourBarTicks(1.0, 1.1048, false, 0.03)), (std::vector<std::string>{"1.00", "1.10", "1.05"}));
+    // Every range: labels distinct, ends first, the others inside and clear of the ends.
+    for (double low : {-3.7, 0.0, 1.0, 12.5})
+        for (double span : {0.013, 0.1048, 0.5, 1.0, 7.3, 120.0}) {
+            const auto ticks = render::ColourBarTicks(low, low + span, true, 0.05);
+            ASSERT_GE(ticks.size(), 2u);
+            EXPECT_EQ(ticks[0].value, low);
+            EXPECT_EQ(ticks[1].value, low + span);
+            EXPECT_EQ(ticks[1].text.rfind("> ", 0), 0u) << "values above the top were clipped";
+            std::set<std::string> seen{ticks[0].text, ticks[1].text.substr(2)};
+            for (size_t k = 2; k < ticks.size(); ++k) {
+                EXPECT_TRUE(seen.insert(ticks[k].text).second) << ticks[k].text << " twice on [" << low << ", " << low + span << "]";
+                EXPECT_GT(ticks[k].value - low, 0.05 * span);
+                EXPECT_GT(low + span - ticks[k].value, 0.05 * span);
+            }
+        }
+    // A tick the gap would allow but that prints as the top is left out: [0, 1.004] has "1.0" once.
+    EXPECT_EQ(texts(render::ColourBarTicks(0, 1.004, false, 0.001)), (std::vector<std::string>{"0.0", "1.0", "0.5"}));
 }

@@ -72,4 +72,17 @@ public:
 // "Nice" tick positions (1, 2, 5 x 10^k steps) covering [low, high], about `count` of them.
 std::vector<double> NiceTicks(double low, double high, int count);
 
+// A value on a scale `span` wide, with enough decimals to tell that scale's ticks apart.
+std::string ScaleTickText(double value, double span);
+
+// A colour bar's labelled ticks from `low` (bottom) to `high` (top): both ends always, then nice
+// ticks between them that keep at least `minGap` of the range from either end and do not read the
+// same as an end at the range's digits (a top of 1.104 and a tick at 1.1 are both "1.10"). Values
+// with their texts, the ends first; the top's text is prefixed "> " when values above it were clipped.
+struct ScaleTick {
+    double value;
+    std::string text;
+};
+std::vector<ScaleTick> ColourBarTicks(double low, double high, bool clippedTop, double minGap);
+
 }  // namespace render

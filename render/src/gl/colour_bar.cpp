@@ -10,14 +10,6 @@ namespace {
 
 ImU32 Colour(const Rgb& c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1)); }
 
-// Enough digits to tell the ticks of this range apart.
-std::string Tick(double value, double span) {
-    char text[32];
-    const int decimals = span >= 10 ? 0 : std::min(6, static_cast<int>(std::ceil(-std::log10(span / 10) - 1e-9)));
-    std::snprintf(text, sizeof text, "%.*f", std::max(0, decimals), std::fabs(value) < 1e-12 * span ? 0.0 : value);
-    return text;
-}
-
 }  // namespace
 
 void DrawColourBar(ImDrawList* draw, const OverlayContext& overlay, const ColourBar& bar) {
@@ -38,11 +30,8 @@ void DrawColourBar(ImDrawList* draw, const OverlayContext& overlay, const Colour
         draw->AddLine(ImVec2(bar.x1, y), ImVec2(bar.x1 + width * 0.25f, y), ink, fs * 0.06f);
         draw->AddText(overlay.TextFont(), fs * 0.85f, ImVec2(bar.x1 + width * 0.35f, y - fs * 0.45f), ink, text.c_str());
     };
-    // Both ends always, and nice ticks in between that do not crowd them.
-    tick(bar.min, Tick(bar.min, span));
-    tick(bar.max, (bar.clippedTop ? "> " : "") + Tick(bar.max, span));
-    for (double t : NiceTicks(bar.min, bar.max, 4))
-        if (std::fabs(yOf(t) - bar.y0) > fs * 1.1f && std::fabs(yOf(t) - bar.y1) > fs * 1.1f) tick(t, Tick(t, span));
+    // Both ends always, and nice ticks in between that neither crowd nor repeat them.
+    for (const ScaleTick& t : ColourBarTicks(bar.min, bar.max, bar.clippedTop, fs * 1.1f / height)) tick(t.value, t.text);
     // Marks on the scale are lines; marks off it are named under the bar with their value, so that a
     // limit far above what the picture shows is still stated (a stretch of 1.3 against 5.5).
     const ImU32 red = IM_COL32(200, 30, 30, 255);
@@ -50,7 +39,7 @@ void DrawColourBar(ImDrawList* draw, const OverlayContext& overlay, const Colour
     for (const ScaleMark& mark : bar.marks) {
         const double t = (mark.value - bar.min) / span;
         if (!(t >= 0 && t <= 1)) {
-            const std::string text = mark.label + "\n" + Tick(mark.value, span) + (t > 1 ? ", above" : ", below");
+            const std::string text = mark.label + "\n" + ScaleTickText(mark.value, span) + (t > 1 ? ", above" : ", below");
             draw->AddText(overlay.TextFont(), fs * 0.7f, ImVec2(bar.x0 - width * 0.15f, below), red, text.c_str());
             below += fs * 1.6f;
             continue;
