@@ -133,6 +133,16 @@ std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const 
 // The distance at which pairs act: a wall thickness and the barrier's reach beyond it.
 inline double ContactReachMm(const BarrierDef& barrier) { return barrier.thicknessMm + barrier.activationMm; }
 
+// True when a pair acts at x: its primitives within the reach (the one test of every sum over
+// pairs, and of whether a new pair needs a place in the Hessian). Its coordinates at x, which its
+// barrier takes, go to *coordinates when given.
+inline bool InReach(const ContactPair& pair, const Positions& x, const BarrierDef& barrier, Vector12* coordinates = nullptr) {
+    const Vector12 c = PairCoordinates(pair, x);
+    if (coordinates) *coordinates = c;
+    const double reach = ContactReachMm(barrier);
+    return SquaredDistance(pair.kind, c, nullptr, nullptr) < reach * reach;
+}
+
 // The pairs an assembly sums over (a Verlet list): the candidates within 1.4 reaches of the
 // positions it was built at. It holds every pair within the reach for as long as no pair left out
 // can have come that near, so a Newton solve rebuilds it (and its Hessian's pattern) only when the

@@ -486,11 +486,10 @@ EnergyResult AssembleEnergy(const ShellProblem& p, const Eigen::VectorXd& q, con
         if (terms.contactList && terms.contactList->Covers(x)) pairs = &terms.contactList->pairs;
         else if (!hessian && terms.contactSweep && terms.contactSweep->Covers(x)) pairs = &terms.contactSweep->pairs;
         else found = ContactCandidates(*p.contact, x, nullptr, ContactReachMm(p.barrier));
-        const double reachSquared = ContactReachMm(p.barrier) * ContactReachMm(p.barrier);
         CompensatedSum contact;
         for (const ContactPair& pair : *pairs) {
-            const Vector12 c = PairCoordinates(pair, x);
-            if (!(SquaredDistance(pair.kind, c, nullptr, nullptr) < reachSquared)) continue;
+            Vector12 c;
+            if (!InReach(pair, x, p.barrier, &c)) continue;
             const double threshold = pair.kind == PairKind::EdgeEdge ? EdgeEdgeMollifierThreshold(PairCoordinates(pair, p.rest)) : 0;
             Vector12 g;
             Matrix12 H;

@@ -179,9 +179,8 @@ struct Solver {
         UpdateContactList(contactList, *problem.contact, problem.barrier, x);
         sweptFrom.resize(0);
         const auto& held = pattern.contactPairs;
-        const double reachSquared = ContactReachMm(problem.barrier) * ContactReachMm(problem.barrier);
         const bool outsideInReach = std::any_of(contactList.pairs.begin(), contactList.pairs.end(), [&](const ContactPair& pair) {
-            return !std::binary_search(held.begin(), held.end(), pair) && SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr) < reachSquared;
+            return !std::binary_search(held.begin(), held.end(), pair) && InReach(pair, x, problem.barrier);
         });
         if (!outsideInReach) return;
         workspace->Use(HessianPattern(workspace->withoutContact, problem, contactList.wider));
