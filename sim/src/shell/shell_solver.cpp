@@ -148,6 +148,14 @@ struct Solver {
     static constexpr double kFirstTrustRadius = 0.1;  // of the mean edge: the saddle escape's step
     static constexpr int kTrustTries = 10;            // radii tried from one state, each a quarter of the last
     double trustRadiusMm = 0;                         // 0: not yet needed
+    // Trust-region steps crawling between kinks: where threads go taut and slack within a hundredth
+    // of an edge, the exact Hessian's model holds no farther, and the radius cycles (a held braid:
+    // 0.001 to 0.008 mm, the largest force stuck at 0.69 N for 2,000 iterations). After kTrustCrawl
+    // such steps in a row, one step on the projected Hessian with a line search, which judges by the
+    // energy alone and may cross the kinks.
+    static constexpr int kTrustCrawl = 10;
+    static constexpr double kCrawlRadius = 0.01;  // of the mean edge
+    int crawlingTrustSteps = 0;
 
     Solver(const ShellProblem& p, const SolverDef& d)
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
@@ -487,7 +495,7 @@ struct Solver {
                     const Linear end = PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used);
                     if (end == Linear::Solved && step.dot(r.gradient) < 0) break;
                     step.resize(0);
-                    if (kind == HessianKind::Exact && end == Linear::Indefinite &&
+                    if (kind == HessianKind::Exact && end == Linear::Indefinite && crawlingTrustSteps < kTrustCrawl &&
                         (trustStep = TrustRegionStep(q, load, r, gasTerm, w, pattern.matrix, step, trusted)))
                         break;
                     if (end != Linear::Indefinite) break;  // too slow (or not finite): the projected one would be too
@@ -563,6 +571,7 @@ struct Solver {
                 alpha *= 0.5;
             }
             if (!accepted) return NewtonEnd::NotConverged;
+            crawlingTrustSteps = trustStep && trustRadiusMm < kCrawlRadius * problem.meanEdgeMm ? crawlingTrustSteps + 1 : 0;
             // A whole step that left more than a quarter of the force: the projected Hessian is
             // converging linearly; exact steps from here on (for the rest of the evaluation).
             HoldGradient(r.gradient);

@@ -255,6 +255,20 @@ TEST(EndsClosedForms, TheIsobaricForceOfABraidedMuscleIsTonduAndLopezs) {
     }
 }
 
+// A stroke where Newton's trust-region steps crawled: threads going taut and slack within a few
+// micrometres held the radius between 0.001 and 0.008 mm, the largest force at 0.69 N, until the
+// budget ran out (2,000 iterations). Its neighbours at 16.5 and 16.7 % converged in about 270.
+TEST(EndsClosedForms, AHeldBraidConvergesWhereTrustRegionStepsCrawledBetweenKinks) {
+    const double angle = 30;
+    const sim::EvalJob job = Braided(angle, 16.599412);
+    const sim::SimResult r = sim::Evaluate(job);
+    ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
+    EXPECT_LT(r.shell.newtonIterations, 500) << Reproduce(job);
+    const double eps = job.Shell().load.strokePercent / 100, R0 = job.Shell().geometry.radiusMm, p = job.Shell().load.pressureKpa * 1e-3;
+    const double ideal = kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angle) * Tan(angle)) - 1 / (Sin(angle) * Sin(angle)));
+    EXPECT_NEAR(r.shell.strokeForceN / ideal, 1, 0.03) << Reproduce(job);
+}
+
 // A weight hung from the inflated muscle pulls it out by what its stiffness says: the contraction
 // with a small force F is the free one less F / k over the length.
 TEST(EndsClosedForms, AHangingLoadStretchesTheMuscleByItsStiffness) {
