@@ -35,7 +35,7 @@ protected:
     // the time.
     std::string SmallOptimizer(const std::string& algorithm, int generations, int runs = 1, bool figures = true) const {
         const bool multi = algorithm == "nsga2" || algorithm == "moead";
-        const std::string model = multi ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "load": {"pressure_kpa": 1, "steps": 2},
+        const std::string model = multi ? R"("model": {"name": "shell", "geometry": {"ring_vertices": 12, "rings": 16, "edge_spacing_mm": 0}, "load": {"pressure_kpa": 1, "steps": 1},
                                                        "fibres": "braid", "fibre_stiffness_n_per_mm": 50},)"
                                         : R"("model": {"name": "thesis"}, "sim": {"iterations": 3000},)";
         const std::string objectives = multi ? R"(["contraction", "max_stretch"])" : R"(["thesis_fitness"])";
@@ -196,7 +196,7 @@ TEST_F(SearchCli, EvolveStopsAtItsCriteriaAndSaysWhichInTheLogbook) {
 // (archive records with their meshes, evaluations.csv, thumbnails, sheets, logbooks, hall of fame,
 // figures) equals the uninterrupted run's.
 TEST_F(SearchCli, EvolveResumedAfterAKillAtThreeMomentsEndsLikeAnUninterruptedRun) {
-    const std::string experiment = SmallGa(8, 2);
+    const std::string experiment = SmallGa(6, 2);
     ASSERT_EQ(Run("evolve " + experiment + " --out " + Path("whole")).exitCode, 0);
     struct Moment {
         const char* name;
