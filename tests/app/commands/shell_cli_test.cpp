@@ -6,6 +6,8 @@
 #include "cli_fixture.h"
 #include "formats/table.h"
 #include "formats/csv.h"
+#include "reproduce.h"
+#include "sim/model.h"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -19,6 +21,53 @@ namespace {
 const std::string kSmall = " --ring-vertices 16 --rings 20 --edge-spacing-mm 1 --steps 2";  // rings graded to 1 mm at the clamps: 30 in all
 
 }  // namespace
+
+// The verification tests print the command of a failing evaluation: it must run and give the same
+// result, to the bit, for each kind of tube they build (free and held, sliding and clamped ends,
+// fibres, a custom law, the self-intersection check off).
+TEST_F(ShellCli, AVerificationTestsReproduceLineGivesItsResult) {
+    std::vector<sim::EvalJob> jobs(3);
+    for (sim::EvalJob& job : jobs) {
+        job.SetModel(sim::ModelKind::Membrane);
+        job.shape = sim::CylinderShape{};
+        sim::ShellDef& d = job.Shell();
+        d.geometry.radiusMm = 5;
+        d.geometry.lengthMm = 40;
+        d.geometry.ringVertices = 12;
+        d.geometry.rings = 0;
+        d.material = sim::MaterialDef{};
+        d.material.muKpa = 0.7;
+        d.material.elongationAtBreak = 100;
+        d.load.steps = 2;
+        d.load.pressureKpa = 0.04;  // P = p R / (mu h) = 0.29: below the plain tube's limit point
+    }
+    jobs[0].Shell().geometry.ends = sim::EndCondition::Sliding;
+    jobs[0].Shell().solver.selfContact = false;
+    jobs[1].SetModel(sim::ModelKind::Shell);
+    jobs[1].Shell().fibres.layout = sim::FibreLayout::Braid;
+    jobs[1].Shell().fibres.angleDeg = 1.0 / 3 * 90;
+    jobs[1].Shell().ends.twist = sim::TwistEnd::Held;
+    jobs[2].Shell().geometry.ends = sim::EndCondition::Sliding;
+    jobs[2].Shell().load.kind = sim::ShellLoad::Blocked;
+    jobs[2].Shell().load.strokePercent = 0.1 / 3;
+    jobs[2].Shell().fibres.layout = sim::FibreLayout::Braid;
+    jobs[2].Shell().contact.mode = sim::ContactMode::Off;
+    for (const sim::EvalJob& job : jobs) {
+        std::string line = testing_support::ReproduceCommand(job);
+        SCOPED_TRACE(line);
+        ASSERT_EQ(line.rfind("reproduce: actuator simulate ", 0), 0u);
+        line = line.substr(line.find("simulate"));
+        line = line.substr(0, line.find("  #"));  // what the command line cannot say, said after it
+        const sim::SimResult expected = sim::Evaluate(job);
+        const Result r = Run(line);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const auto json = nlohmann::json::parse(r.out);
+        ASSERT_EQ(expected.status, sim::Status::Ok) << "a job of this test must be one that solves";
+        ASSERT_EQ(json["status"], sim::Name(expected.status));
+        EXPECT_EQ(json["contraction_percent"].get<double>(), expected.contractionPercent);
+        EXPECT_EQ(json["newton_iterations"].get<int>(), expected.shell.newtonIterations);
+    }
+}
 
 // The issue's example: a plain tube at P = p R / (mu h) = 0.6 lengthens by about 3 %.
 TEST_F(ShellCli, APlainTubeLengthensAndTheJsonCarriesEveryOutputInUnits) {

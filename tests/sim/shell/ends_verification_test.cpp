@@ -12,6 +12,7 @@
 #include <string>
 
 #include "sim/batch.h"
+#include "reproduce.h"
 #include "shell/shell_problem.h"
 
 namespace {
@@ -55,29 +56,6 @@ sim::EvalJob SingleFamily(double angleDeg, sim::TwistEnd twist = sim::TwistEnd::
     job.Shell().load.steps = 4;
     job.Shell().ends.twist = twist;
     return job;
-}
-
-// The command line of the same evaluation, every number to its last bit (a held braid's stroke
-// rounded to six digits can take another path: docs/performance.md).
-std::string Reproduce(const sim::EvalJob& job) {
-    const sim::ShellDef& d = job.Shell();
-    auto number = [](double x) {
-        std::ostringstream text;
-        text << std::setprecision(17) << x;
-        return text.str();
-    };
-    std::string text = "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm " + number(d.geometry.radiusMm) +
-                       " --length-mm " + number(d.geometry.lengthMm) + " --material custom --mu-kpa " + number(d.material.muKpa) +
-                       " --elongation-at-break 100 --ring-vertices " + std::to_string(d.geometry.ringVertices) + " --rings 0 --steps " +
-                       std::to_string(d.load.steps) + " --load " + sim::Name(d.load.kind) + " --pressure-kpa " + number(d.load.pressureKpa) +
-                       " --contact " + sim::Name(d.contact.mode) + " --fibres " + sim::Name(d.fibres.layout) + " --fibre-angle-deg " +
-                       number(d.fibres.angleDeg) + " --fibre-stiffness-n-per-mm " + number(d.fibres.stiffnessNPerMm);
-    if (d.geometry.ends == sim::EndCondition::Sliding) text += " --ends sliding";  // end plates: no twist to set
-    else text += std::string(" --twist ") + sim::Name(d.ends.twist);
-    if (d.load.kind == sim::ShellLoad::Blocked) text += " --stroke-percent " + number(d.load.strokePercent);
-    if (d.ends.twist == sim::TwistEnd::Loaded) text += " --torque-n-mm " + number(d.ends.torqueNMm);
-    if (d.load.forceN != 0) text += " --force-n " + number(d.load.forceN);
-    return text;
 }
 
 // The infinite tube at pressure p, homogeneous: radius a R, axial stretch l, twist tau (radians per
@@ -192,16 +170,16 @@ TEST(EndsClosedForms, ASingleFamilyTwistsAsTheHomogeneousTube) {
     for (double angle : {30.0, 40.0, 60.0}) {
         const sim::EvalJob job = SingleFamily(angle);
         const sim::SimResult r = sim::Evaluate(job);
-        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
+        ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
         const Homogeneous ideal = HomogeneousTube(job), middle = MiddleThird(job, r);
         EXPECT_NEAR((middle.hoopStretch - 1) / (ideal.hoopStretch - 1), 1, 0.03)
-            << angle << " deg: radius " << middle.hoopStretch << " R against " << ideal.hoopStretch << " R; " << Reproduce(job);
+            << angle << " deg: radius " << middle.hoopStretch << " R against " << ideal.hoopStretch << " R; " << testing_support::ReproduceCommand(job);
         EXPECT_NEAR((middle.axialStretch - 1) / (ideal.axialStretch - 1), 1, 0.03)
-            << angle << " deg: axial stretch " << middle.axialStretch << " against " << ideal.axialStretch << "; " << Reproduce(job);
+            << angle << " deg: axial stretch " << middle.axialStretch << " against " << ideal.axialStretch << "; " << testing_support::ReproduceCommand(job);
         EXPECT_NEAR(middle.twistPerMm / ideal.twistPerMm, 1, 0.03)
-            << angle << " deg: twist " << middle.twistPerMm * 180 / kPi << " deg/mm against " << ideal.twistPerMm * 180 / kPi << " deg/mm; " << Reproduce(job);
+            << angle << " deg: twist " << middle.twistPerMm * 180 / kPi << " deg/mm against " << ideal.twistPerMm * 180 / kPi << " deg/mm; " << testing_support::ReproduceCommand(job);
         EXPECT_GT(std::fabs(r.shell.twistDeg), 0.5 * std::fabs(ideal.twistPerMm) * 180 / kPi * job.Shell().geometry.lengthMm)
-            << "the top clamp turns with the tube; " << Reproduce(job);
+            << "the top clamp turns with the tube; " << testing_support::ReproduceCommand(job);
         EXPECT_TRUE(std::isnan(r.shell.torqueNMm)) << "a free top reports no holding torque";
     }
 }
@@ -211,7 +189,7 @@ TEST(EndsClosedForms, ASingleFamilyTwistsAsTheHomogeneousTube) {
 TEST(EndsClosedForms, TheHoldingTorqueAppliedUndoesTheTwist) {
     const sim::EvalJob held = SingleFamily(40, sim::TwistEnd::Held);
     const sim::SimResult h = sim::Evaluate(held);
-    ASSERT_EQ(h.status, sim::Status::Ok) << Reproduce(held);
+    ASSERT_EQ(h.status, sim::Status::Ok) << testing_support::ReproduceCommand(held);
     EXPECT_EQ(h.shell.twistDeg, 0) << "held means held";
     ASSERT_TRUE(std::isfinite(h.shell.torqueNMm));
     EXPECT_GT(std::fabs(h.shell.torqueNMm), 1.0) << "one family at 40 deg pulls the top round, N mm";
@@ -219,12 +197,12 @@ TEST(EndsClosedForms, TheHoldingTorqueAppliedUndoesTheTwist) {
     sim::EvalJob loaded = SingleFamily(40, sim::TwistEnd::Loaded);
     loaded.Shell().ends.torqueNMm = h.shell.torqueNMm;
     const sim::SimResult l = sim::Evaluate(loaded);
-    ASSERT_EQ(l.status, sim::Status::Ok) << Reproduce(loaded);
+    ASSERT_EQ(l.status, sim::Status::Ok) << testing_support::ReproduceCommand(loaded);
     const sim::SimResult free = sim::Evaluate(SingleFamily(40));
     ASSERT_EQ(free.status, sim::Status::Ok);
     EXPECT_LT(std::fabs(l.shell.twistDeg), 1e-4 * std::fabs(free.shell.twistDeg)) << "the applied torque undoes the free twist of " << free.shell.twistDeg
-                                                                                  << " deg; " << Reproduce(loaded);
-    EXPECT_NEAR(l.contractionPercent, h.contractionPercent, 1e-6 * std::max(1.0, std::fabs(h.contractionPercent))) << Reproduce(loaded);
+                                                                                  << " deg; " << testing_support::ReproduceCommand(loaded);
+    EXPECT_NEAR(l.contractionPercent, h.contractionPercent, 1e-6 * std::max(1.0, std::fabs(h.contractionPercent))) << testing_support::ReproduceCommand(loaded);
     EXPECT_EQ(l.shell.torqueNMm, loaded.Shell().ends.torqueNMm) << "a loaded top reports the torque on it";
 }
 
@@ -236,17 +214,17 @@ TEST(EndsClosedForms, TheIsobaricForceOfABraidedMuscleIsTonduAndLopezs) {
     sim::EvalJob freeJob = Braided(angle, 0);
     freeJob.Shell().load.kind = sim::ShellLoad::Inflate;
     const sim::SimResult free = sim::Evaluate(freeJob);
-    ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(freeJob);
+    ASSERT_EQ(free.status, sim::Status::Ok) << testing_support::ReproduceCommand(freeJob);
     ASSERT_GT(free.contractionPercent, 20) << "an ideal muscle from 30 deg shortens by a third";
     double previous = INFINITY;
     for (double fraction : {0.0, 0.5, 0.75}) {
         const sim::EvalJob job = Braided(angle, fraction * free.contractionPercent);
         const sim::SimResult r = sim::Evaluate(job);
-        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
+        ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
         const double eps = job.Shell().load.strokePercent / 100, R0 = job.Shell().geometry.radiusMm, p = job.Shell().load.pressureKpa * 1e-3;
         const double ideal = kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angle) * Tan(angle)) - 1 / (Sin(angle) * Sin(angle)));
         EXPECT_NEAR(r.shell.strokeForceN / ideal, 1, 0.03)
-            << "held at " << 100 * fraction << " % of the free stroke: " << r.shell.strokeForceN << " N against " << ideal << " N; " << Reproduce(job);
+            << "held at " << 100 * fraction << " % of the free stroke: " << r.shell.strokeForceN << " N against " << ideal << " N; " << testing_support::ReproduceCommand(job);
         EXPECT_NEAR(r.contractionPercent, job.Shell().load.strokePercent, 1e-9) << "the stroke is held where it was asked";
         EXPECT_LT(r.shell.strokeForceN, previous) << "the force falls as the muscle shortens";
         previous = r.shell.strokeForceN;
@@ -262,11 +240,11 @@ TEST(EndsClosedForms, AHeldBraidConvergesWhereTrustRegionStepsCrawledBetweenKink
     const double angle = 30;
     const sim::EvalJob job = Braided(angle, 16.599412);
     const sim::SimResult r = sim::Evaluate(job);
-    ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
-    EXPECT_LT(r.shell.newtonIterations, 500) << Reproduce(job);
+    ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
+    EXPECT_LT(r.shell.newtonIterations, 500) << testing_support::ReproduceCommand(job);
     const double eps = job.Shell().load.strokePercent / 100, R0 = job.Shell().geometry.radiusMm, p = job.Shell().load.pressureKpa * 1e-3;
     const double ideal = kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angle) * Tan(angle)) - 1 / (Sin(angle) * Sin(angle)));
-    EXPECT_NEAR(r.shell.strokeForceN / ideal, 1, 0.03) << Reproduce(job);
+    EXPECT_NEAR(r.shell.strokeForceN / ideal, 1, 0.03) << testing_support::ReproduceCommand(job);
 }
 
 // A weight hung from the inflated muscle pulls it out by what its stiffness says: the contraction
@@ -275,15 +253,15 @@ TEST(EndsClosedForms, AHangingLoadStretchesTheMuscleByItsStiffness) {
     sim::EvalJob job = SingleFamily(20);
     job.Shell().fibres.layout = sim::FibreLayout::Braid;
     const sim::SimResult free = sim::Evaluate(job);
-    ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(job);
+    ASSERT_EQ(free.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
     ASSERT_TRUE(free.shell.axialStiffnessNPerMm > 0);
     const double force = 0.01 * free.shell.axialStiffnessNPerMm;  // 0.01 mm of extension
     job.Shell().load.forceN = force;
     const sim::SimResult loaded = sim::Evaluate(job);
-    ASSERT_EQ(loaded.status, sim::Status::Ok) << Reproduce(job);
+    ASSERT_EQ(loaded.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
     const double expected = free.contractionPercent - 100 * (force / free.shell.axialStiffnessNPerMm) / job.Shell().geometry.lengthMm;
     EXPECT_NEAR(loaded.contractionPercent, expected, 0.02 * std::fabs(free.contractionPercent - expected))
-        << "with " << force << " N hung on it; " << Reproduce(job);
+        << "with " << force << " N hung on it; " << testing_support::ReproduceCommand(job);
 }
 
 // Rigid-body invariance with the caps' degrees of freedom: turning the whole tube about its axis by
@@ -358,13 +336,13 @@ TEST(EndsClosedForms, AFreeTipBendsWhereAHeldTipFeelsTheMoment) {
     job.Shell().load.pressureKpa = 3;
     job.Shell().load.steps = 6;
     const sim::SimResult held = sim::Evaluate(job);
-    ASSERT_EQ(held.status, sim::Status::Ok) << Reproduce(job);
+    ASSERT_EQ(held.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
     job.Shell().ends.tip = sim::TipEnd::Free;
     const sim::SimResult free = sim::Evaluate(job);
-    ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(job) << " --tip free";
+    ASSERT_EQ(free.status, sim::Status::Ok) << testing_support::ReproduceCommand(job) << " --tip free";
     EXPECT_TRUE(std::isnan(held.shell.tipTiltDeg) && std::isnan(free.shell.tipMomentNMm)) << "each reports what its ends have";
-    EXPECT_GT(held.shell.tipMomentNMm, 0.5) << Reproduce(job);  // 1.01 N mm
-    EXPECT_GT(free.shell.tipTiltDeg, 20) << Reproduce(job) << " --tip free";  // 45.5 deg
+    EXPECT_GT(held.shell.tipMomentNMm, 0.5) << testing_support::ReproduceCommand(job);  // 1.01 N mm
+    EXPECT_GT(free.shell.tipTiltDeg, 20) << testing_support::ReproduceCommand(job) << " --tip free";  // 45.5 deg
     // Bent to a circular arc of angle theta, the tip's lateral and axial distances from the bottom
     // are in the ratio (1 - cos theta) / sin theta = tan(theta / 2), whatever the arc's length (the
     // straight clamps and the bend's ends make it 2.6 % more here).

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sim/batch.h"
+#include "reproduce.h"
 #include "shell/shell_problem.h"
 
 namespace {
@@ -51,14 +52,6 @@ double ChouHannafordForceN(const sim::EvalJob& job) {
     return job.Shell().load.pressureKpa * 1e-3 * kPi * R0 * R0 * (3 * Cos(angle) * Cos(angle) - 1) / (Sin(angle) * Sin(angle));
 }
 
-std::string Reproduce(const sim::EvalJob& job) {
-    const auto& f = job.Shell().fibres;
-    return "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm 5 --length-mm 100 --thickness-mm 1 --material custom "
-           "--mu-kpa 1 --elongation-at-break 100 --ring-vertices 24 --rings 0 --steps 8 --fibres " +
-           std::string(sim::Name(f.layout)) + " --fibre-angle-deg " + std::to_string(f.angleDeg) + " --fibre-stiffness-n-per-mm " +
-           std::to_string(f.stiffnessNPerMm) + " --load " + sim::Name(job.Shell().load.kind) + " --pressure-kpa " +
-           std::to_string(job.Shell().load.pressureKpa);
-}
 
 // The axial strain of the tube's middle third (rings H/3 to 2H/3), in percent, positive = shorter.
 double MiddleContraction(const sim::EvalJob& job, const sim::SimResult& r) {
@@ -78,10 +71,10 @@ TEST(FibreClosedForms, AnIdealMcKibbenMuscleContractsToTheMagicAngle) {
     for (double angle : {20.0, 30.0}) {
         const sim::EvalJob job = McKibben(angle);
         const sim::SimResult r = sim::Evaluate(job);
-        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
+        ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
         const double ideal = 100 * (1 - Cos(kMagicAngleDeg) / Cos(angle));  // 38.6 % from 20 deg, 33.3 % from 30 deg
-        EXPECT_NEAR(MiddleContraction(job, r), ideal, 2.0) << "free contraction of the middle section, percent; " << Reproduce(job);
-        EXPECT_NEAR(r.shell.fibreAngleDeg, kMagicAngleDeg, 2.0) << "the braid ends near the magic angle; " << Reproduce(job);
+        EXPECT_NEAR(MiddleContraction(job, r), ideal, 2.0) << "free contraction of the middle section, percent; " << testing_support::ReproduceCommand(job);
+        EXPECT_NEAR(r.shell.fibreAngleDeg, kMagicAngleDeg, 2.0) << "the braid ends near the magic angle; " << testing_support::ReproduceCommand(job);
         EXPECT_GT(r.contractionPercent, 0.8 * ideal) << "the whole tube, clamped ends included, contracts too";
     }
 }
@@ -90,10 +83,10 @@ TEST(FibreClosedForms, TheBlockedForceIsChouAndHannafords) {
     const double angle = 30, pressureKpa = 10;
     const sim::EvalJob job = McKibben(angle, pressureKpa, sim::ShellLoad::Blocked);
     const sim::SimResult r = sim::Evaluate(job);
-    ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(job);
+    ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
     const double expected = ChouHannafordForceN(job);
     EXPECT_NEAR(r.shell.blockingForceN / expected, 1, 0.05) << "blocked force " << r.shell.blockingForceN << " N against " << expected << " N; "
-                                                          << Reproduce(job);
+                                                          << testing_support::ReproduceCommand(job);
 }
 
 // Every inflate evaluation reports a blocking force by pulling the clamp back from the free state,
@@ -103,23 +96,23 @@ TEST(FibreClosedForms, TheFreeMusclesBlockingForceIsTheBlockedInflations) {
     const double angle = 30, pressureKpa = 10;
     const sim::EvalJob freeJob = McKibben(angle, pressureKpa), blockedJob = McKibben(angle, pressureKpa, sim::ShellLoad::Blocked);
     const sim::SimResult free = sim::Evaluate(freeJob), blocked = sim::Evaluate(blockedJob);
-    ASSERT_EQ(free.status, sim::Status::Ok) << Reproduce(freeJob);
-    ASSERT_EQ(blocked.status, sim::Status::Ok) << Reproduce(blockedJob);
-    EXPECT_GT(free.contractionPercent, 25) << "the free muscle contracts; " << Reproduce(freeJob);
+    ASSERT_EQ(free.status, sim::Status::Ok) << testing_support::ReproduceCommand(freeJob);
+    ASSERT_EQ(blocked.status, sim::Status::Ok) << testing_support::ReproduceCommand(blockedJob);
+    EXPECT_GT(free.contractionPercent, 25) << "the free muscle contracts; " << testing_support::ReproduceCommand(freeJob);
     EXPECT_NEAR(free.shell.blockingForceN / blocked.shell.blockingForceN, 1, 1e-6)
         << "pulled back from the free state " << free.shell.blockingForceN << " N, blocked from rest " << blocked.shell.blockingForceN << " N; "
-        << Reproduce(freeJob);
-    EXPECT_NEAR(free.shell.blockingForceN / ChouHannafordForceN(freeJob), 1, 0.05) << Reproduce(freeJob);
+        << testing_support::ReproduceCommand(freeJob);
+    EXPECT_NEAR(free.shell.blockingForceN / ChouHannafordForceN(freeJob), 1, 0.05) << testing_support::ReproduceCommand(freeJob);
 }
 
 TEST(FibreClosedForms, TheAxialStrainChangesSignAtTheMagicAngle) {
     for (double pressureKpa : {1.0, 3.0, 10.0}) {
         const sim::EvalJob below = McKibben(50, pressureKpa), above = McKibben(60, pressureKpa);
         const sim::SimResult a = sim::Evaluate(below), b = sim::Evaluate(above);
-        ASSERT_EQ(a.status, sim::Status::Ok) << Reproduce(below);
-        ASSERT_EQ(b.status, sim::Status::Ok) << Reproduce(above);
-        EXPECT_GT(MiddleContraction(below, a), 0) << "50 deg contracts at " << pressureKpa << " kPa; " << Reproduce(below);
-        EXPECT_LT(MiddleContraction(above, b), 0) << "60 deg extends at " << pressureKpa << " kPa; " << Reproduce(above);
+        ASSERT_EQ(a.status, sim::Status::Ok) << testing_support::ReproduceCommand(below);
+        ASSERT_EQ(b.status, sim::Status::Ok) << testing_support::ReproduceCommand(above);
+        EXPECT_GT(MiddleContraction(below, a), 0) << "50 deg contracts at " << pressureKpa << " kPa; " << testing_support::ReproduceCommand(below);
+        EXPECT_LT(MiddleContraction(above, b), 0) << "60 deg extends at " << pressureKpa << " kPa; " << testing_support::ReproduceCommand(above);
     }
 }
 

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "sim/batch.h"
+#include "reproduce.h"
 #include "shell/shell_problem.h"
 
 namespace {
@@ -377,12 +378,13 @@ std::pair<double, double> TubeStretches(const sim::ShellDef& def, const sim::Sim
     return {radius / rest, 1 + r.shell.displacementMm / def.geometry.lengthMm};
 }
 
-std::string Reproduce(const sim::ShellDef& def, double pressureKpa) {
-    return "reproduce: actuator simulate --model membrane --shape cylinder --radius-mm " + std::to_string(def.geometry.radiusMm) + " --length-mm " +
-           std::to_string(def.geometry.lengthMm) + " --thickness-mm " + std::to_string(def.geometry.thicknessMm) + " --material custom --mu-kpa " +
-           std::to_string(def.material.muKpa) + " --elongation-at-break " + std::to_string(def.material.elongationAtBreak) + " --ring-vertices " +
-           std::to_string(def.geometry.ringVertices) + " --rings " + std::to_string(def.geometry.rings) + " --steps " + std::to_string(def.load.steps) +
-           " --pressure-kpa " + std::to_string(pressureKpa) + " --ends sliding";
+// The command line that evaluates `def` as these tests do (EvaluateShell without bending: membrane).
+std::string Reproduce(const sim::ShellDef& def) {
+    sim::EvalJob job;
+    job.SetModel(sim::ModelKind::Membrane);
+    job.shape = sim::CylinderShape{};
+    job.Shell() = def;
+    return testing_support::ReproduceCommand(job);
 }
 
 }  // namespace
@@ -397,10 +399,10 @@ TEST(ShellClosedForms, ClosedEndTubeWithFreeEndsLengthens) {
         def.load.pressureKpa = row.P * def.material.muKpa * def.geometry.thicknessMm / def.geometry.radiusMm;
         def.load.steps = 4;
         const sim::SimResult r = sim::EvaluateShell(sim::CylinderShape{}, def, false);
-        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(def, def.load.pressureKpa);
+        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(def);
         const auto [lt, lz] = TubeStretches(def, r);
-        EXPECT_NEAR((lt - 1) / (row.lt - 1), 1, 0.02) << "hoop strain at P = " << row.P << "; " << Reproduce(def, def.load.pressureKpa);
-        EXPECT_NEAR((lz - 1) / (row.lz - 1), 1, 0.02) << "axial strain at P = " << row.P << "; " << Reproduce(def, def.load.pressureKpa);
+        EXPECT_NEAR((lt - 1) / (row.lt - 1), 1, 0.02) << "hoop strain at P = " << row.P << "; " << Reproduce(def);
+        EXPECT_NEAR((lz - 1) / (row.lz - 1), 1, 0.02) << "axial strain at P = " << row.P << "; " << Reproduce(def);
         EXPECT_LT(r.contractionPercent, 0) << "the plain tube lengthens";
     }
 }
@@ -410,8 +412,8 @@ TEST(ShellClosedForms, ClosedEndTubeMeetsItsLimitPoint) {
     const double scale = def.material.muKpa * def.geometry.thicknessMm / def.geometry.radiusMm;
     def.load.pressureKpa = 0.8 * scale;
     const sim::SimResult r = sim::EvaluateShell(sim::CylinderShape{}, def, false);
-    EXPECT_EQ(r.status, sim::Status::LimitPoint) << Reproduce(def, def.load.pressureKpa);
-    EXPECT_NEAR(r.shell.limitPressureKpa / scale / 0.749868, 1, 0.02) << Reproduce(def, def.load.pressureKpa);
+    EXPECT_EQ(r.status, sim::Status::LimitPoint) << Reproduce(def);
+    EXPECT_NEAR(r.shell.limitPressureKpa / scale / 0.749868, 1, 0.02) << Reproduce(def);
 }
 
 // Held at its length: P = 1 - lt^-4 and F / (pi R mu h) = 2 (1 - sqrt(1 - P)) - P / sqrt(1 - P).
@@ -425,7 +427,7 @@ TEST(ShellClosedForms, TubeHeldAtFixedLengthPushesOnItsSupports) {
         for (double P : {0.3, 0.5}) {
             def.load.pressureKpa = P * scale;
             const sim::SimResult r = sim::EvaluateShell(sim::CylinderShape{}, def, false);
-            const std::string how = Reproduce(def, def.load.pressureKpa) + " --load " + sim::Name(load);
+            const std::string how = Reproduce(def);
             ASSERT_EQ(r.status, sim::Status::Ok) << how;
             const double unit = kPi * def.geometry.radiusMm * def.material.muKpa * 1e-3 * def.geometry.thicknessMm;
             const double closed = 2 * (1 - std::sqrt(1 - P)) - P / std::sqrt(1 - P);
@@ -511,7 +513,7 @@ TEST(ShellConvergence, StrainErrorsFallSecondOrder) {
         def.load.pressureKpa = P * def.material.muKpa * def.geometry.thicknessMm / def.geometry.radiusMm;
         def.load.steps = 2;
         const sim::SimResult r = sim::EvaluateShell(sim::CylinderShape{}, def, false);
-        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(def, def.load.pressureKpa);
+        ASSERT_EQ(r.status, sim::Status::Ok) << Reproduce(def);
         const auto [lt, lz] = TubeStretches(def, r);
         // The closed form at this pressure: solve both equations for (lt, lz) by Newton.
         double t = 1.2, z = 1.02;
