@@ -148,14 +148,6 @@ struct Solver {
     static constexpr double kFirstTrustRadius = 0.1;  // of the mean edge: the saddle escape's step
     static constexpr int kTrustTries = 10;            // radii tried from one state, each a quarter of the last
     double trustRadiusMm = 0;                         // 0: not yet needed
-    // Trust-region steps crawling between kinks: where threads go taut and slack within a hundredth
-    // of an edge, the exact Hessian's model holds no farther, and the radius cycles (a held braid:
-    // 0.001 to 0.008 mm, the largest force stuck at 0.69 N for 2,000 iterations). After kTrustCrawl
-    // such steps in a row, one step on the projected Hessian with a line search, which judges by the
-    // energy alone and may cross the kinks.
-    static constexpr int kTrustCrawl = 10;
-    static constexpr double kCrawlRadius = 0.01;  // of the mean edge
-    int crawlingTrustSteps = 0;
 
     Solver(const ShellProblem& p, const SolverDef& d)
         : problem(p), def(d), workspace(TakeWorkspace(p)), pattern(workspace->pattern), factor(&workspace->factor),
@@ -495,7 +487,7 @@ struct Solver {
                     const Linear end = PreconditionedStep(pattern.matrix, gasTerm, w, r.gradient, step, &used);
                     if (end == Linear::Solved && step.dot(r.gradient) < 0) break;
                     step.resize(0);
-                    if (kind == HessianKind::Exact && end == Linear::Indefinite && crawlingTrustSteps < kTrustCrawl &&
+                    if (kind == HessianKind::Exact && end == Linear::Indefinite &&
                         (trustStep = TrustRegionStep(q, load, r, gasTerm, w, pattern.matrix, step, trusted)))
                         break;
                     if (end != Linear::Indefinite) break;  // too slow (or not finite): the projected one would be too
@@ -571,7 +563,6 @@ struct Solver {
                 alpha *= 0.5;
             }
             if (!accepted) return NewtonEnd::NotConverged;
-            crawlingTrustSteps = trustStep && trustRadiusMm < kCrawlRadius * problem.meanEdgeMm ? crawlingTrustSteps + 1 : 0;
             // A whole step that left more than a quarter of the force: the projected Hessian is
             // converging linearly; exact steps from here on (for the rest of the evaluation).
             HoldGradient(r.gradient);
@@ -1018,7 +1009,23 @@ Status FollowLoadPath(TubeEvaluation& t) {
                     const Eigen::VectorXd move = (next - reached) * load.pressureKpa * 1e-3 * tangent;
                     from += t.solver.ImpactFree(t.q, move) * move;
                 }
-                if (load.kind == ShellLoad::Blocked) from[t.problem.axial] = t.HeldAxialAt(next);
+                if (load.kind == ShellLoad::Blocked) {
+                    // Without a tangent, the wall follows the top's move in proportion to its rest
+                    // height (an affine compression) rather than leaving all of it to the rings
+                    // under the top: a held braid's top moved 4 mm past rings 1.3 mm apart, and
+                    // from there Newton's trust-region steps crawled between threads going taut and
+                    // slack (2,000 iterations, contact off) or its steps were cut to 1e-4 (contact
+                    // on); 192 and 107 iterations now.
+                    if (!withTangent) {
+                        const double move = t.HeldAxialAt(next) - from[t.problem.axial];
+                        Positions x;
+                        PositionsOf(t.problem, from, x);
+                        const auto [low, high] = std::minmax_element(t.problem.rest.z.begin(), t.problem.rest.z.end());
+                        for (int v = 0; v < x.Size(); ++v) x.z[v] += move * (t.problem.rest.z[v] - *low) / (*high - *low);
+                        from = UnknownsOf(t.problem, x);
+                    }
+                    from[t.problem.axial] = t.HeldAxialAt(next);
+                }
                 return from;
             };
             Eigen::VectorXd trial = start(predicted);
