@@ -38,7 +38,7 @@ sim::EvalJob FibreTube(double muKpa, sim::FibreLayout layout, double angleDeg, d
     d.material.muKpa = muKpa;
     d.material.elongationAtBreak = 100;  // the checks are of the fibres and ends, not of the rubber's limits
     // Closed forms of tubes whose walls are not looked at: no self-intersection check and no contact
-    // (its steps take other paths through a held braid's fragile strokes; docs/performance.md).
+    // (verified in contact_solver_test; a held braid with it on is below).
     d.solver.selfContact = false;
     d.contact.mode = sim::ContactMode::Off;
     d.fibres.layout = layout;
