@@ -1016,8 +1016,7 @@ Status FollowLoadPath(TubeEvaluation& t) {
                     // from there Newton's trust-region steps crawled between threads going taut and
                     // slack (2,000 iterations, contact off) or its steps were cut to 1e-4 (contact
                     // on); 192 and 107 iterations now.
-                    if (!withTangent) {
-                        const double move = t.HeldAxialAt(next) - from[t.problem.axial];
+                    if (const double move = t.HeldAxialAt(next) - from[t.problem.axial]; !withTangent && move != 0) {
                         Positions x;
                         PositionsOf(t.problem, from, x);
                         const auto [low, high] = std::minmax_element(t.problem.rest.z.begin(), t.problem.rest.z.end());
