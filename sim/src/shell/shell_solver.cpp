@@ -863,16 +863,31 @@ struct TubeEvaluation {
         }
         return load.kind == ShellLoad::Force ? 0.0 : s * load.pressureKpa;
     }
-    // The state q with its top clamp moved to u: the free wall stretched along the axis with it, each
-    // vertex by the fraction of the free length below it at rest. Moving the clamp alone crushes
-    // or pulls the ring beside it by the whole move (millimetres), and Newton can come down from
-    // there into a folded state (the +/-70 deg braid held at its rest length from half its stroke,
-    // 60 x 59: through itself).
-    Eigen::VectorXd StretchedTo(const Eigen::VectorXd& from, double u) {
-        PositionsOf(problem, from, x);
-        const double move = u - from[problem.axial], bottom = def.geometry.clampMm, free = length - 2 * def.geometry.clampMm;
-        for (int v = 0; v < x.Size(); ++v) x.z[v] += move * std::clamp((problem.rest.z[v] - bottom) / free, 0.0, 1.0);
-        Eigen::VectorXd q = UnknownsOf(problem, x);
+    // The state q with its top clamp moved to u: the free wall carried along the axis with it, each
+    // free vertex by the fraction of the way from the bottom end to the top end that it stands at
+    // rest (an affine stretch or compression). Moving the clamp alone crushes or pulls the ring
+    // beside it by the whole move (millimetres), and Newton can come down from there into a folded
+    // state (the +/-70 deg braid held at its rest length from half its stroke, 60 x 59: through
+    // itself), or crawl between threads going taut and slack (a held braid's top moved 4 mm past
+    // rings 1.3 mm apart: 2,000 iterations with contact off). The free vertices' unknowns are their
+    // places, so the move is added to them: a zero move leaves q as it was, to the bit.
+    Eigen::VectorXd StretchedTo(const Eigen::VectorXd& from, double u) const {
+        // The ends: the highest vertex held at the bottom, the lowest riding on the top clamp.
+        double bottom = std::numeric_limits<double>::infinity(), top = -bottom;
+        double held = -std::numeric_limits<double>::infinity(), riding = std::numeric_limits<double>::infinity();
+        for (int v = 0; v < problem.vertexCount(); ++v) {
+            const int* d = &problem.dofOf[3 * v];
+            const double z = problem.rest.z[v];
+            bottom = std::min(bottom, z);
+            top = std::max(top, z);
+            if (d[2] == kAxial || d[0] == kRigid) riding = std::min(riding, z);
+            else if (d[2] == kFixed) held = std::max(held, z);
+        }
+        if (std::isfinite(held) && std::isfinite(riding) && held < riding) bottom = held, top = riding;
+        Eigen::VectorXd q = from;
+        const double move = u - from[problem.axial];
+        for (int v = 0; v < problem.vertexCount(); ++v)
+            if (const int d = problem.dofOf[3 * v + 2]; d >= 0) q[d] += move * std::clamp((problem.rest.z[v] - bottom) / (top - bottom), 0.0, 1.0);
         q[problem.axial] = u;
         return q;
     }
@@ -1010,19 +1025,8 @@ Status FollowLoadPath(TubeEvaluation& t) {
                     from += t.solver.ImpactFree(t.q, move) * move;
                 }
                 if (load.kind == ShellLoad::Blocked) {
-                    // Without a tangent, the wall follows the top's move in proportion to its rest
-                    // height (an affine compression) rather than leaving all of it to the rings
-                    // under the top: a held braid's top moved 4 mm past rings 1.3 mm apart, and
-                    // from there Newton's trust-region steps crawled between threads going taut and
-                    // slack (2,000 iterations, contact off) or its steps were cut to 1e-4 (contact
-                    // on); 192 and 107 iterations now.
-                    if (const double move = t.HeldAxialAt(next) - from[t.problem.axial]; !withTangent && move != 0) {
-                        Positions x;
-                        PositionsOf(t.problem, from, x);
-                        const auto [low, high] = std::minmax_element(t.problem.rest.z.begin(), t.problem.rest.z.end());
-                        for (int v = 0; v < x.Size(); ++v) x.z[v] += move * (t.problem.rest.z[v] - *low) / (*high - *low);
-                        from = UnknownsOf(t.problem, x);
-                    }
+                    // Without a tangent, the wall follows the top's move (StretchedTo).
+                    if (!withTangent) from = t.StretchedTo(from, t.HeldAxialAt(next));
                     from[t.problem.axial] = t.HeldAxialAt(next);
                 }
                 return from;
