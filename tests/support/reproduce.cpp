@@ -24,9 +24,12 @@ std::string ReproduceCommand(const sim::EvalJob& job) {
     option("--ring-vertices", d.geometry.ringVertices);
     option("--rings", d.geometry.rings);
     option("--ends", sim::Name(d.geometry.ends));
-    if (d.geometry.ends == sim::EndCondition::Clamped) {  // sliding ends have no clamp
+    if (d.geometry.ends == sim::EndCondition::Clamped) {  // sliding ends have no clamp to hold, turn or tilt
         option("--clamp-mm", d.geometry.clampMm);
         option("--edge-spacing-mm", d.geometry.edgeSpacingMm);
+        option("--twist", sim::Name(d.ends.twist));
+        if (d.ends.twist == sim::TwistEnd::Loaded) option("--torque-n-mm", d.ends.torqueNMm);
+        if (d.ends.tip != sim::TipEnd::Held) option("--tip", sim::Name(d.ends.tip));
     }
     const sim::MaterialDef& m = d.material;
     if (m.preset != sim::MaterialPreset::Custom) throw std::logic_error("ReproduceCommand writes custom materials only");
@@ -47,11 +50,6 @@ std::string ReproduceCommand(const sim::EvalJob& job) {
     if (l.forceN != 0) option("--force-n", l.forceN);
     if (l.kind == sim::ShellLoad::Blocked) option("--stroke-percent", l.strokePercent);
     option("--steps", l.steps);
-    if (d.geometry.ends == sim::EndCondition::Clamped) {
-        option("--twist", sim::Name(d.ends.twist));
-        if (d.ends.twist == sim::TwistEnd::Loaded) option("--torque-n-mm", d.ends.torqueNMm);
-        if (d.ends.tip != sim::TipEnd::Held) option("--tip", sim::Name(d.ends.tip));
-    }
     option("--fibres", sim::Name(d.fibres.layout));
     if (d.fibres.layout != sim::FibreLayout::None) {
         if (d.fibres.layout == sim::FibreLayout::Braid || d.fibres.layout == sim::FibreLayout::Single) option("--fibre-angle-deg", d.fibres.angleDeg);
