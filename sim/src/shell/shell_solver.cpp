@@ -872,18 +872,14 @@ struct TubeEvaluation {
     // rings 1.3 mm apart: 2,000 iterations with contact off). The free vertices' unknowns are their
     // places, so the move is added to them: a zero move leaves q as it was, to the bit.
     Eigen::VectorXd StretchedTo(const Eigen::VectorXd& from, double u) const {
-        // The ends: the highest vertex held at the bottom, the lowest riding on the top clamp.
-        double bottom = std::numeric_limits<double>::infinity(), top = -bottom;
-        double held = -std::numeric_limits<double>::infinity(), riding = std::numeric_limits<double>::infinity();
+        // The ends: the highest vertex held at the bottom, the lowest riding on the top clamp (a
+        // problem with an axial unknown has both).
+        double bottom = -std::numeric_limits<double>::infinity(), top = std::numeric_limits<double>::infinity();
         for (int v = 0; v < problem.vertexCount(); ++v) {
             const int* d = &problem.dofOf[3 * v];
-            const double z = problem.rest.z[v];
-            bottom = std::min(bottom, z);
-            top = std::max(top, z);
-            if (d[2] == kAxial || d[0] == kRigid) riding = std::min(riding, z);
-            else if (d[2] == kFixed) held = std::max(held, z);
+            if (d[2] == kAxial || d[0] == kRigid) top = std::min(top, problem.rest.z[v]);
+            else if (d[2] == kFixed) bottom = std::max(bottom, problem.rest.z[v]);
         }
-        if (std::isfinite(held) && std::isfinite(riding) && held < riding) bottom = held, top = riding;
         Eigen::VectorXd q = from;
         const double move = u - from[problem.axial];
         for (int v = 0; v < problem.vertexCount(); ++v)
@@ -1026,8 +1022,9 @@ Status FollowLoadPath(TubeEvaluation& t) {
                 }
                 if (load.kind == ShellLoad::Blocked) {
                     // Without a tangent, the wall follows the top's move (StretchedTo).
-                    if (!withTangent) from = t.StretchedTo(from, t.HeldAxialAt(next));
-                    from[t.problem.axial] = t.HeldAxialAt(next);
+                    const double u = t.HeldAxialAt(next);
+                    if (withTangent) from[t.problem.axial] = u;
+                    else from = t.StretchedTo(from, u);
                 }
                 return from;
             };

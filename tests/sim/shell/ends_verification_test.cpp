@@ -151,6 +151,13 @@ Homogeneous MiddleThird(const sim::EvalJob& job, const sim::SimResult& r) {
 // no wall and inextensible threads: measured, the force's shortfall from it at 75 % of the free
 // stroke is 7.3 % with P = 50 and fibres of 1e4 mu h, 3.8 % with P = 200 and 4e5 mu h, 2.9 % here
 // (1.6 % blocked): it shrinks as the wall softens and the threads stiffen.
+// Tondu and Lopez's isobaric force of an ideal braided muscle (N): the braid at angleDeg held at the
+// job's stroke under its pressure, F = pi R0^2 p (3 (1 - eps)^2 / tan^2 a - 1 / sin^2 a).
+double TonduLopezForceN(const sim::EvalJob& job, double angleDeg) {
+    const double eps = job.Shell().load.strokePercent / 100, R0 = job.Shell().geometry.radiusMm, p = job.Shell().load.pressureKpa * 1e-3;
+    return kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angleDeg) * Tan(angleDeg)) - 1 / (Sin(angleDeg) * Sin(angleDeg)));
+}
+
 sim::EvalJob Braided(double angleDeg, double strokePercent) {
     sim::EvalJob job = FibreTube(0.1, sim::FibreLayout::Braid, angleDeg, 100);  // 1e6 mu h
     sim::ShellDef& d = job.Shell();
@@ -221,8 +228,7 @@ TEST(EndsClosedForms, TheIsobaricForceOfABraidedMuscleIsTonduAndLopezs) {
         const sim::EvalJob job = Braided(angle, fraction * free.contractionPercent);
         const sim::SimResult r = sim::Evaluate(job);
         ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
-        const double eps = job.Shell().load.strokePercent / 100, R0 = job.Shell().geometry.radiusMm, p = job.Shell().load.pressureKpa * 1e-3;
-        const double ideal = kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angle) * Tan(angle)) - 1 / (Sin(angle) * Sin(angle)));
+        const double ideal = TonduLopezForceN(job, angle);
         EXPECT_NEAR(r.shell.strokeForceN / ideal, 1, 0.03)
             << "held at " << 100 * fraction << " % of the free stroke: " << r.shell.strokeForceN << " N against " << ideal << " N; " << testing_support::ReproduceCommand(job);
         EXPECT_NEAR(r.contractionPercent, job.Shell().load.strokePercent, 1e-9) << "the stroke is held where it was asked";
@@ -246,8 +252,7 @@ TEST(EndsClosedForms, AHeldBraidConvergesFromItsWallCompressedWithItsTop) {
         const sim::SimResult r = sim::Evaluate(job);
         ASSERT_EQ(r.status, sim::Status::Ok) << testing_support::ReproduceCommand(job);
         EXPECT_LT(r.shell.newtonIterations, 500) << testing_support::ReproduceCommand(job);
-        const double eps = job.Shell().load.strokePercent / 100, R0 = job.Shell().geometry.radiusMm, p = job.Shell().load.pressureKpa * 1e-3;
-        const double ideal = kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angle) * Tan(angle)) - 1 / (Sin(angle) * Sin(angle)));
+        const double ideal = TonduLopezForceN(job, angle);
         EXPECT_NEAR(r.shell.strokeForceN / ideal, 1, 0.03) << testing_support::ReproduceCommand(job);
         if (std::isnan(force)) force = r.shell.strokeForceN;
         else EXPECT_NEAR(r.shell.strokeForceN, force, 1e-9 * force) << "no wall comes near another: contact must not move the held state";
