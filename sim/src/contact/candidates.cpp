@@ -16,7 +16,7 @@ namespace sim {
 namespace {
 template <bool kWithinReach = true, typename PointTriangle, typename EdgeEdge>
 void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
-                      PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge);
+                      const std::vector<std::uint8_t>* only, PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge);
 
 // ContactSurface::layer: breadth first along the edges (each vertex's neighbours are
 // adjacent[adjacentBegin[v]] to adjacent[adjacentBegin[v + 1]]) from the bottom clamp's vertices
@@ -158,7 +158,7 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
         }
     };
     ForEachCandidate<false>(
-        s, rest, nullptr, neighbourMm,
+        s, rest, nullptr, neighbourMm, nullptr,
         [&](int p, int t) {
             const auto& v = s.triangles[t];
             const ContactPair pair{PairKind::PointTriangle, {p, v[0], v[1], v[2]}};
@@ -324,7 +324,7 @@ namespace {
 // boxes overlap: the caller tells those within the reach itself.
 template <bool kWithinReach, typename PointTriangle, typename EdgeEdge>
 void ForEachCandidate(const ContactSurface& surface, const Positions& x, const Positions* dx, double reachMm,
-                      PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge) {
+                      const std::vector<std::uint8_t>* only, PointTriangle&& pointTriangle, EdgeEdge&& edgeEdge) {
     // Boxes inflated by half the reach each way: two overlap whenever their primitives may be
     // within the reach (of each other's swept boxes, with dx).
     const double margin = reachMm / 2;
@@ -335,13 +335,27 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
     for (int v : surface.points) pointBoxes.push_back(BoxOf(std::array<int, 1>{v}, x, dx, margin));
     for (const auto& e : surface.edges) edgeBoxes.push_back(BoxOf(e, x, dx, margin));
     for (const auto& t : surface.triangles) triangleBoxes.push_back(BoxOf(t, x, dx, margin));
+    if (only) {  // primitives outside the stretch searched get boxes that no cell holds
+        const Box none{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+        const auto outside = [&](const auto& vertices) {
+            return std::any_of(vertices.begin(), vertices.end(), [&](int v) { return !(*only)[v]; });
+        };
+        for (std::size_t a = 0; a < surface.points.size(); ++a)
+            if (!(*only)[surface.points[a]]) pointBoxes[a] = none;
+        for (std::size_t e = 0; e < surface.edges.size(); ++e)
+            if (outside(surface.edges[e])) edgeBoxes[e] = none;
+        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+            if (outside(surface.triangles[t])) triangleBoxes[t] = none;
+    }
 
     // Cells about as large as the boxes of edges: a query box touches a few cells. (Half as large
     // cost more in cells visited than they saved in primitives looked at: 219 against 201 ms for
     // shell_bench's sine with contact on.)
     double cell = 0;
-    for (const Box& b : edgeBoxes) cell += (b.hi - b.lo).maxCoeff();
-    cell = std::max(cell / std::max<std::size_t>(1, edgeBoxes.size()), reachMm);
+    std::size_t sized = 0;
+    for (const Box& b : edgeBoxes)
+        if (!only || CellGrid::Finite(b)) cell += (b.hi - b.lo).maxCoeff(), ++sized;  // a non-finite state searches nothing
+    cell = std::max(cell / std::max<std::size_t>(1, sized), reachMm);
     if (!(cell > 0) || !std::isfinite(cell)) return;
     // A wild step (a diverging Newton iterate) makes boxes that span huge numbers of cells: coarsen
     // the grid until the cells touched are a bounded multiple of the boxes, so the hash cannot blow up.
@@ -427,10 +441,10 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
 }  // namespace
 
 std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const Positions& x, const Positions* dx,
-                                           double reachMm) {
+                                           double reachMm, const std::vector<std::uint8_t>* only) {
     std::vector<ContactPair> pairs;
     ForEachCandidate(
-        surface, x, dx, reachMm,
+        surface, x, dx, reachMm, only,
         [&](int p, int n) {
             const auto& t = surface.triangles[n];
             pairs.push_back({PairKind::PointTriangle, {p, t[0], t[1], t[2]}});

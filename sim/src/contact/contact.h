@@ -126,9 +126,11 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
 
 // The pairs whose primitives may be within reachMm of each other (a uniform spatial hash on their
 // bounding boxes), or, with dx, at any point while x moves to x + dx. Pairs that share a vertex,
-// neighbours and pairs on one rigid body are left out. Sorted, each once: the same list on every run.
+// neighbours and pairs on one rigid body are left out; with `only` (per vertex of the mesh), so are
+// primitives with a vertex outside it (a search of one stretch of wall). Sorted, each once: the same
+// list on every run.
 std::vector<ContactPair> ContactCandidates(const ContactSurface& surface, const Positions& x, const Positions* dx,
-                                           double reachMm);
+                                           double reachMm, const std::vector<std::uint8_t>* only = nullptr);
 
 // The distance at which pairs act: a wall thickness and the barrier's reach beyond it.
 inline double ContactReachMm(const BarrierDef& barrier) { return barrier.thicknessMm + barrier.activationMm; }
@@ -160,7 +162,8 @@ inline bool InReach(const ContactPair& pair, const Positions& x, const BarrierDe
 // layers (rings), each pair of windows (two consecutive bands, which hold every primitive) fitted
 // with its own affine motion and bounded from its own distance at `built` (its bands' boxes apart,
 // at least clearanceMm). A bend fits each short stretch of tube, and stretches far apart need no
-// fit.
+// fit. The few windows no affine motion fits (where a wall leaves its clamp and bulges within a
+// few rings) are searched on their own: a search of a tenth of the tube instead of all of it.
 struct ContactList {
     std::vector<ContactPair> pairs;
     // The candidates within 1.8 reaches of `built` (pairs included): what a Hessian pattern that is
@@ -168,6 +171,7 @@ struct ContactList {
     // fall inside the pattern, and the factors' analysis and the last factor carry over.
     std::vector<ContactPair> wider;
     Positions built;
+    const ContactSurface* surface = nullptr;  // what it was built on
     double reachMm = 0;      // the list holds every pair within this while Covers
     double clearanceMm = 0;  // every pair not in the list was at least this far apart at `built`
     // The built positions' centroid and the pseudo-inverse of their spread about it (sum of
@@ -190,6 +194,10 @@ struct ContactList {
     };
     std::vector<Band> bands;
     std::vector<WindowPair> windowPairs;
+    // The last state the bands vouched for, and for what distance: a solve asks again at every
+    // assembly at that state (a cache, not part of the list's meaning).
+    mutable Positions vouchedAt;
+    mutable double vouchedNeedMm = 0;
     // A lower bound on the distance at x of every pair not in the list (-infinity for positions the
     // list was not built on or that are not finite), from the whole surface's affine fit alone.
     double ClearanceAt(const Positions& x) const;
@@ -197,6 +205,8 @@ struct ContactList {
     // to `to` (the whole surface's bound at both ends first, then band by band).
     bool StaysClear(const Positions& from, const Positions& to, double needMm) const;
     bool Covers(const Positions& x) const { return StaysClear(x, x, reachMm); }
+    // The same for the pairs of the given bands' vertices, by a search of them alone.
+    bool SearchedClear(const std::vector<std::uint8_t>& searchBands, const Positions& from, const Positions& to, double needMm) const;
 };
 // Rebuilds the list at x when it does not cover x. True when its pairs changed.
 bool UpdateContactList(ContactList& list, const ContactSurface& surface, const BarrierDef& barrier, const Positions& x);

@@ -14,7 +14,15 @@ namespace sim {
 namespace {
 constexpr double kListReaches = 1.4;     // the list's pairs: within this many reaches
 constexpr double kPatternReaches = 1.8;  // ContactList::wider: within this many
-constexpr int kMostBands = 32;           // the window pairs grow as its square
+// Bands of one ring on the default walls (40-52 rings): a bend's residual over a window grows as
+// its length squared, and with two rings a band the pushed benchmark sine's windows were 0.4-0.8 mm
+// off their fits all along the tube; with one, only those at the clamps are. The window pairs grow
+// as its square (780 at 40 rings, each a few 3 x 3 products when a step needs it).
+constexpr int kMostBands = 64;
+// The most of the surface's points a search of the bands no fit vouches for may take: beyond a
+// quarter, it costs about what a search of the whole surface does, and a list rebuilt where the
+// walls are now will serve the next steps.
+constexpr double kMostSearched = 0.25;
 
 // A pseudo-inverse of a spread: a flat or straight set of points fits no motion across itself (any
 // fit is a valid bound; this one is the smallest).
@@ -228,6 +236,7 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
     // contraction with this bound there, 6.44 % without): the lists of walls in contact are
     // rebuilt where the whole surface's bound says so.
     if (!pairs.empty() || windowPairs.empty() || !std::isfinite(start) || !std::isfinite(end)) return false;
+    if (still && needMm == vouchedNeedMm && from == vouchedAt) return true;
 
     // Band by band. Along a straight move every vertex's move from `built` is a blend of its moves
     // at the two ends, and so is each fit: a vertex is no farther from the blended fit than the
@@ -237,6 +246,8 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
         fitsFrom[k] = FitBand(bands[k], built, from);
         fitsTo[k] = still ? fitsFrom[k] : FitBand(bands[k], built, to);
     }
+    std::vector<std::uint8_t> unfitted(bands.size(), 0);  // the bands of windows no fit vouches for
+    std::size_t unfittedPoints = 0;
     for (const WindowPair& w : windowPairs) {
         double moved = 0;  // the largest move of a vertex in the pair of windows, at either end
         for (int k : w.bands)
@@ -248,7 +259,38 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
         if (stretch * w.distanceMm - 2 * std::max(a.residualMm, b.residualMm) >= needMm) continue;
         a.residualMm = ExactResidual(*this, w, a, from);
         b.residualMm = still ? a.residualMm : ExactResidual(*this, w, b, to);
-        if (!(stretch * w.distanceMm - 2 * std::max(a.residualMm, b.residualMm) >= needMm)) return false;
+        if (!(stretch * w.distanceMm - 2 * std::max(a.residualMm, b.residualMm) >= needMm))
+            for (int k : w.bands)
+                if (k >= 0 && !unfitted[k]) {
+                    unfitted[k] = 1;
+                    unfittedPoints += bands[k].vertices.size();
+                    if (!surface || double(unfittedPoints) > kMostSearched * double(surface->points.size())) return false;
+                }
+    }
+    const bool clear = SearchedClear(unfitted, from, to, needMm);
+    if (still && clear) vouchedAt = from, vouchedNeedMm = needMm;
+    return clear;
+}
+
+bool ContactList::SearchedClear(const std::vector<std::uint8_t>& searchBands, const Positions& from, const Positions& to, double needMm) const {
+    std::vector<std::uint8_t> only(from.Size(), 0);
+    std::size_t searched = 0;
+    for (std::size_t k = 0; k < bands.size(); ++k)
+        if (searchBands[k])
+            for (int v : bands[k].vertices) only[v] = 1, ++searched;
+    if (searched == 0) return true;
+    if (!surface || double(searched) > kMostSearched * double(surface->points.size())) return false;
+    if (&from == &to) return ContactCandidates(*surface, from, nullptr, needMm, &only).empty();
+    Positions move = to;
+    for (int v = 0; v < move.Size(); ++v) {
+        move.x[v] -= from.x[v];
+        move.y[v] -= from.y[v];
+        move.z[v] -= from.z[v];
+    }
+    for (const ContactPair& pair : ContactCandidates(*surface, from, &move, needMm, &only)) {
+        const Vector12 start = PairCoordinates(pair, from);
+        if (!(SquaredDistance(pair.kind, start, nullptr, nullptr) > needMm * needMm)) return false;
+        if (PairImpactTime(pair.kind, start, PairCoordinates(pair, move), needMm, 1.0) < 1.0) return false;
     }
     return true;
 }
@@ -257,6 +299,8 @@ bool UpdateContactList(ContactList& list, const ContactSurface& surface, const B
     if (list.Covers(x)) return false;
     const auto setBuilt = [&](double clearanceMm) {
         list.built = x;
+        list.surface = &surface;
+        list.vouchedAt = Positions{};
         list.reachMm = ContactReachMm(barrier);
         list.clearanceMm = clearanceMm;
         list.builtCentre.setZero();

@@ -419,8 +419,8 @@ Tube ClampedTube(int n, int rings) {
 
 TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
     // A held tube pushed sideways bows: no affine map fits that, and the list's bound is then
-    // taken band by band. Check it against the true distance of every pair that comes within
-    // the distance it vouches for (the spatial hash, checked against all pairs above, finds them)
+    // taken band by band, and where no band's fit holds, by a search of those bands alone. Check it
+    // against the true distance of every pair that comes within the distance it vouches for (the spatial hash, checked against all pairs above, finds them)
     // along random moves between bowed, tilted, pinched and rippled states, and that it does vouch
     // for bows the whole surface's fit cannot.
     constexpr int kAround = 24;
@@ -435,12 +435,16 @@ TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> unit(0, 1), sign(-1, 1);
     // A state: a bow of up to 12 mm (zero at the clamp), each ring turned about a horizontal axis by
-    // up to 0.2 rad times its height, a swelling, a pinch toward the top that brings the opposite
-    // walls near each other, a ripple around the rings that brings vertices two apart (2.6 mm) near
-    // each other, and wrinkles of up to 0.3 mm.
-    const auto state = [&]() {
-        const double bow = 12 * sign(rng), tilt = 0.2 * sign(rng), swell = 1 + 0.3 * unit(rng), wrinkle = 0.15 * unit(rng);
+    // up to 0.2 rad times its height, a swelling, in half of them all of it within two rings of the
+    // clamp (a wall leaving its clamp: no affine motion fits those rings), sometimes with a pinch
+    // there that brings its opposite walls within a wall of each other, a pinch toward the top
+    // that brings the opposite walls near each other, a ripple around the rings that brings
+    // vertices two apart (2.6 mm) near each other, and wrinkles of up to 0.3 mm.
+    const auto state = [&](bool mayPinchAtClamp) {
+        const double bow = 12 * sign(rng), tilt = 0.2 * sign(rng), swell = 0.3 * unit(rng), wrinkle = 0.15 * unit(rng);
         const double pinch = unit(rng) < 0.5 ? 0.0 : 0.6 * unit(rng), ripple = 0.6 * unit(rng);
+        const double swellRings = unit(rng) < 0.5 ? 2.0 : 15.0;
+        const double clampPinch = mayPinchAtClamp && unit(rng) < 0.5 ? 0.7 + 0.3 * unit(rng) : 0.0;
         Positions x = tube.x;
         for (int v = 0; v < x.Size(); ++v) {
             const double s = x.z[v] / 24;
@@ -448,21 +452,26 @@ TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
             const double around = std::atan2(x.y[v], x.x[v]) + ripple * std::sin(M_PI * (v % kAround) / 2) / 5;
             x.x[v] = 5 * std::cos(around), x.y[v] = 5 * std::sin(around);
             const double along = bow * std::sin(M_PI * s / 2) * std::sin(M_PI * s / 2), turn = tilt * s * s;
-            const double px = swell * x.x[v], pz = x.z[v];
+            const double swelling = 1 + swell * std::min(1.0, s * 15 / swellRings);
+            const double px = swelling * x.x[v], pz = x.z[v];
             x.x[v] = px * std::cos(turn) + along + wrinkle * sign(rng);
-            x.y[v] = swell * (1 - pinch * s * s) * x.y[v] + wrinkle * sign(rng);
+            x.y[v] = swelling * (1 - pinch * s * s) * (1 - clampPinch * std::min(1.0, s * 15 / swellRings)) * x.y[v] + wrinkle * sign(rng);
             x.z[v] = pz - px * std::sin(turn) + wrinkle * sign(rng);
         }
         return x;
     };
-    int vouched = 0, onlyBands = 0;
+    // The same list with no surface to search: its fits alone vouch.
+    ContactList fitsAlone = list;
+    fitsAlone.surface = nullptr;
+    int vouched = 0, onlyBands = 0, onlySearched = 0;
     double slack = std::numeric_limits<double>::infinity();  // the nearest pair left out, less what was vouched for
     for (int trial = 0; trial < 400; ++trial) {
-        const Positions from = state(), to = trial % 2 ? from : state();
+        const Positions from = state(false), to = trial % 2 ? from : state(false);
         const double need = trial % 3 ? reach : barrier.thicknessMm;
         if (!list.StaysClear(from, to, need)) continue;
         ++vouched;
         onlyBands += !(std::min(list.ClearanceAt(from), list.ClearanceAt(to)) >= need);
+        onlySearched += !fitsAlone.StaysClear(from, to, need);
         for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
             Positions x = from;
             for (int v = 0; v < x.Size(); ++v) {
@@ -480,7 +489,41 @@ TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
     }
     EXPECT_GT(vouched, 20);
     EXPECT_GT(onlyBands, 10);  // bows the whole tube's fit could not vouch for
+    EXPECT_GT(onlySearched, 10);  // and states whose rings by the clamp only a search could
     EXPECT_LT(slack, 0.6);     // and pairs did come near what it vouched for
+    std::printf("vouched %d, beyond the whole fit %d, by a search %d, nearest %.3f mm beyond\n", vouched, onlyBands, onlySearched, slack);
+
+    // The search of a few rings by itself, on states that may pinch those rings shut: what it
+    // vouches for holds for every pair of theirs, and it refuses where walls come near.
+    int searchVouched = 0, searchRefused = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const Positions from = state(true), to = trial % 2 ? from : state(true);
+        const double need = trial % 3 ? reach : barrier.thicknessMm;
+        std::vector<std::uint8_t> bands(list.bands.size(), 0), only(from.Size(), 0);
+        const int first = trial % 3, count = 1 + trial % 4;
+        for (int k = first; k < first + count; ++k) {
+            bands[k] = 1;
+            for (int v : list.bands[k].vertices) only[v] = 1;
+        }
+        if (!list.SearchedClear(bands, from, to, need)) {
+            ++searchRefused;
+            continue;
+        }
+        ++searchVouched;
+        for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+            Positions x = from;
+            for (int v = 0; v < x.Size(); ++v) {
+                x.x[v] += t * (to.x[v] - from.x[v]);
+                x.y[v] += t * (to.y[v] - from.y[v]);
+                x.z[v] += t * (to.z[v] - from.z[v]);
+            }
+            for (const ContactPair& pair : ContactCandidates(surface, x, nullptr, 2 * need, &only))
+                EXPECT_GE(std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr)), need) << "trial " << trial << " t " << t;
+        }
+    }
+    EXPECT_GT(searchVouched, 50);
+    EXPECT_GT(searchRefused, 50);
+    std::printf("a search of 1-4 rings by the clamp: vouched %d, refused %d\n", searchVouched, searchRefused);
 }
 
 TEST(ContactCcd, NoRandomStepCrossesAWall) {
