@@ -417,6 +417,17 @@ Tube ClampedTube(int n, int rings) {
     return t;
 }
 
+// The point a fraction t of the way along the straight move from `from` to `to`.
+Positions Along(const Positions& from, const Positions& to, double t) {
+    Positions x = from;
+    for (int v = 0; v < x.Size(); ++v) {
+        x.x[v] += t * (to.x[v] - from.x[v]);
+        x.y[v] += t * (to.y[v] - from.y[v]);
+        x.z[v] += t * (to.z[v] - from.z[v]);
+    }
+    return x;
+}
+
 TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
     // A held tube pushed sideways bows: no affine map fits that, and the list's bound is then
     // taken band by band, and where no band's fit holds, by a search of those bands alone. Check it
@@ -473,12 +484,7 @@ TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
         onlyBands += !(std::min(list.ClearanceAt(from), list.ClearanceAt(to)) >= need);
         onlySearched += !fitsAlone.StaysClear(from, to, need);
         for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-            Positions x = from;
-            for (int v = 0; v < x.Size(); ++v) {
-                x.x[v] += t * (to.x[v] - from.x[v]);
-                x.y[v] += t * (to.y[v] - from.y[v]);
-                x.z[v] += t * (to.z[v] - from.z[v]);
-            }
+            const Positions x = Along(from, to, t);
             for (const ContactPair& pair : ContactCandidates(surface, x, nullptr, 2 * need)) {
                 if (std::binary_search(list.pairs.begin(), list.pairs.end(), pair)) continue;
                 const double d = std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr));
@@ -511,12 +517,7 @@ TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
         }
         ++searchVouched;
         for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-            Positions x = from;
-            for (int v = 0; v < x.Size(); ++v) {
-                x.x[v] += t * (to.x[v] - from.x[v]);
-                x.y[v] += t * (to.y[v] - from.y[v]);
-                x.z[v] += t * (to.z[v] - from.z[v]);
-            }
+            const Positions x = Along(from, to, t);
             for (const ContactPair& pair : ContactCandidates(surface, x, nullptr, 2 * need, &only))
                 EXPECT_GE(std::sqrt(SquaredDistance(pair.kind, PairCoordinates(pair, x), nullptr, nullptr)), need) << "trial " << trial << " t " << t;
         }
