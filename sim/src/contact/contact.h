@@ -162,8 +162,8 @@ inline bool InReach(const ContactPair& pair, const Positions& x, const BarrierDe
 // layers (rings), each pair of windows (two consecutive bands, which hold every primitive) fitted
 // with its own affine motion and bounded from its own distance at `built` (its bands' boxes apart,
 // at least clearanceMm). A bend fits each short stretch of tube, and stretches far apart need no
-// fit. The few windows no affine motion fits (where a wall leaves its clamp and bulges within a
-// few rings) are searched on their own: a search of a tenth of the tube instead of all of it.
+// fit. The few windows no affine motion fits (where a wall leaves its clamp and bulges or tilts
+// within a few rings) are searched on their own: a search of those rings instead of the whole wall.
 struct ContactList {
     std::vector<ContactPair> pairs;
     // The candidates within 1.8 reaches of `built` (pairs included): what a Hessian pattern that is
@@ -205,7 +205,11 @@ struct ContactList {
     // to `to` (the whole surface's bound at both ends first, then band by band).
     bool StaysClear(const Positions& from, const Positions& to, double needMm) const;
     bool Covers(const Positions& x) const { return StaysClear(x, x, reachMm); }
-    // The same for the pairs of the given bands' vertices, by a search of them alone.
+    // True when no pair of primitives whose vertices all lie in the marked bands (searchBands, one
+    // flag a band) comes within needMm on the straight move from `from` to `to`, by a search of those
+    // primitives alone (a swept one, each pair found checked by continuous collision detection).
+    // False, without a search, when they hold more than a quarter of the surface's points (that
+    // costs what a fresh list does) or the list knows no surface.
     bool SearchedClear(const std::vector<std::uint8_t>& searchBands, const Positions& from, const Positions& to, double needMm) const;
 };
 // Rebuilds the list at x when it does not cover x. True when its pairs changed.
