@@ -332,21 +332,15 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
     pointBoxes.reserve(surface.points.size());
     edgeBoxes.reserve(surface.edges.size());
     triangleBoxes.reserve(surface.triangles.size());
-    for (int v : surface.points) pointBoxes.push_back(BoxOf(std::array<int, 1>{v}, x, dx, margin));
-    for (const auto& e : surface.edges) edgeBoxes.push_back(BoxOf(e, x, dx, margin));
-    for (const auto& t : surface.triangles) triangleBoxes.push_back(BoxOf(t, x, dx, margin));
-    if (only) {  // primitives outside the stretch searched get boxes that no cell holds
-        const Box none{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
-        const auto outside = [&](const auto& vertices) {
-            return std::any_of(vertices.begin(), vertices.end(), [&](int v) { return !(*only)[v]; });
-        };
-        for (std::size_t a = 0; a < surface.points.size(); ++a)
-            if (!(*only)[surface.points[a]]) pointBoxes[a] = none;
-        for (std::size_t e = 0; e < surface.edges.size(); ++e)
-            if (outside(surface.edges[e])) edgeBoxes[e] = none;
-        for (std::size_t t = 0; t < surface.triangles.size(); ++t)
-            if (outside(surface.triangles[t])) triangleBoxes[t] = none;
-    }
+    // Primitives outside the stretch searched (with `only`) get a box that no cell holds.
+    const Box none{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+    const auto boxOf = [&](const auto& vertices) {
+        if (only && std::any_of(vertices.begin(), vertices.end(), [&](int v) { return !(*only)[v]; })) return none;
+        return BoxOf(vertices, x, dx, margin);
+    };
+    for (int v : surface.points) pointBoxes.push_back(boxOf(std::array<int, 1>{v}));
+    for (const auto& e : surface.edges) edgeBoxes.push_back(boxOf(e));
+    for (const auto& t : surface.triangles) triangleBoxes.push_back(boxOf(t));
 
     // Cells about as large as the boxes of edges: a query box touches a few cells. (Half as large
     // cost more in cells visited than they saved in primitives looked at: 219 against 201 ms for

@@ -61,6 +61,16 @@ double SquaredDistance(PairKind kind, const Vector12& x, Vector12* gradient, Mat
 Vector12 PairCoordinates(const ContactPair& pair, const Positions& x);
 // Vertex v of positions x.
 inline Eigen::Vector3d PointOf(const Positions& x, int v) { return {x.x[v], x.y[v], x.z[v]}; }
+// The straight move from `from` to `to`, vertex by vertex (what a swept query and CCD take).
+inline Positions MoveBetween(const Positions& from, const Positions& to) {
+    Positions move = to;
+    for (int v = 0; v < move.Size(); ++v) {
+        move.x[v] -= from.x[v];
+        move.y[v] -= from.y[v];
+        move.z[v] -= from.z[v];
+    }
+    return move;
+}
 
 // ---------------------------------------------------------------------------------------------
 // [SECTION] Barrier

@@ -267,26 +267,23 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
                     if (!surface || double(unfittedPoints) > kMostSearched * double(surface->points.size())) return false;
                 }
     }
-    const bool clear = SearchedClear(unfitted, from, to, needMm);
+    const bool clear = unfittedPoints == 0 || SearchedClear(unfitted, from, to, needMm);
     if (still && clear) vouchedAt = from, vouchedNeedMm = needMm;
     return clear;
 }
 
 bool ContactList::SearchedClear(const std::vector<std::uint8_t>& searchBands, const Positions& from, const Positions& to, double needMm) const {
-    std::vector<std::uint8_t> only(from.Size(), 0);
     std::size_t searched = 0;
     for (std::size_t k = 0; k < bands.size(); ++k)
-        if (searchBands[k])
-            for (int v : bands[k].vertices) only[v] = 1, ++searched;
+        if (searchBands[k]) searched += bands[k].vertices.size();
     if (searched == 0) return true;
     if (!surface || double(searched) > kMostSearched * double(surface->points.size())) return false;
+    std::vector<std::uint8_t> only(from.Size(), 0);
+    for (std::size_t k = 0; k < bands.size(); ++k)
+        if (searchBands[k])
+            for (int v : bands[k].vertices) only[v] = 1;
     if (&from == &to) return ContactCandidates(*surface, from, nullptr, needMm, &only).empty();
-    Positions move = to;
-    for (int v = 0; v < move.Size(); ++v) {
-        move.x[v] -= from.x[v];
-        move.y[v] -= from.y[v];
-        move.z[v] -= from.z[v];
-    }
+    const Positions move = MoveBetween(from, to);
     for (const ContactPair& pair : ContactCandidates(*surface, from, &move, needMm, &only)) {
         const Vector12 start = PairCoordinates(pair, from);
         if (!(SquaredDistance(pair.kind, start, nullptr, nullptr) > needMm * needMm)) return false;

@@ -199,27 +199,22 @@ struct Solver {
     static constexpr double kSweepTolerance = 0.1;  // of the reach: how far a trial may stray from the straight move
     double ImpactFree(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
         if (!problem.contact) return 1;
-        Positions from, end, to;
+        Positions from, end;
         PositionsOf(problem, q, from);
         PositionsOf(problem, q + step, end);
-        to = end;  // becomes the move
-        for (int v = 0; v < to.Size(); ++v) {
-            to.x[v] -= from.x[v];
-            to.y[v] -= from.y[v];
-            to.z[v] -= from.z[v];
-        }
+        const Positions move = MoveBetween(from, end);
         const double h = problem.barrier.thicknessMm;
         // When no pair left out of the list can come within a wall's thickness on the way, the
         // list's pairs are the only ones to check.
         if (contactList.StaysClear(from, end, h)) {
             double free = 1;
             for (const ContactPair& pair : contactList.pairs)
-                free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, to), h, free));
+                free = std::min(free, PairImpactTime(pair.kind, PairCoordinates(pair, from), PairCoordinates(pair, move), h, free));
             return free;
         }
         if (sweptFrom.size() == q.size() && sweptStep.size() == step.size() && sweptFrom == q && sweptStep == step) return sweptFree;
         const double reach = ContactReachMm(problem.barrier), tolerance = kSweepTolerance * reach;
-        sweptFree = ImpactFreeStep(*problem.contact, from, to, h, &contactSweep, reach + 2 * tolerance, tolerance);
+        sweptFree = ImpactFreeStep(*problem.contact, from, move, h, &contactSweep, reach + 2 * tolerance, tolerance);
         sweptFrom = q;
         sweptStep = step;
         return sweptFree;
