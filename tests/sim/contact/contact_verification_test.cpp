@@ -431,9 +431,10 @@ Positions Along(const Positions& from, const Positions& to, double t) {
 TEST(ContactList, BandBoundHoldsAlongEveryMoveOfABendingTube) {
     // A held tube pushed sideways bows: no affine map fits that, and the list's bound is then
     // taken band by band, and where no band's fit holds, by a search of those bands alone. Check it
-    // against the true distance of every pair that comes within the distance it vouches for (the spatial hash, checked against all pairs above, finds them)
-    // along random moves between bowed, tilted, pinched and rippled states, and that it does vouch
-    // for bows the whole surface's fit cannot.
+    // against the true distance of every pair that comes within the distance it vouches for (the
+    // spatial hash, checked against all pairs above, finds them) along random moves between bowed,
+    // tilted, pinched and rippled states, and that it does vouch for bows the whole surface's fit
+    // cannot.
     constexpr int kAround = 24;
     const Tube tube = ClampedTube(kAround, 16);
     const BarrierDef barrier{.thicknessMm = 1, .activationMm = 0.1};

@@ -144,13 +144,6 @@ Homogeneous MiddleThird(const sim::EvalJob& job, const sim::SimResult& r) {
     return {radius / job.Shell().geometry.radiusMm, (ringZ(r.final, b) - ringZ(r.final, a)) / restLength, (ringTurn(b) - ringTurn(a)) / restLength};
 }
 
-// An ideal McKibben muscle: an almost inextensible braid (fibres of 100 N/mm, 1e6 mu h) on a wall
-// soft against the pressure (mu 0.1 kPa, P = p R / (mu h) = 500), held at a contraction of its
-// length. Its ends slide on the end plates, so that the whole braid shortens evenly (clamped rings
-// would keep their radius and leave the braid beside them short of the stroke). The ideal muscle has
-// no wall and inextensible threads: measured, the force's shortfall from it at 75 % of the free
-// stroke is 7.3 % with P = 50 and fibres of 1e4 mu h, 3.8 % with P = 200 and 4e5 mu h, 2.9 % here
-// (1.6 % blocked): it shrinks as the wall softens and the threads stiffen.
 // Tondu and Lopez's isobaric force of an ideal braided muscle (N): the braid at angleDeg held at the
 // job's stroke under its pressure, F = pi R0^2 p (3 (1 - eps)^2 / tan^2 a - 1 / sin^2 a).
 double TonduLopezForceN(const sim::EvalJob& job, double angleDeg) {
@@ -158,6 +151,13 @@ double TonduLopezForceN(const sim::EvalJob& job, double angleDeg) {
     return kPi * R0 * R0 * p * (3 * (1 - eps) * (1 - eps) / (Tan(angleDeg) * Tan(angleDeg)) - 1 / (Sin(angleDeg) * Sin(angleDeg)));
 }
 
+// An ideal McKibben muscle: an almost inextensible braid (fibres of 100 N/mm, 1e6 mu h) on a wall
+// soft against the pressure (mu 0.1 kPa, P = p R / (mu h) = 500), held at a contraction of its
+// length. Its ends slide on the end plates, so that the whole braid shortens evenly (clamped rings
+// would keep their radius and leave the braid beside them short of the stroke). The ideal muscle has
+// no wall and inextensible threads: measured, the force's shortfall from it at 75 % of the free
+// stroke is 7.3 % with P = 50 and fibres of 1e4 mu h, 3.8 % with P = 200 and 4e5 mu h, 2.9 % here
+// (1.6 % blocked): it shrinks as the wall softens and the threads stiffen.
 sim::EvalJob Braided(double angleDeg, double strokePercent) {
     sim::EvalJob job = FibreTube(0.1, sim::FibreLayout::Braid, angleDeg, 100);  // 1e6 mu h
     sim::ShellDef& d = job.Shell();
