@@ -207,7 +207,10 @@ Box BoxOf(const std::array<int, K>& vertices, const Positions& x, const Position
     return b;
 }
 
-bool Overlap(const Box& a, const Box& b) { return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all(); }
+bool Overlap(const Box& a, const Box& b) {
+    return a.lo.x() <= b.hi.x() && a.lo.y() <= b.hi.y() && a.lo.z() <= b.hi.z() && b.lo.x() <= a.hi.x() && b.lo.y() <= a.hi.y() &&
+           b.lo.z() <= a.hi.z();
+}
 
 // Cells are packed 21 bits an axis; boxes beyond about a million cells from the origin are clamped
 // onto the grid's border, which only makes the hash coarser there.
@@ -226,29 +229,33 @@ void ForEachCell(const Box& b, double cell, Visit&& visit) {
             for (double k = lo[2]; k <= hi[2]; ++k) visit(CellKey(long(i), long(j), long(k)));
 }
 
-// The primitives (indices into one kind's boxes) in each cell: an open-addressing table of cell
-// keys, each with its range of `items`, filled in index order, so a cell lists its primitives in
-// ascending order on every run. Built in two passes (count, then place): no sort, no allocation
-// after the first query on a thread.
+// The primitives (indices into one kind's boxes) in each cell: an open-addressing table from cell
+// keys to dense cell indices, each cell with its range of `items`, filled in index order, so a cell
+// lists its primitives in ascending order on every run. Each box's cells are listed once, then
+// counted and placed: no sort, no allocation after the first query on a thread, and only the
+// table's keys and indices are as long as the table.
 class CellGrid {
 public:
     void Build(const std::vector<Box>& boxes, double cell) {
         cell_ = cell;
-        std::size_t entries = 0;
-        for (const Box& b : boxes)
-            if (Finite(b)) ForEachCell(b, cell, [&](std::uint64_t) { ++entries; });
+        entries_.clear();
+        for (int n = 0; n < static_cast<int>(boxes.size()); ++n)
+            if (Finite(boxes[n])) ForEachCell(boxes[n], cell, [&](std::uint64_t key) { entries_.push_back({key, n, 0}); });
         std::size_t size = 16;
-        while (size < 2 * entries) size *= 2;
+        while (size < 2 * entries_.size()) size *= 2;
         mask_ = size - 1;
         keys_.assign(size, kEmpty);
-        begin_.assign(size + 1, 0);
-        for (const Box& b : boxes)
-            if (Finite(b)) ForEachCell(b, cell, [&](std::uint64_t key) { ++begin_[Insert(key) + 1]; });
-        for (std::size_t slot = 0; slot < size; ++slot) begin_[slot + 1] += begin_[slot];
+        cellOf_.resize(size);
+        begin_.assign(1, 0);
+        for (Entry& e : entries_) {
+            e.cell = Insert(e.key);
+            ++begin_[e.cell + 1];
+        }
+        const std::size_t cells = begin_.size() - 1;
+        for (std::size_t c = 0; c < cells; ++c) begin_[c + 1] += begin_[c];
         fill_.assign(begin_.begin(), begin_.end() - 1);
-        items_.resize(entries);
-        for (int n = 0; n < static_cast<int>(boxes.size()); ++n)
-            if (Finite(boxes[n])) ForEachCell(boxes[n], cell, [&](std::uint64_t key) { items_[fill_[Find(key)]++] = n; });
+        items_.resize(entries_.size());
+        for (const Entry& e : entries_) items_[fill_[e.cell]++] = e.item;
     }
     // Calls visit(n) for the primitives above `after` in every cell the box touches (a primitive once
     // per cell). A cell lists its primitives in ascending order, so those at or below `after` cost a
@@ -256,10 +263,10 @@ public:
     template <typename Visit>
     void ForEachNear(const Box& b, int after, Visit&& visit) const {
         ForEachCell(b, cell_, [&](std::uint64_t key) {
-            const std::size_t slot = Find(key);
-            if (slot == kNone) return;
-            const int* first = items_.data() + begin_[slot];
-            const int* last = items_.data() + begin_[slot + 1];
+            const std::size_t c = Find(key);
+            if (c == kNone) return;
+            const int* first = items_.data() + begin_[c];
+            const int* last = items_.data() + begin_[c + 1];
             if (after >= 0) first = std::upper_bound(first, last, after);
             for (; first != last; ++first) visit(*first);
         });
@@ -270,25 +277,35 @@ private:
     static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
     static constexpr std::size_t kNone = ~std::size_t(0);
     std::size_t SlotOf(std::uint64_t key) const { return (key * 0x9E3779B97F4A7C15ULL >> 17) & mask_; }
-    std::size_t Insert(std::uint64_t key) {
+    // The cell's dense index (a new one for a key not yet in the table).
+    int Insert(std::uint64_t key) {
         for (std::size_t slot = SlotOf(key);; slot = (slot + 1) & mask_) {
-            if (keys_[slot] == key) return slot;
+            if (keys_[slot] == key) return cellOf_[slot];
             if (keys_[slot] == kEmpty) {
                 keys_[slot] = key;
-                return slot;
+                cellOf_[slot] = static_cast<int>(begin_.size() - 1);
+                begin_.push_back(0);
+                return cellOf_[slot];
             }
         }
     }
     std::size_t Find(std::uint64_t key) const {
         for (std::size_t slot = SlotOf(key);; slot = (slot + 1) & mask_) {
-            if (keys_[slot] == key) return slot;
+            if (keys_[slot] == key) return cellOf_[slot];
             if (keys_[slot] == kEmpty) return kNone;
         }
     }
     double cell_ = 1;
     std::size_t mask_ = 0;
     std::vector<std::uint64_t> keys_;
-    std::vector<int> begin_, fill_, items_;
+    std::vector<int> cellOf_;  // per slot of the table: its cell's dense index (where keys_ holds one)
+    struct Entry {
+        std::uint64_t key;  // a cell a box touches
+        int item;           // the box
+        int cell;           // the cell's dense index
+    };
+    std::vector<Entry> entries_;
+    std::vector<int> begin_, fill_, items_;  // per cell: its range of items_
 };
 
 // Marks primitives as seen by the current query primitive: stamps instead of clearing a set.
@@ -297,16 +314,19 @@ public:
     void Resize(std::size_t n) {
         if (stamp_.size() < n) stamp_.resize(n, 0);
     }
-    void Next() {
+    // The next query's stamp.
+    std::uint32_t Next() {
         if (++current_ == 0) {  // wrapped: old stamps could look current
             std::fill(stamp_.begin(), stamp_.end(), 0);
             current_ = 1;
         }
+        return current_;
     }
-    // True the first time a primitive is marked by the current query.
-    bool Mark(int n) {
-        if (stamp_[n] == current_) return false;
-        stamp_[n] = current_;
+    // True the first time a primitive is marked with the query's stamp (passed in: a stamp written
+    // could otherwise be the member itself as far as the compiler knows, and be read again).
+    bool Mark(int n, std::uint32_t stamp) {
+        if (stamp_[n] == stamp) return false;
+        stamp_[n] = stamp;
         return true;
     }
 
@@ -401,13 +421,13 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
         const Box& box = pointBoxes[a];
         if (!CellGrid::Finite(box)) continue;
         const int p = surface.points[a];
-        seen.Next();
+        const std::uint32_t stamp = seen.Next();
         if (!surface.neighbourTriangles.empty())
-            for (int t : surface.neighbourTriangles[p]) seen.Mark(t);
+            for (int t : surface.neighbourTriangles[p]) seen.Mark(t, stamp);
         triangleGrid.ForEachNear(box, -1, [&](int n) {
-            if (!seen.Mark(n)) return;
+            if (!seen.Mark(n, stamp) || !Overlap(box, triangleBoxes[n])) return;
             const auto& t = surface.triangles[n];
-            if (p == t[0] || p == t[1] || p == t[2] || !Overlap(box, triangleBoxes[n])) return;
+            if (p == t[0] || p == t[1] || p == t[2]) return;
             const ContactPair pair{PairKind::PointTriangle, {p, t[0], t[1], t[2]}};
             if (movable(pair.vertices) && (!kWithinReach || within(pair))) pointTriangle(p, n);
         });
@@ -417,15 +437,15 @@ void ForEachCandidate(const ContactSurface& surface, const Positions& x, const P
         const Box& box = edgeBoxes[e];
         if (!CellGrid::Finite(box)) continue;
         const auto& ei = surface.edges[e];
-        seen.Next();
+        const std::uint32_t stamp = seen.Next();
         if (!surface.neighbourEdges.empty()) {
             const std::vector<int>& neighbours = surface.neighbourEdges[e];
-            for (auto f = std::upper_bound(neighbours.begin(), neighbours.end(), e); f != neighbours.end(); ++f) seen.Mark(*f);
+            for (auto f = std::upper_bound(neighbours.begin(), neighbours.end(), e); f != neighbours.end(); ++f) seen.Mark(*f, stamp);
         }
         edgeGrid.ForEachNear(box, e, [&](int f) {
-            if (!seen.Mark(f)) return;
+            if (!seen.Mark(f, stamp) || !Overlap(box, edgeBoxes[f])) return;
             const auto& ej = surface.edges[f];
-            if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1] || !Overlap(box, edgeBoxes[f])) return;
+            if (ei[0] == ej[0] || ei[0] == ej[1] || ei[1] == ej[0] || ei[1] == ej[1]) return;
             const ContactPair pair{PairKind::EdgeEdge, {ei[0], ei[1], ej[0], ej[1]}};
             if (movable(pair.vertices) && (!kWithinReach || within(pair))) edgeEdge(e, f);
         });
