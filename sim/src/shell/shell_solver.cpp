@@ -228,25 +228,24 @@ struct Solver {
     // moderate length is swept first instead, and the trial's assembly takes the sweep's pairs. (A
     // run-away step, hundreds of millimetres that halving cuts back, is left to the search.)
     static constexpr double kSweepFirstReaches = 20;
-    bool RunAway(const Eigen::VectorXd& step) const {
-        return !(step.lpNorm<Eigen::Infinity>() <= kSweepFirstReaches * ContactReachMm(problem.barrier));
-    }
+    bool RunAway(double longestMoveMm) const { return !(longestMoveMm <= kSweepFirstReaches * ContactReachMm(problem.barrier)); }
     void SweepFirst(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
-        if (!problem.contact || RunAway(step)) return;
+        if (!problem.contact || RunAway(step.lpNorm<Eigen::Infinity>())) return;
         Positions next;
         PositionsOf(problem, q + step, next);
         if (!contactList.Covers(next)) ImpactFree(q, step);
     }
-    // True when a trial at q + step can be judged without its contact pairs and is rejected: the
+    // True when a trial at `next` can be judged without its contact pairs and is rejected: the
     // barrier only adds energy, so a trial whose other terms already miss `bound` misses it with
     // the barrier too. Asked only where the trial's assembly would otherwise search the whole wall
     // for its pairs (no list or sweep covers it): a run-away step's halvings each did, and most of
     // them are rejected (8 of the 10 such searches of the S5.4F shape's evaluation). The margin, far
-    // above a compensated sum's rounding, keeps every verdict the whole energy's. The line search
-    // asks only about a run-away step and a halved one: a step of moderate length is mostly taken,
-    // and the assembly without contact would be spent on it for nothing.
-    bool RejectedWithoutContact(const Eigen::VectorXd& next, const LoadTerms& load, double bound) {
-        if (!problem.contact) return false;
+    // above a compensated sum's rounding, keeps every verdict the whole energy's. Only a run-away
+    // step (its largest coordinate move, longestMoveMm, beyond the sweep-first length) or a halved
+    // one is judged so: a step of moderate length is mostly taken, and the assembly without contact
+    // would be spent on it for nothing.
+    bool RejectedWithoutContact(const Eigen::VectorXd& next, double longestMoveMm, bool halved, const LoadTerms& load, double bound) {
+        if (!problem.contact || !(halved || RunAway(longestMoveMm))) return false;
         Positions x;
         PositionsOf(problem, next, x);
         if (contactList.Covers(x) || contactSweep.Covers(x)) return false;
@@ -557,6 +556,7 @@ struct Solver {
             // the way the steps are those of contact off.)
             double alpha = 1;
             Eigen::VectorXd next;
+            const double stepLongest = problem.contact ? step.lpNorm<Eigen::Infinity>() : 0;  // the trials ask RejectedWithoutContact
             bool accepted = trustStep;
             if (trustStep) {
                 next = q + step;
@@ -565,7 +565,7 @@ struct Solver {
             for (int halving = 0; halving < 40 && !accepted; ++halving) {
                 next = q + alpha * step;
                 if (halving == 0) SweepFirst(q, alpha * step);
-                if (!roundOff && (halving > 0 || RunAway(alpha * step)) && RejectedWithoutContact(next, load, r.energy + 1e-4 * alpha * slope)) {
+                if (!roundOff && RejectedWithoutContact(next, alpha * stepLongest, halving > 0, load, r.energy + 1e-4 * alpha * slope)) {
                     alpha *= 0.5;
                     continue;
                 }
