@@ -89,17 +89,20 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
     LayerSurface(s, adjacentBegin, adjacent);
     if (neighbourMm <= 0) return s;
 
-    // Distances along the edges, by Dijkstra from each vertex out to the radius: per vertex, the
-    // vertices near it along the wall (nearBegin[v] to nearBegin[v + 1] in `near`).
+    // Distances along the edges, by Dijkstra from a vertex out to a radius: the vertices near it
+    // along the wall. The rule's radius (neighbourMm plus the longest edge) is the whole mesh's, and
+    // one long edge (a bulge's, 24 mm on the S5.4F shape) made every vertex's ball hold a hundred
+    // and more vertices where the pairs close at rest are a few edges apart. So each vertex's ball
+    // is first taken out to a radius of its own (neighbourMm plus twice its longest edge), and out
+    // to the rule's only for a pair that the first one does not settle. Dijkstra's distance to a
+    // vertex within the smaller radius is the same in both (every vertex on its shortest path is
+    // nearer still), so the answer is the rule's.
     const double radius = neighbourMm + longest;
-    std::vector<int> nearBegin(n + 1, 0), near;
     std::vector<double> distance(n, std::numeric_limits<double>::infinity());
     std::vector<int> touched;
     using Item = std::pair<double, int>;
     std::vector<Item> heap;  // a min-heap on distance, reused from source to source
-    for (int source = 0; source < n; ++source) {
-        nearBegin[source] = static_cast<int>(near.size());
-        if (!std::binary_search(s.points.begin(), s.points.end(), source)) continue;
+    const auto ball = [&](int source, double within, std::vector<int>& out) {
         distance[source] = 0;
         touched.push_back(source);
         heap.assign(1, {0, source});
@@ -108,10 +111,10 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
             const auto [d, v] = heap.back();
             heap.pop_back();
             if (d > distance[v]) continue;
-            near.push_back(v);
+            out.push_back(v);
             for (int k = adjacentBegin[v]; k < adjacentBegin[v + 1]; ++k) {
                 const auto [w, length] = adjacent[k];
-                if (d + length <= radius && d + length < distance[w]) {
+                if (d + length <= within && d + length < distance[w]) {
                     if (distance[w] == std::numeric_limits<double>::infinity()) touched.push_back(w);
                     distance[w] = d + length;
                     heap.push_back({distance[w], w});
@@ -121,22 +124,56 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
         }
         for (int v : touched) distance[v] = std::numeric_limits<double>::infinity();
         touched.clear();
+    };
+    // Per vertex: its first ball (nearBegin[v] to nearBegin[v + 1] in `near`), whether that is the
+    // rule's whole ball, and the rule's ball when a pair has needed it.
+    std::vector<int> nearBegin(n + 1, 0), near;
+    std::vector<std::uint8_t> whole(n, 1);
+    for (int source = 0; source < n; ++source) {
+        nearBegin[source] = static_cast<int>(near.size());
+        if (!std::binary_search(s.points.begin(), s.points.end(), source)) continue;
+        double incident = 0;
+        for (int k = adjacentBegin[source]; k < adjacentBegin[source + 1]; ++k) incident = std::max(incident, adjacent[k].second);
+        const double first = neighbourMm + 2 * incident;
+        whole[source] = first >= radius;
+        ball(source, std::min(first, radius), near);
     }
     nearBegin[n] = static_cast<int>(near.size());
+    std::vector<std::vector<int>> wholeBall(n);
+    std::vector<std::uint8_t> wholeFound(n, 0);
 
     // Neighbour pairs: closer than neighbourMm at rest (the hash's query, with no pair left out
     // yet) and near along the wall (a vertex of one near a vertex of the other). Most pairs near
     // along the wall have two vertices closer than neighbourMm, and so are that close themselves:
     // their distance is needed only when no two vertices are. What is near along the wall to the
     // primitive asked about is stamped once per primitive (the hash gives its pairs one after another).
-    std::vector<int> nearStamp(n, -1);
-    int stamp = -1, markedPoint = -1, markedEdge = -1;
+    std::vector<int> nearStamp(n, -1), wholeStamp(n, -1);
+    int stamp = -1, markedPoint = -1, markedEdge = -1, wholeMarked = -1;
+    std::array<int, 2> marked{};  // the primitive's vertices whose balls are stamped
+    int markedCount = 0;
     const auto markNear = [&](std::initializer_list<int> vertices) {
         ++stamp;
-        for (int a : vertices)
+        markedCount = 0;
+        for (int a : vertices) {
+            marked[markedCount++] = a;
             for (int k = nearBegin[a]; k < nearBegin[a + 1]; ++k) nearStamp[near[k]] = stamp;
+        }
     };
-    const auto nearAlong = [&](int b) { return nearStamp[b] == stamp; };
+    const auto nearAlong = [&](int b) {
+        if (nearStamp[b] == stamp) return true;
+        bool complete = true;
+        for (int k = 0; k < markedCount; ++k) complete = complete && whole[marked[k]];
+        if (complete) return false;
+        if (wholeMarked != stamp) {  // the rule's balls of the primitive's vertices, once per primitive
+            wholeMarked = stamp;
+            for (int k = 0; k < markedCount; ++k) {
+                const int a = marked[k];
+                if (!wholeFound[a]) ball(a, radius, wholeBall[a]), wholeFound[a] = 1;
+                for (int v : wholeBall[a]) wholeStamp[v] = stamp;
+            }
+        }
+        return wholeStamp[b] == stamp;
+    };
     const double reachSquared = neighbourMm * neighbourMm;
     const auto squaredDistance = [&](const ContactPair& pair) { return SquaredDistance(pair.kind, PairCoordinates(pair, rest), nullptr, nullptr); };
     const auto within = [&](const ContactPair& pair) {

@@ -315,6 +315,81 @@ TEST(ContactCandidates, RestClearanceIsTheNearestPairApartAlongTheWall) {
     EXPECT_TRUE(std::isinf(MakeContactSurface(one.x, one.triangles, {}, 1.0).restClearanceMm));
 }
 
+// The neighbours at rest are the rule's (contact.h): pairs closer than neighbourMm whose vertices
+// are also within neighbourMm plus the longest edge of each other along the edges. One vertex of
+// the folded sheet pulled far out gives the mesh edges of several units, so the rule's radius spans
+// a turn of the fold and joins its layers as neighbours, where each vertex's own edges are short:
+// the search that takes a small ball first must fall back to the rule's for those pairs.
+TEST(ContactCandidates, NeighboursAreThePairsNearAlongTheWallByTheRule) {
+    std::mt19937 rng(5);
+    Sheet sheet = FoldedSheet(12, 3.0, rng);
+    sheet.x.y[0] -= 4;  // a corner pulled out: edges of about 4 from it
+    const double neighbourMm = 0.5;
+    const ContactSurface surface = MakeContactSurface(sheet.x, sheet.triangles, {}, neighbourMm);
+    const int n = sheet.x.Size();
+    // Distances along the edges by the plain O(n^2) Dijkstra, from every vertex.
+    std::vector<std::vector<int>> adjacent(n);
+    double longest = 0;
+    for (const auto& e : surface.edges) {
+        adjacent[e[0]].push_back(e[1]);
+        adjacent[e[1]].push_back(e[0]);
+        longest = std::max(longest, (PointOf(sheet.x, e[0]) - PointOf(sheet.x, e[1])).norm());
+    }
+    ASSERT_GT(longest, 3.5);
+    const double radius = neighbourMm + longest;
+    std::vector<std::vector<double>> along(n, std::vector<double>(n, std::numeric_limits<double>::infinity()));
+    for (int source = 0; source < n; ++source) {
+        std::vector<double>& d = along[source];
+        std::vector<char> settled(n, 0);
+        d[source] = 0;
+        for (;;) {
+            int u = -1;
+            for (int v = 0; v < n; ++v)
+                if (!settled[v] && d[v] <= radius && (u < 0 || d[v] < d[u])) u = v;
+            if (u < 0) break;
+            settled[u] = 1;
+            for (int w : adjacent[u]) d[w] = std::min(d[w], d[u] + (PointOf(sheet.x, u) - PointOf(sheet.x, w)).norm());
+        }
+    }
+    const auto close = [&](const ContactPair& pair, int split) {
+        for (int i = 0; i < split; ++i)
+            for (int j = split; j < 4; ++j)
+                if ((PointOf(sheet.x, pair.vertices[i]) - PointOf(sheet.x, pair.vertices[j])).squaredNorm() < neighbourMm * neighbourMm) return true;
+        return SquaredDistance(pair.kind, PairCoordinates(pair, sheet.x), nullptr, nullptr) < neighbourMm * neighbourMm;
+    };
+    const auto nearAlong = [&](const ContactPair& pair, int split) {
+        for (int i = 0; i < split; ++i)
+            for (int j = split; j < 4; ++j)
+                if (along[pair.vertices[i]][pair.vertices[j]] <= radius) return true;
+        return false;
+    };
+    int acrossTheFold = 0;  // neighbours by the rule's radius alone: more than a small ball reaches
+    for (int p : surface.points) {
+        std::vector<int> expected;
+        for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
+            const auto& v = surface.triangles[t];
+            if (p == v[0] || p == v[1] || p == v[2]) continue;
+            const ContactPair pair{PairKind::PointTriangle, {p, v[0], v[1], v[2]}};
+            if (!close(pair, 1) || !nearAlong(pair, 1)) continue;
+            expected.push_back(t);
+            const double nearest = std::min({along[p][v[0]], along[p][v[1]], along[p][v[2]]});
+            acrossTheFold += nearest > neighbourMm + 1.0;
+        }
+        EXPECT_EQ(surface.neighbourTriangles[p], expected) << "point " << p;
+    }
+    EXPECT_GT(acrossTheFold, 10) << acrossTheFold;
+    for (int e = 0; e < static_cast<int>(surface.edges.size()); ++e) {
+        std::vector<int> expected;
+        for (int f = 0; f < static_cast<int>(surface.edges.size()); ++f) {
+            const auto &a = surface.edges[e], &b = surface.edges[f];
+            if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+            const ContactPair pair{PairKind::EdgeEdge, {a[0], a[1], b[0], b[1]}};
+            if (close(pair, 2) && nearAlong(pair, 2)) expected.push_back(f);
+        }
+        EXPECT_EQ(surface.neighbourEdges[e], expected) << "edge " << e;
+    }
+}
+
 TEST(ContactCandidates, FindEveryPairThatComesWithinReachOnAMove) {
     // The swept query continuous collision detection relies on: every pair that comes within the
     // reach anywhere along a move (sampled at 41 points) is a candidate.
