@@ -208,9 +208,32 @@ struct ContactList {
     // assembly at that state (a cache, not part of the list's meaning).
     mutable Positions vouchedAt;
     mutable double vouchedNeedMm = 0;
+    // One band's moves since `built` fitted affinely at a state: u ~ mean + strain (built - centre).
+    struct BandFit {
+        Eigen::Matrix3d moveSpread = Eigen::Matrix3d::Zero();  // sum of u (built - centre)^T
+        Eigen::Matrix3d strain = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        double residualMm = 0;  // the largest |u - fit| over the band's vertices
+        double largestMoveMm = 0;
+    };
+    // What the bounds found at the last two states asked about (ClearanceAt's bound, the bands'
+    // fits once taken): a Newton solve asks about the same state several times (its trial, then
+    // the step to it, then the assembly there: four times in five on the S5.4F shape). A cache,
+    // emptied when the list is rebuilt.
+    struct StateBound {
+        Positions at;
+        double clearanceMm = 0;
+        std::vector<BandFit> fits;  // empty until the bands are asked
+    };
+    mutable std::array<StateBound, 2> recent;
+    mutable int recentNext = 0;
     // A lower bound on the distance at x of every pair not in the list (-infinity for positions the
     // list was not built on or that are not finite), from the whole surface's affine fit alone.
     double ClearanceAt(const Positions& x) const;
+    double UncachedClearanceAt(const Positions& x) const;  // the same, computed afresh
+    // The state's entry in `recent` (computed when it holds none), and the bands' fits there.
+    StateBound& BoundAt(const Positions& x) const;
+    const std::vector<BandFit>& BandFitsAt(const Positions& x) const;
     // True when no pair left out comes within needMm at any point of the straight move from `from`
     // to `to` (the whole surface's bound at both ends first, then band by band).
     bool StaysClear(const Positions& from, const Positions& to, double needMm) const;

@@ -114,14 +114,7 @@ void BuildBands(ContactList& list, const ContactSurface& surface) {
         }
 }
 
-// One band's moves fitted affinely at one end of a move: u ~ mean + strain (built - centre).
-struct BandFit {
-    Eigen::Matrix3d moveSpread = Eigen::Matrix3d::Zero();  // sum of u (built - centre)^T
-    Eigen::Matrix3d strain = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    double residualMm = 0;  // the largest |u - fit| over the band's vertices
-    double largestMoveMm = 0;
-};
+using BandFit = ContactList::BandFit;
 BandFit FitBand(const ContactList::Band& band, const Positions& built, const Positions& x) {
     BandFit f;
     if (band.vertices.empty()) return f;
@@ -190,7 +183,29 @@ double ExactResidual(const ContactList& list, const ContactList::WindowPair& w, 
 }
 }  // namespace
 
-double ContactList::ClearanceAt(const Positions& x) const {
+double ContactList::ClearanceAt(const Positions& x) const { return BoundAt(x).clearanceMm; }
+
+ContactList::StateBound& ContactList::BoundAt(const Positions& x) const {
+    for (StateBound& r : recent)
+        if (r.at.Size() > 0 && r.at == x) return r;
+    StateBound& r = recent[recentNext];
+    recentNext = (recentNext + 1) % static_cast<int>(recent.size());
+    r.at = x;
+    r.fits.clear();
+    r.clearanceMm = UncachedClearanceAt(x);
+    return r;
+}
+
+const std::vector<ContactList::BandFit>& ContactList::BandFitsAt(const Positions& x) const {
+    StateBound& r = BoundAt(x);
+    if (r.fits.size() != bands.size()) {
+        r.fits.resize(bands.size());
+        for (std::size_t k = 0; k < bands.size(); ++k) r.fits[k] = FitBand(bands[k], built, x);
+    }
+    return r.fits;
+}
+
+double ContactList::UncachedClearanceAt(const Positions& x) const {
     constexpr double kNone = -std::numeric_limits<double>::infinity();
     const int n = x.Size();
     if (built.Size() != n || n == 0) return kNone;
@@ -241,11 +256,8 @@ bool ContactList::StaysClear(const Positions& from, const Positions& to, double 
     // Band by band. Along a straight move every vertex's move from `built` is a blend of its moves
     // at the two ends, and so is each fit: a vertex is no farther from the blended fit than the
     // larger of its two residuals, and the fit's stretch changes by at most the change of its strain.
-    std::vector<BandFit> fitsFrom(bands.size()), fitsTo(bands.size());
-    for (std::size_t k = 0; k < bands.size(); ++k) {
-        fitsFrom[k] = FitBand(bands[k], built, from);
-        fitsTo[k] = still ? fitsFrom[k] : FitBand(bands[k], built, to);
-    }
+    const std::vector<BandFit> fitsFrom = BandFitsAt(from);
+    const std::vector<BandFit> fitsTo = still ? fitsFrom : BandFitsAt(to);
     std::vector<std::uint8_t> unfitted(bands.size(), 0);  // the bands of windows no fit vouches for
     std::size_t unfittedPoints = 0;
     for (const WindowPair& w : windowPairs) {
@@ -298,6 +310,7 @@ bool UpdateContactList(ContactList& list, const ContactSurface& surface, const B
         list.built = x;
         list.surface = &surface;
         list.vouchedAt = Positions{};
+        for (ContactList::StateBound& r : list.recent) r = ContactList::StateBound{};
         list.reachMm = ContactReachMm(barrier);
         list.clearanceMm = clearanceMm;
         list.builtCentre.setZero();
