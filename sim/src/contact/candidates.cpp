@@ -139,8 +139,7 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
         ball(source, std::min(first, radius), near);
     }
     nearBegin[n] = static_cast<int>(near.size());
-    std::vector<std::vector<int>> wholeBall(n);
-    std::vector<std::uint8_t> wholeFound(n, 0);
+    std::vector<std::vector<int>> wholeBall(n);  // empty until needed (a ball holds its source)
 
     // Neighbour pairs: closer than neighbourMm at rest (the hash's query, with no pair left out
     // yet) and near along the wall (a vertex of one near a vertex of the other). Most pairs near
@@ -168,7 +167,11 @@ ContactSurface MakeContactSurface(const Positions& rest, const std::vector<std::
             wholeMarked = stamp;
             for (int k = 0; k < markedCount; ++k) {
                 const int a = marked[k];
-                if (!wholeFound[a]) ball(a, radius, wholeBall[a]), wholeFound[a] = 1;
+                if (whole[a]) {  // its first ball is the rule's
+                    for (int j = nearBegin[a]; j < nearBegin[a + 1]; ++j) wholeStamp[near[j]] = stamp;
+                    continue;
+                }
+                if (wholeBall[a].empty()) ball(a, radius, wholeBall[a]);
                 for (int v : wholeBall[a]) wholeStamp[v] = stamp;
             }
         }
