@@ -186,8 +186,12 @@ double ExactResidual(const ContactList& list, const ContactList::WindowPair& w, 
 double ContactList::ClearanceAt(const Positions& x) const { return BoundAt(x).clearanceMm; }
 
 ContactList::StateBound& ContactList::BoundAt(const Positions& x) const {
-    for (StateBound& r : recent)
-        if (r.at.Size() > 0 && r.at == x) return r;
+    static_assert(std::tuple_size_v<decltype(recent)> == 2, "the one not just used is the next to go");
+    for (std::size_t k = 0; k < recent.size(); ++k)
+        if (recent[k].at.Size() > 0 && recent[k].at == x) {
+            recentNext = static_cast<int>(1 - k);  // the other one goes first: a move's two ends stay
+            return recent[k];
+        }
     StateBound& r = recent[recentNext];
     recentNext = (recentNext + 1) % static_cast<int>(recent.size());
     r.at = x;
