@@ -229,8 +229,8 @@ struct Solver {
     // run-away step, hundreds of millimetres that halving cuts back, is left to the search.)
     static constexpr double kSweepFirstReaches = 20;
     bool RunAway(double longestMoveMm) const { return !(longestMoveMm <= kSweepFirstReaches * ContactReachMm(problem.barrier)); }
-    void SweepFirst(const Eigen::VectorXd& q, const Eigen::VectorXd& step) {
-        if (!problem.contact || RunAway(step.lpNorm<Eigen::Infinity>())) return;
+    void SweepFirst(const Eigen::VectorXd& q, const Eigen::VectorXd& step, double longestMoveMm) {
+        if (!problem.contact || RunAway(longestMoveMm)) return;
         Positions next;
         PositionsOf(problem, q + step, next);
         if (!contactList.Covers(next)) ImpactFree(q, step);
@@ -564,7 +564,7 @@ struct Solver {
             }
             for (int halving = 0; halving < 40 && !accepted; ++halving) {
                 next = q + alpha * step;
-                if (halving == 0) SweepFirst(q, alpha * step);
+                if (halving == 0) SweepFirst(q, step, stepLongest);  // alpha is 1 here
                 if (!roundOff && RejectedWithoutContact(next, alpha * stepLongest, halving > 0, load, r.energy + 1e-4 * alpha * slope)) {
                     alpha *= 0.5;
                     continue;
