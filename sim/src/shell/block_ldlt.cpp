@@ -1,10 +1,16 @@
-// Block L D L^T: the up-looking algorithm of Davis's LDL (and of Eigen's SimplicialLDLT), a row of
-// L at a time, with 3 x 3 blocks for scalars.
+// Block L D L^T, supernodal and left-looking (the scheme of CHOLMOD's supernodal factorisation, in
+// 3 x 3 blocks for scalars): columns of L that share their structure below are stored as one dense
+// panel, and what a panel receives from the panels below it is a dense product (dense_product.cpp)
+// scattered into it, where a column at a time made the same sums 27 multiply-adds per block read.
+// Nested dissection of a tube leaves most of the work in a few wide supernodes (a 30 x 30 wall with
+// fibre cells: three quarters of it in supernodes 8 blocks wide or more).
 //
-// [SECTION] Analysis: the block graph, its ordering, the elimination tree, where each value goes
+// [SECTION] Analysis: the block graph, its ordering, the elimination tree, supernodes, where each value goes
 // [SECTION] Factorisation
 // [SECTION] Solve and inertia
 #include "shell/block_ldlt.h"
+
+#include "shell/dense_product.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
@@ -88,54 +94,102 @@ void BlockLdlt::Analyse(const Eigen::SparseMatrix<double>& pattern, const std::v
             const int i = position[it.row()], k = position[col];
             if (i < k) above[k].push_back(i);
         }
-    upperStart_.assign(blocks_ + 1, 0);
-    upperRow_.clear();
+
+    // The elimination tree and each column's rows below its diagonal (LDL's symbolic pass: row k
+    // of L holds the columns met climbing the tree from each block above the diagonal in column k).
+    std::vector<int> parent(blocks_, -1), flag(blocks_, -1);
+    std::vector<std::vector<int>> structure(blocks_);
     for (int k = 0; k < blocks_; ++k) {
         std::sort(above[k].begin(), above[k].end());
-        upperRow_.insert(upperRow_.end(), above[k].begin(), above[k].end());
-        upperStart_[k + 1] = static_cast<int>(upperRow_.size());
+        flag[k] = k;
+        for (int start : above[k])
+            for (int i = start; flag[i] != k; i = parent[i]) {
+                if (parent[i] == -1) parent[i] = k;
+                structure[i].push_back(k);
+                flag[i] = k;
+            }
     }
-    const int upperBlocks = static_cast<int>(upperRow_.size());
-    valueSlot_.assign(pattern.nonZeros(), -1);
+
+    // Supernodes: column j + 1 joins j's when it is j's parent, so that the supernode's columns all
+    // fit in the rows of its first: itself, the columns after it and its last column's rows below.
+    // Where it adds rows to the columns before it, they hold explicit zeros; a small supernode
+    // takes many (a dense product on a few more entries beats a separate update per column), a
+    // wide one few.
+    superFirst_.assign(1, 0);
+    factorBlocks_ = 0;
+    long zeros = 0, entries = 0;  // the current supernode's explicit zeros and blocks below its diagonal
+    for (int j = 0; j < blocks_; ++j) {
+        factorBlocks_ += static_cast<long>(structure[j].size());
+        const int width = j - superFirst_.back();  // columns before j in the current supernode
+        bool joins = j > 0 && parent[j - 1] == j;
+        if (joins) {
+            const long added = static_cast<long>(width) * std::max<long>(0, static_cast<long>(structure[j].size()) + 1 - static_cast<long>(structure[j - 1].size()));
+            const long newZeros = zeros + added, newEntries = entries + added + static_cast<long>(structure[j].size());
+            const double allowed = width + 1 <= 4 ? 0.8 : width + 1 <= 16 ? 0.1 : 0.05;
+            joins = added == 0 || newZeros <= allowed * newEntries;
+            if (joins) {
+                zeros = newZeros;
+                entries = newEntries;
+            }
+        }
+        if (!joins) {
+            if (j > 0) superFirst_.push_back(j);
+            zeros = 0;
+            entries = static_cast<long>(structure[j].size());
+        }
+    }
+    superFirst_.push_back(blocks_);
+    const int supernodes = static_cast<int>(superFirst_.size()) - 1;
+    superOf_.assign(blocks_, 0);
+    rowStart_.assign(1, 0);
+    rows_.clear();
+    panelStart_.assign(1, 0);
+    belowStart_.assign(1, 0);
+    long largestUpdate = 0, longestPanel = 0;
+    for (int s = 0; s < supernodes; ++s) {
+        const int first = superFirst_[s], width = superFirst_[s + 1] - first;
+        for (int k = first; k < first + width; ++k) superOf_[k] = s;
+        for (int k = first; k < first + width; ++k) rows_.push_back(k);
+        const int last = first + width - 1;
+        rows_.insert(rows_.end(), structure[last].begin(), structure[last].end());
+        rowStart_.push_back(static_cast<int>(rows_.size()));
+        const long length = rowStart_[s + 1] - rowStart_[s];
+        panelStart_.push_back(panelStart_[s] + 9 * length * width);
+        belowStart_.push_back(belowStart_[s] + 9 * (length - width) * width);
+        largestUpdate = std::max(largestUpdate, 9 * length * std::max<long>(width, length - width));
+        longestPanel = std::max(longestPanel, 3 * length);
+    }
+
+    // Where each value of H goes: its block's place in its supernode's panel (lower blocks only).
+    const auto localRow = [&](int s, int block) {
+        const int* begin = rows_.data() + rowStart_[s];
+        const int* end = rows_.data() + rowStart_[s + 1];
+        return static_cast<int>(std::lower_bound(begin, end, block) - begin);
+    };
+    const auto place = [&](int rowPlace, int colPlace) {
+        const int i = rowPlace / 3, k = colPlace / 3, s = superOf_[k];
+        const long rows = 3L * (rowStart_[s + 1] - rowStart_[s]);
+        return panelStart_[s] + (3L * (k - superFirst_[s]) + colPlace % 3) * rows + 3L * localRow(s, i) + rowPlace % 3;
+    };
+    slot_.assign(pattern.nonZeros(), -1);
     const int* outer = pattern.outerIndexPtr();
     const int* inner = pattern.innerIndexPtr();
     for (int col = 0; col < unknowns; ++col)
-        for (int e = outer[col]; e < outer[col + 1]; ++e) {
-            const int rowPlace = placeOf_[inner[e]], colPlace = placeOf_[col];
-            const int i = rowPlace / 3, k = colPlace / 3, r = rowPlace % 3, c = colPlace % 3;
-            if (i == k) {
-                valueSlot_[e] = 9 * (upperBlocks + k) + r + 3 * c;
-            } else if (i < k) {
-                const int* begin = upperRow_.data() + upperStart_[k];
-                const int* end = upperRow_.data() + upperStart_[k + 1];
-                valueSlot_[e] = 9 * static_cast<int>(std::lower_bound(begin, end, i) - upperRow_.data()) + r + 3 * c;
-            }
-        }
+        for (int e = outer[col]; e < outer[col + 1]; ++e)
+            if (placeOf_[inner[e]] / 3 >= placeOf_[col] / 3) slot_[e] = place(placeOf_[inner[e]], placeOf_[col]);
+    diagonalSlot_.resize(3 * blocks_);
+    for (int d = 0; d < 3 * blocks_; ++d) diagonalSlot_[d] = place(d, d);
 
-    // The elimination tree and the count of each column of L (LDL's symbolic pass).
-    parent_.assign(blocks_, -1);
-    flag_.assign(blocks_, -1);
-    std::vector<int> count(blocks_, 0);
-    for (int k = 0; k < blocks_; ++k) {
-        flag_[k] = k;
-        for (int p = upperStart_[k]; p < upperStart_[k + 1]; ++p)
-            for (int i = upperRow_[p]; flag_[i] != k; i = parent_[i]) {
-                if (parent_[i] == -1) parent_[i] = k;
-                ++count[i];
-                flag_[i] = k;
-            }
-    }
-    columnStart_.assign(blocks_ + 1, 0);
-    for (int k = 0; k < blocks_; ++k) columnStart_[k + 1] = columnStart_[k] + count[k];
-    rowOfL_.assign(columnStart_[blocks_], 0);
-    valuesOfL_.assign(columnStart_[blocks_], Block::Zero());
+    panel_.assign(panelStart_[supernodes], 0.0);
+    below_.assign(belowStart_[supernodes], 0.0);
     dInverse_.assign(blocks_, Block::Identity());
     pivots_.assign(3 * blocks_, 1.0);
-    gathered_.assign(9 * (upperBlocks + blocks_), 0.0);
-    row_.assign(blocks_, Block::Zero());
-    filled_.assign(blocks_, 0);
-    stack_.assign(blocks_, 0);
-    path_.assign(blocks_, 0);
+    localRow_.assign(blocks_, 0);
+    head_.assign(supernodes, -1);
+    next_.assign(supernodes, -1);
+    position_.assign(supernodes, 0);
+    update_.assign(largestUpdate, 0.0);
+    group_.assign(longestPanel * 3 * kGroupColumns, 0.0);
     analysed_ = true;
 }
 
@@ -168,48 +222,112 @@ bool FactoriseDiagonal(const Eigen::Matrix3d& D, double pivots[3], Eigen::Matrix
 }  // namespace
 
 bool BlockLdlt::Factorise(const Eigen::SparseMatrix<double>& H, double shift) {
-    assert(analysed_ && static_cast<size_t>(H.nonZeros()) == valueSlot_.size());
-    // Gather H into blocks (new order): above the diagonal, then the diagonal blocks.
-    std::fill(gathered_.begin(), gathered_.end(), 0.0);
+    assert(analysed_ && static_cast<size_t>(H.nonZeros()) == slot_.size());
+    // H's lower blocks into the panels; padding's diagonal 1.
+    std::fill(panel_.begin(), panel_.end(), 0.0);
     const double* values = H.valuePtr();
-    for (size_t e = 0; e < valueSlot_.size(); ++e)
-        if (valueSlot_[e] >= 0) gathered_[valueSlot_[e]] = values[e];
-    const int upperBlocks = upperStart_[blocks_];
-    double* diagonal = gathered_.data() + 9 * upperBlocks;
-    for (int k = 0; k < blocks_; ++k)
-        for (int c = 0; c < 3; ++c) diagonal[9 * k + 4 * c] = used_[3 * k + c] ? diagonal[9 * k + 4 * c] + shift : 1.0;
+    for (size_t e = 0; e < slot_.size(); ++e)
+        if (slot_[e] >= 0) panel_[slot_[e]] = values[e];
+    for (int d = 0; d < 3 * blocks_; ++d) {
+        double& diagonal = panel_[diagonalSlot_[d]];
+        diagonal = used_[d] ? diagonal + shift : 1.0;
+    }
 
-    // Row k of L solves L(0:k, 0:k) D y = A(0:k, k) over the rows its elimination-tree reach gives,
-    // in topological order; then L(k, i) = y_i^T D_i^-1 and D_k = A_kk - sum_i L(k, i) y_i.
-    std::fill(filled_.begin(), filled_.end(), 0);
-    std::fill(flag_.begin(), flag_.end(), -1);
-    for (int k = 0; k < blocks_; ++k) {
-        int top = blocks_;
-        flag_[k] = k;
-        for (int p = upperStart_[k]; p < upperStart_[k + 1]; ++p) {
-            int i = upperRow_[p];
-            row_[i] = Eigen::Map<const Block>(gathered_.data() + 9 * p);
-            int length = 0;
-            for (; flag_[i] != k; i = parent_[i]) {
-                path_[length++] = i;
-                flag_[i] = k;
+    // Left-looking, a supernode at a time: each supernode's panel receives the updates of the
+    // supernodes below it whose rows reach its columns (linked in head_ by the first row they have
+    // not yet passed on), then is factorised densely.
+    const int supernodes = static_cast<int>(superFirst_.size()) - 1;
+    std::fill(head_.begin(), head_.end(), -1);
+    for (int s = 0; s < supernodes; ++s) {
+        const int first = superFirst_[s], width = Width(s), rowCount = Rows(s) / 3, stride = Rows(s);
+        const int* rows = rows_.data() + rowStart_[s];
+        double* P = Panel(s);
+        for (int t = 0; t < rowCount; ++t) localRow_[rows[t]] = t;
+        for (int d = head_[s], nextD; d != -1; d = nextD) {
+            nextD = next_[d];
+            const int* rowsD = rows_.data() + rowStart_[d];
+            const int countD = Rows(d) / 3, widthD = Width(d);
+            const int from = position_[d];
+            int to = from;
+            while (to < countD && rowsD[to] < superFirst_[s + 1]) ++to;
+            const int m = countD - from, n = to - from;
+            // L_d (its rows from `from` on) times (L D)_d^T (its rows in s's columns).
+            MultiplyTransposed(3 * m, 3 * n, 3 * widthD, Panel(d) + 3 * from, Rows(d), below_.data() + belowStart_[d] + 3 * (from - widthD),
+                               3 * (countD - widthD), update_.data(), 3 * m);
+            for (int jb = 0; jb < n; ++jb) {
+                double* column = P + 3L * (rowsD[from + jb] - first) * stride;
+                for (int ib = jb; ib < m; ++ib) {
+                    double* target = column + 3 * localRow_[rowsD[from + ib]];
+                    const double* source = update_.data() + 9L * jb * m + 3 * ib;
+                    for (int c = 0; c < 3; ++c)
+                        for (int r = 0; r < 3; ++r) target[c * stride + r] -= source[c * 3 * m + r];
+                }
             }
-            while (length > 0) stack_[--top] = path_[--length];
+            position_[d] = to;
+            if (to < countD) {
+                const int ancestor = superOf_[rowsD[to]];
+                next_[d] = head_[ancestor];
+                head_[ancestor] = d;
+            }
         }
-        Block Dk = Eigen::Map<const Block>(diagonal + 9 * k);
-        for (; top < blocks_; ++top) {
-            const int i = stack_[top];
-            const Block yi = row_[i];
-            row_[i].setZero();
-            const int begin = columnStart_[i], end = begin + filled_[i];
-            for (int p = begin; p < end; ++p) row_[rowOfL_[p]].noalias() -= valuesOfL_[p] * yi;
-            const Block lki = yi.transpose() * dInverse_[i];
-            Dk.noalias() -= lki * yi;
-            rowOfL_[end] = k;
-            valuesOfL_[end] = lki;
-            ++filled_[i];
+        if (!FactorisePanel(s)) return false;
+        position_[s] = width;
+        if (rowCount > width) {
+            const int ancestor = superOf_[rows[width]];
+            next_[s] = head_[ancestor];
+            head_[ancestor] = s;
         }
-        if (!FactoriseDiagonal(Dk, &pivots_[3 * k], dInverse_[k])) return false;
+    }
+    return true;
+}
+
+// A supernode's panel, all updates from below received, factorised a group of columns at a time:
+// each column of the group takes the updates of the group's columns before it, then gives D's block
+// and L's column below it (L = A D^-1; the unscaled A = L D kept for the group in group_ and, for the
+// rows below the supernode, in below_); then one dense product updates the columns after the group.
+bool BlockLdlt::FactorisePanel(int s) {
+    const int first = superFirst_[s], width = Width(s), rowCount = Rows(s) / 3, stride = Rows(s);
+    double* P = Panel(s);
+    double* W = below_.data() + belowStart_[s];
+    const int strideW = 3 * (rowCount - width);
+    double* U = group_.data();  // the group's columns, whole panel columns
+    // C -= the product in update_ (M x N, leading dimension M).
+    const auto subtract = [&](double* C, int M, int N) {
+        for (int j = 0; j < N; ++j) {
+            const double* source = update_.data() + static_cast<long>(j) * M;
+            double* target = C + static_cast<long>(j) * stride;
+            for (int i = 0; i < M; ++i) target[i] -= source[i];
+        }
+    };
+    for (int c0 = 0; c0 < width; c0 += kGroupColumns) {
+        const int c1 = std::min(width, c0 + kGroupColumns);
+        for (int c = c0; c < c1; ++c) {
+            double* column = P + 3L * c * stride;
+            if (c > c0) {
+                const int M = stride - 3 * c;
+                MultiplyTransposed(M, 3, 3 * (c - c0), P + 3L * c0 * stride + 3 * c, stride, U + 3 * c, stride, update_.data(), M);
+                subtract(column + 3 * c, M, 3);
+            }
+            Eigen::Matrix3d D;
+            for (int q = 0; q < 3; ++q)
+                for (int r = 0; r < 3; ++r) D(r, q) = column[q * stride + 3 * c + r];
+            if (!FactoriseDiagonal(D, &pivots_[3 * (first + c)], dInverse_[first + c])) return false;
+            const int M = stride - 3 * (c + 1);
+            if (M == 0) continue;
+            double* u = U + 3L * (c - c0) * stride;
+            for (int q = 0; q < 3; ++q) std::copy_n(column + q * stride + 3 * (c + 1), M, u + q * stride + 3 * (c + 1));
+            double inverseTransposed[9];
+            for (int q = 0; q < 3; ++q)
+                for (int r = 0; r < 3; ++r) inverseTransposed[3 * q + r] = dInverse_[first + c](q, r);
+            MultiplyTransposed(M, 3, 3, u + 3 * (c + 1), stride, inverseTransposed, 3, column + 3 * (c + 1), stride);
+            if (rowCount > width)
+                for (int q = 0; q < 3; ++q) std::copy_n(u + q * stride + 3 * width, strideW, W + (3L * c + q) * strideW);
+        }
+        if (c1 == width) break;
+        // Columns c1 .. width - 1, rows from their first diagonal block on: less L(group) (L D)(group)^T.
+        const int M = stride - 3 * c1, N = 3 * (width - c1), K = 3 * (c1 - c0);
+        MultiplyTransposed(M, N, K, P + 3L * c0 * stride + 3 * c1, stride, U + 3 * c1, stride, update_.data(), M);
+        subtract(P + 3L * c1 * stride + 3 * c1, M, N);
     }
     return true;
 }
@@ -218,28 +336,54 @@ bool BlockLdlt::Factorise(const Eigen::SparseMatrix<double>& H, double shift) {
 // [SECTION] Solve and inertia
 // ---------------------------------------------------------------------------------------------
 
-std::vector<Eigen::Vector3d> BlockLdlt::ToBlocks(const Eigen::VectorXd& b) const {
-    std::vector<Eigen::Vector3d> y(blocks_, Eigen::Vector3d::Zero());  // padding stays 0
-    for (size_t d = 0; d < placeOf_.size(); ++d) y[placeOf_[d] / 3][placeOf_[d] % 3] = b[d];
+std::vector<double> BlockLdlt::ToBlocks(const Eigen::VectorXd& b) const {
+    std::vector<double> y(3 * blocks_, 0.0);  // padding stays 0
+    for (size_t d = 0; d < placeOf_.size(); ++d) y[placeOf_[d]] = b[d];
     return y;
 }
 
-Eigen::VectorXd BlockLdlt::FromBlocks(const std::vector<Eigen::Vector3d>& y) const {
+Eigen::VectorXd BlockLdlt::FromBlocks(const std::vector<double>& y) const {
     Eigen::VectorXd x(placeOf_.size());
-    for (size_t d = 0; d < placeOf_.size(); ++d) x[d] = y[placeOf_[d] / 3][placeOf_[d] % 3];
+    for (size_t d = 0; d < placeOf_.size(); ++d) x[d] = y[placeOf_[d]];
     return x;
 }
 
-void BlockLdlt::SolveTransposedL(std::vector<Eigen::Vector3d>& y) const {
-    for (int j = blocks_ - 1; j >= 0; --j)
-        for (int p = columnStart_[j]; p < columnStart_[j + 1]; ++p) y[j].noalias() -= valuesOfL_[p].transpose() * y[rowOfL_[p]];
+void BlockLdlt::SolveTransposedL(std::vector<double>& y) const {
+    for (int s = static_cast<int>(superFirst_.size()) - 2; s >= 0; --s) {
+        const int first = superFirst_[s], rowCount = Rows(s) / 3, stride = Rows(s);
+        const int* rows = rows_.data() + rowStart_[s];
+        const double* P = Panel(s);
+        for (int c = Width(s) - 1; c >= 0; --c) {
+            double sum[3] = {0, 0, 0};
+            for (int t = c + 1; t < rowCount; ++t) {
+                const double* block = P + 3L * c * stride + 3 * t;
+                const double* x = &y[3 * rows[t]];
+                for (int col = 0; col < 3; ++col) sum[col] += block[col * stride] * x[0] + block[col * stride + 1] * x[1] + block[col * stride + 2] * x[2];
+            }
+            for (int col = 0; col < 3; ++col) y[3 * (first + c) + col] -= sum[col];
+        }
+    }
 }
 
 Eigen::VectorXd BlockLdlt::Solve(const Eigen::VectorXd& b) const {
-    std::vector<Eigen::Vector3d> y = ToBlocks(b);
-    for (int j = 0; j < blocks_; ++j)
-        for (int p = columnStart_[j]; p < columnStart_[j + 1]; ++p) y[rowOfL_[p]].noalias() -= valuesOfL_[p] * y[j];
-    for (int j = 0; j < blocks_; ++j) y[j] = dInverse_[j] * y[j];
+    std::vector<double> y = ToBlocks(b);
+    for (size_t s = 0; s + 1 < superFirst_.size(); ++s) {
+        const int first = superFirst_[s], rowCount = Rows(static_cast<int>(s)) / 3, stride = Rows(static_cast<int>(s));
+        const int* rows = rows_.data() + rowStart_[s];
+        const double* P = Panel(static_cast<int>(s));
+        for (int c = 0; c < Width(static_cast<int>(s)); ++c) {
+            const double x[3] = {y[3 * (first + c)], y[3 * (first + c) + 1], y[3 * (first + c) + 2]};
+            for (int t = c + 1; t < rowCount; ++t) {
+                const double* block = P + 3L * c * stride + 3 * t;
+                double* target = &y[3 * rows[t]];
+                for (int r = 0; r < 3; ++r) target[r] -= block[r] * x[0] + block[stride + r] * x[1] + block[2 * stride + r] * x[2];
+            }
+        }
+    }
+    for (int j = 0; j < blocks_; ++j) {
+        const Eigen::Vector3d x = dInverse_[j] * Eigen::Vector3d(y[3 * j], y[3 * j + 1], y[3 * j + 2]);
+        for (int r = 0; r < 3; ++r) y[3 * j + r] = x[r];
+    }
     SolveTransposedL(y);
     return FromBlocks(y);
 }
@@ -253,8 +397,8 @@ Eigen::VectorXd BlockLdlt::NegativeCurvatureDirection() const {
     // eigenvectors: z with z^T D z < 0. Then y = L^-T z has y^T L D L^T y = z^T D z < 0.
     const int block = worst / 3;
     Eigen::SelfAdjointEigenSolver<Block> eigen(dInverse_[block]);
-    std::vector<Eigen::Vector3d> y(blocks_, Eigen::Vector3d::Zero());
-    y[block] = eigen.eigenvectors().col(0);  // eigenvalues ascending: the first is negative
+    std::vector<double> y(3 * blocks_, 0.0);
+    for (int r = 0; r < 3; ++r) y[3 * block + r] = eigen.eigenvectors()(r, 0);  // eigenvalues ascending: the first is negative
     SolveTransposedL(y);
     return FromBlocks(y);
 }

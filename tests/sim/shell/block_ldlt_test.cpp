@@ -12,6 +12,7 @@
 #include <random>
 #include <thread>
 
+#include "shell/dense_product.h"
 #include "shell/shell_problem.h"
 
 namespace {
@@ -156,6 +157,67 @@ TEST(BlockLdlt, MatchesEigensScalarFactorisationOnAShellHessian) {
     EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(Eigen::MatrixXd(pattern.matrix)));
     const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(problem.unknowns, -1, 1);
     EXPECT_LT((ldlt.Solve(b) - scalar.solve(b)).norm(), 1e-9 * scalar.solve(b).norm());
+}
+
+// The supernodes' dense product: the vector path (where the machine has one) and the portable one
+// give the same bits, and both the product, on shapes with every remainder of rows and columns.
+TEST(DenseProduct, VectorAndPortablePathsGiveTheSameBitsAndTheProduct) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> value(-1, 1);
+    for (int M : {1, 3, 4, 7, 12, 13, 26, 51})
+        for (int N : {1, 3, 5, 6, 12})
+            for (int K : {1, 3, 9, 24}) {
+                const int lda = M + 2, ldb = N + 1, ldc = M + 3;
+                std::vector<double> A(static_cast<size_t>(lda) * K), B(static_cast<size_t>(ldb) * K);
+                for (double& a : A) a = value(rng);
+                for (double& b : B) b = value(rng);
+                std::vector<double> vector(static_cast<size_t>(ldc) * N, 99.0), portable = vector;
+                sim::MultiplyTransposed(M, N, K, A.data(), lda, B.data(), ldb, vector.data(), ldc);
+                sim::MultiplyTransposed(M, N, K, A.data(), lda, B.data(), ldb, portable.data(), ldc, true);
+                EXPECT_EQ(0, std::memcmp(vector.data(), portable.data(), vector.size() * sizeof(double))) << M << " x " << N << " x " << K;
+                for (int j = 0; j < N; ++j)
+                    for (int i = 0; i < M; ++i) {
+                        double expected = 0;
+                        for (int k = 0; k < K; ++k) expected += A[static_cast<size_t>(k) * lda + i] * B[static_cast<size_t>(k) * ldb + j];
+                        EXPECT_NEAR(vector[static_cast<size_t>(j) * ldc + i], expected, 1e-13 * K);
+                    }
+                for (int j = 0; j < N; ++j)  // rows past M untouched
+                    for (int i = M; i < ldc; ++i) EXPECT_EQ(vector[static_cast<size_t>(j) * ldc + i], 99.0);
+            }
+}
+
+// A default-sized wall with fibre cells (1,200 vertices, wide supernodes that take several groups of
+// columns and many relaxed ones), at a state away from rest: the exact Hessian's inertia and a
+// solution as Eigen's scalar L D L^T has them.
+TEST(BlockLdlt, MatchesEigensScalarFactorisationOnADefaultFibreWall) {
+    sim::ShellDef def = sim::DefaultShellDef();
+    def.fibres.layout = sim::FibreLayout::Braid;
+    std::string error;
+    const sim::ShellProblem problem = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, true, &error);
+    ASSERT_TRUE(error.empty()) << error;
+    ASSERT_FALSE(problem.fibreCells.empty());
+    sim::HessianPattern pattern(problem);
+    Eigen::VectorXd q = sim::UnknownsOf(problem, problem.rest);
+    for (int i = 0; i < q.size(); ++i) q[i] += 0.3 * std::sin(1.7 * i);
+    sim::LoadTerms load;
+    load.pressure = 0.003;
+    sim::AssembleEnergy(problem, q, load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
+    sim::BlockLdlt ldlt;
+    ldlt.Analyse(pattern.matrix, sim::VertexBlockPlaces(problem));
+    ASSERT_TRUE(ldlt.Factorise(pattern.matrix, 0));
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> scalar(pattern.matrix);
+    ASSERT_EQ(scalar.info(), Eigen::Success);
+    const int scalarNegative = static_cast<int>((scalar.vectorD().array() < 0).count());
+    EXPECT_GT(scalarNegative, 0);
+    EXPECT_EQ(ldlt.NegativePivots(), scalarNegative);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(problem.unknowns, -1, 1);
+    const Eigen::VectorXd x = ldlt.Solve(b);
+    EXPECT_LT((pattern.matrix * x - b).norm(), 1e-8 * b.norm());
+    EXPECT_LT((x - scalar.solve(b)).norm(), 1e-7 * x.norm());
+    // A direction of negative curvature where the pivots show one.
+    const Eigen::VectorXd down = ldlt.NegativeCurvatureDirection();
+    ASSERT_EQ(down.size(), problem.unknowns);
+    EXPECT_LT(down.dot(pattern.matrix * down), 0);
 }
 
 }  // namespace
