@@ -252,8 +252,12 @@ bool BlockLdlt::Factorise(const Eigen::SparseMatrix<double>& H, double shift) {
             while (to < countD && rowsD[to] < superFirst_[s + 1]) ++to;
             const int m = countD - from, n = to - from;
             // L_d (its rows from `from` on) times (L D)_d^T (its rows in s's columns).
-            MultiplyTransposed(3 * m, 3 * n, 3 * widthD, Panel(d) + 3 * from, Rows(d), below_.data() + belowStart_[d] + 3 * (from - widthD),
-                               3 * (countD - widthD), update_.data(), 3 * m);
+            // Only the lower blocks are wanted: in bands of kBandBlocks columns, each from its diagonal down.
+            for (int jb = 0; jb < n; jb += kBandBlocks) {
+                const int columns = std::min(kBandBlocks, n - jb);
+                MultiplyTransposed(3 * (m - jb), 3 * columns, 3 * widthD, Panel(d) + 3 * (from + jb), Rows(d),
+                                   below_.data() + belowStart_[d] + 3 * (from + jb - widthD), 3 * (countD - widthD), update_.data() + 9L * jb * m + 3 * jb, 3 * m);
+            }
             for (int jb = 0; jb < n; ++jb) {
                 double* column = P + 3L * (rowsD[from + jb] - first) * stride;
                 for (int ib = jb; ib < m; ++ib) {

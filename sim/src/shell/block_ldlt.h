@@ -74,7 +74,8 @@ private:
     // Workspace of Factorise.
     std::vector<int> localRow_, head_, next_, position_;
     std::vector<double> update_, group_;
-    static constexpr int kGroupColumns = 4;  // block columns factorised before one dense product updates the rest
+    static constexpr int kGroupColumns = 4;
+    static constexpr int kBandBlocks = 4;    // block columns of an update computed together, from their diagonal down  // block columns factorised before one dense product updates the rest
     bool FactorisePanel(int s);
 };
 
