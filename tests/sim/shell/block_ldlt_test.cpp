@@ -131,32 +131,45 @@ TEST(BlockLdlt, AZeroPivotIsAFailureNotACrash) {
     EXPECT_TRUE(ldlt.Factorise(A, 1e-3));
 }
 
+// A shell problem's exact Hessian at a state away from rest (offsetMm along a sine over the unknowns),
+// where it is indefinite, factorised; Eigen's scalar L D L^T beside it, with the same inertia.
+struct FactorisedShellHessian {
+    sim::ShellProblem problem;
+    Eigen::SparseMatrix<double> matrix;
+    sim::BlockLdlt ldlt;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> scalar;
+};
+void FactoriseAwayFromRest(const sim::ShellDef& def, double offsetMm, FactorisedShellHessian& f) {
+    std::string error;
+    f.problem = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, true, &error);
+    ASSERT_TRUE(error.empty()) << error;
+    sim::HessianPattern pattern(f.problem);
+    Eigen::VectorXd q = sim::UnknownsOf(f.problem, f.problem.rest);
+    for (int i = 0; i < q.size(); ++i) q[i] += offsetMm * std::sin(1.7 * i);
+    sim::LoadTerms load;
+    load.pressure = 0.003;
+    sim::AssembleEnergy(f.problem, q, load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
+    f.matrix = pattern.matrix;
+    f.ldlt.Analyse(f.matrix, sim::VertexBlockPlaces(f.problem));
+    ASSERT_TRUE(f.ldlt.Factorise(f.matrix, 0));
+    f.scalar.compute(f.matrix);
+    ASSERT_EQ(f.scalar.info(), Eigen::Success);
+    const int scalarNegative = static_cast<int>((f.scalar.vectorD().array() < 0).count());
+    EXPECT_GT(scalarNegative, 0);
+    EXPECT_EQ(f.ldlt.NegativePivots(), scalarNegative);
+}
+
 TEST(BlockLdlt, MatchesEigensScalarFactorisationOnAShellHessian) {
     sim::ShellDef def = sim::DefaultShellDef();
     def.geometry.ringVertices = 12;
     def.geometry.rings = 10;
     def.geometry.clampMm = 150.0 / 9;  // one ring spacing: a uniform mesh, as well conditioned as the comparison needs
     def.geometry.edgeSpacingMm = 0;
-    std::string error;
-    const sim::ShellProblem problem = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, true, &error);
-    ASSERT_TRUE(error.empty()) << error;
-    sim::HessianPattern pattern(problem);
-    Eigen::VectorXd q = sim::UnknownsOf(problem, problem.rest);
-    for (int i = 0; i < q.size(); ++i) q[i] += 0.2 * std::sin(1.7 * i);  // a state away from rest: an indefinite exact Hessian
-    sim::LoadTerms load;
-    load.pressure = 0.003;
-    sim::AssembleEnergy(problem, q, load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
-    sim::BlockLdlt ldlt;
-    ldlt.Analyse(pattern.matrix, sim::VertexBlockPlaces(problem));
-    ASSERT_TRUE(ldlt.Factorise(pattern.matrix, 0));
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> scalar(pattern.matrix);
-    ASSERT_EQ(scalar.info(), Eigen::Success);
-    const int scalarNegative = static_cast<int>((scalar.vectorD().array() < 0).count());
-    EXPECT_GT(scalarNegative, 0);
-    EXPECT_EQ(ldlt.NegativePivots(), scalarNegative);
-    EXPECT_EQ(ldlt.NegativePivots(), NegativeEigenvalues(Eigen::MatrixXd(pattern.matrix)));
-    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(problem.unknowns, -1, 1);
-    EXPECT_LT((ldlt.Solve(b) - scalar.solve(b)).norm(), 1e-9 * scalar.solve(b).norm());
+    FactorisedShellHessian f;
+    ASSERT_NO_FATAL_FAILURE(FactoriseAwayFromRest(def, 0.2, f));
+    EXPECT_EQ(f.ldlt.NegativePivots(), NegativeEigenvalues(Eigen::MatrixXd(f.matrix)));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(f.problem.unknowns, -1, 1);
+    EXPECT_LT((f.ldlt.Solve(b) - f.scalar.solve(b)).norm(), 1e-9 * f.scalar.solve(b).norm());
 }
 
 // The supernodes' dense product: the vector path (where the machine has one) and the portable one
@@ -192,32 +205,17 @@ TEST(DenseProduct, VectorAndPortablePathsGiveTheSameBitsAndTheProduct) {
 TEST(BlockLdlt, MatchesEigensScalarFactorisationOnADefaultFibreWall) {
     sim::ShellDef def = sim::DefaultShellDef();
     def.fibres.layout = sim::FibreLayout::Braid;
-    std::string error;
-    const sim::ShellProblem problem = sim::BuildTubeProblem(def, sim::SineShape{1.3, 0.5, std::numbers::pi - 0.5}, true, &error);
-    ASSERT_TRUE(error.empty()) << error;
-    ASSERT_FALSE(problem.fibreCells.empty());
-    sim::HessianPattern pattern(problem);
-    Eigen::VectorXd q = sim::UnknownsOf(problem, problem.rest);
-    for (int i = 0; i < q.size(); ++i) q[i] += 0.3 * std::sin(1.7 * i);
-    sim::LoadTerms load;
-    load.pressure = 0.003;
-    sim::AssembleEnergy(problem, q, load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
-    sim::BlockLdlt ldlt;
-    ldlt.Analyse(pattern.matrix, sim::VertexBlockPlaces(problem));
-    ASSERT_TRUE(ldlt.Factorise(pattern.matrix, 0));
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> scalar(pattern.matrix);
-    ASSERT_EQ(scalar.info(), Eigen::Success);
-    const int scalarNegative = static_cast<int>((scalar.vectorD().array() < 0).count());
-    EXPECT_GT(scalarNegative, 0);
-    EXPECT_EQ(ldlt.NegativePivots(), scalarNegative);
-    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(problem.unknowns, -1, 1);
-    const Eigen::VectorXd x = ldlt.Solve(b);
-    EXPECT_LT((pattern.matrix * x - b).norm(), 1e-8 * b.norm());
-    EXPECT_LT((x - scalar.solve(b)).norm(), 1e-7 * x.norm());
+    FactorisedShellHessian f;
+    ASSERT_NO_FATAL_FAILURE(FactoriseAwayFromRest(def, 0.3, f));
+    ASSERT_FALSE(f.problem.fibreCells.empty());
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(f.problem.unknowns, -1, 1);
+    const Eigen::VectorXd x = f.ldlt.Solve(b);
+    EXPECT_LT((f.matrix * x - b).norm(), 1e-8 * b.norm());
+    EXPECT_LT((x - f.scalar.solve(b)).norm(), 1e-7 * x.norm());
     // A direction of negative curvature where the pivots show one.
-    const Eigen::VectorXd down = ldlt.NegativeCurvatureDirection();
-    ASSERT_EQ(down.size(), problem.unknowns);
-    EXPECT_LT(down.dot(pattern.matrix * down), 0);
+    const Eigen::VectorXd down = f.ldlt.NegativeCurvatureDirection();
+    ASSERT_EQ(down.size(), f.problem.unknowns);
+    EXPECT_LT(down.dot(f.matrix * down), 0);
 }
 
 }  // namespace
