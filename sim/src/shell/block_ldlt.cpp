@@ -267,22 +267,19 @@ bool BlockLdlt::Factorise(const Eigen::SparseMatrix<double>& H, double shift) {
                         for (int r = 0; r < 3; ++r) target[c * stride + r] -= source[c * 3 * m + r];
                 }
             }
-            position_[d] = to;
-            if (to < countD) {
-                const int ancestor = superOf_[rowsD[to]];
-                next_[d] = head_[ancestor];
-                head_[ancestor] = d;
-            }
+            if (to < countD) PassOn(d, to);
         }
         if (!FactorisePanel(s)) return false;
-        position_[s] = width;
-        if (rowCount > width) {
-            const int ancestor = superOf_[rows[width]];
-            next_[s] = head_[ancestor];
-            head_[ancestor] = s;
-        }
+        if (rowCount > width) PassOn(s, width);
     }
     return true;
+}
+
+void BlockLdlt::PassOn(int d, int from) {
+    position_[d] = from;
+    const int ancestor = superOf_[rows_[rowStart_[d] + from]];
+    next_[d] = head_[ancestor];
+    head_[ancestor] = d;
 }
 
 // A supernode's panel, all updates from below received, factorised a group of columns at a time:

@@ -74,9 +74,12 @@ private:
     // Workspace of Factorise.
     std::vector<int> localRow_, head_, next_, position_;
     std::vector<double> update_, group_;
-    static constexpr int kGroupColumns = 4;
-    static constexpr int kBandBlocks = 4;    // block columns of an update computed together, from their diagonal down  // block columns factorised before one dense product updates the rest
+    static constexpr int kGroupColumns = 4;  // block columns factorised before one dense product updates the rest
+    static constexpr int kBandBlocks = 4;    // block columns of an update computed together, from their diagonal down
     bool FactorisePanel(int s);
+    // Links supernode d into the list of the supernode that holds its row `from` (one of its rows
+    // below its columns): the next whose panel d updates, starting there.
+    void PassOn(int d, int from);
 };
 
 }  // namespace sim
