@@ -91,6 +91,27 @@ void BM_GaDesign(benchmark::State& state, int which, bool fibres, bool contact) 
     Measure(state, job);
 }
 
+// A design solved, and the problem, unknowns and load of its equilibrium: what the benchmarks of one
+// assembly or factorisation there start from. False (the benchmark skipped with `failure`) when it
+// does not solve.
+struct Equilibrium {
+    sim::ShellProblem problem;
+    Eigen::VectorXd q;
+    sim::LoadTerms load;
+};
+bool Solve(benchmark::State& state, const sim::EvalJob& job, const char* failure, Equilibrium& e) {
+    const sim::SimResult solved = sim::Evaluate(job);
+    std::string error;
+    e.problem = sim::BuildTubeProblem(job.Shell(), job.shape, true, &error);
+    if (solved.status != sim::Status::Ok || !error.empty()) {
+        state.SkipWithError(failure);
+        return false;
+    }
+    e.q = sim::UnknownsOf(e.problem, solved.final);
+    e.load.pressure = job.Shell().load.pressureKpa * 1e-3;  // MPa
+    return true;
+}
+
 // What the fibre terms cost in one assembly, apart from the iterations they make Newton take: the
 // braided sine's equilibrium (30 x 30, 3 kPa), assembled as a Newton iteration does (gradient and
 // projected Hessian) or as a line-search trial does (gradient only), with the fibres' terms and
@@ -98,24 +119,16 @@ void BM_GaDesign(benchmark::State& state, int which, bool fibres, bool contact) 
 void BM_Assembly(benchmark::State& state, bool hessian, bool fibres) {
     sim::EvalJob job = Job(sim::ModelKind::Shell, 30, 30);
     job.Shell().fibres.layout = sim::FibreLayout::Braid;
-    const sim::SimResult solved = sim::Evaluate(job);
-    std::string error;
-    const sim::ShellProblem problem = sim::BuildTubeProblem(job.Shell(), job.shape, true, &error);
-    if (solved.status != sim::Status::Ok || !error.empty()) {
-        state.SkipWithError("the braided sine did not solve");
-        return;
-    }
-    const Eigen::VectorXd q = sim::UnknownsOf(problem, solved.final);
-    sim::LoadTerms load;
-    load.pressure = job.Shell().load.pressureKpa * 1e-3;  // MPa
+    Equilibrium e;
+    if (!Solve(state, job, "the braided sine did not solve", e)) return;
     sim::EnergyTerms terms;
     terms.fibres = fibres;
     // Without contact: with no list given, every assembly would search the whole wall for its pairs
     // (3-4 ms of the 5 ms such an assembly takes), which a Newton iteration, holding its list, does not.
     terms.contact = false;
-    sim::HessianPattern pattern(problem);
+    sim::HessianPattern pattern(e.problem);
     for (auto _ : state) {
-        const sim::EnergyResult r = sim::AssembleEnergy(problem, q, load, terms, true, hessian ? &pattern : nullptr, sim::HessianKind::Projected);
+        const sim::EnergyResult r = sim::AssembleEnergy(e.problem, e.q, e.load, terms, true, hessian ? &pattern : nullptr, sim::HessianKind::Projected);
         benchmark::DoNotOptimize(r.energy);
     }
 }
@@ -126,18 +139,11 @@ void BM_Assembly(benchmark::State& state, bool hessian, bool fibres) {
 // (30 x 30 graded), its pattern analysed once. The counter gives the factor's 3 x 3 blocks below the
 // diagonal.
 void BM_Factor(benchmark::State& state, bool solve) {
-    const sim::EvalJob job = GaDesign(1, true);
-    const sim::SimResult solved = sim::Evaluate(job);
-    std::string error;
-    const sim::ShellProblem problem = sim::BuildTubeProblem(job.Shell(), job.shape, true, &error);
-    if (solved.status != sim::Status::Ok || !error.empty()) {
-        state.SkipWithError("the S5.4F individual did not solve");
-        return;
-    }
-    sim::LoadTerms load;
-    load.pressure = job.Shell().load.pressureKpa * 1e-3;  // MPa
+    Equilibrium e;
+    if (!Solve(state, GaDesign(1, true), "the S5.4F individual did not solve", e)) return;
+    const sim::ShellProblem& problem = e.problem;
     sim::HessianPattern pattern(problem);
-    sim::AssembleEnergy(problem, sim::UnknownsOf(problem, solved.final), load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
+    sim::AssembleEnergy(problem, e.q, e.load, sim::EnergyTerms{}, false, &pattern, sim::HessianKind::Exact);
     sim::BlockLdlt ldlt;
     ldlt.Analyse(pattern.matrix, sim::VertexBlockPlaces(problem));
     if (solve) {
